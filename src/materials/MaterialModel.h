@@ -1,0 +1,62 @@
+// The one shape every constitutive model has (see STYLE.md):
+//   update(F_new, state_old) -> {P, dP/dF, state_new, status}.
+// Models know nothing about meshes, MPI or linear algebra, so each can be tested at a single
+// material point. Units: stresses and moduli in GPa, strains dimensionless.
+#pragma once
+
+#include <deal.II/base/tensor.h>
+
+#include <span>
+#include <string>
+
+namespace indentsim::materials
+{
+  using dealii::Tensor;
+
+  // A numerical failure is reported, never thrown out of a quadrature loop: the load stepper
+  // cuts the increment back and retries.
+  enum class UpdateStatus
+  {
+    success,
+    invalid_deformation,  // det F <= 0 or not finite
+    local_newton_failed   // return mapping did not converge
+  };
+
+  std::string to_string(UpdateStatus status);
+
+  // Output of one material-point update (total-Lagrangian form).
+  struct MaterialPointResponse
+  {
+    Tensor<2, 3> P;      // first Piola-Kirchhoff stress [GPa]
+    Tensor<4, 3> dP_dF;  // consistent (algorithmic) tangent dP/dF [GPa]
+    Tensor<2, 3> tau;    // Kirchhoff stress tau = P F^T [GPa]
+  };
+
+  class MaterialModel
+  {
+  public:
+    virtual ~MaterialModel() = default;
+
+    // Number of doubles in this model's internal state at one material point.
+    virtual unsigned int n_state_variables() const = 0;
+
+    // Writes the state of virgin material into `state` (size n_state_variables()).
+    virtual void initial_state(std::span<double> state) const = 0;
+
+    // Stress and consistent tangent for deformation gradient F at the end of the increment,
+    // starting from the converged state of the previous increment. `state_new` receives the
+    // updated internal state. Inputs are never modified. When `compute_tangent` is false the
+    // tangent member of `response` is left untouched (used for stress recovery and output).
+    virtual UpdateStatus update(const Tensor<2, 3>           &F,
+                                std::span<const double>       state_old,
+                                MaterialPointResponse        &response,
+                                std::span<double>             state_new,
+                                bool                          compute_tangent = true) const = 0;
+
+    // Equivalent (accumulated) plastic strain stored in a state, for output; 0 for elastic models.
+    virtual double equivalent_plastic_strain(std::span<const double> state) const = 0;
+
+    // Small-strain shear and bulk moduli [GPa], used to scale penalties and tolerances.
+    virtual double reference_modulus() const = 0;
+  };
+} // namespace indentsim::materials

@@ -1,0 +1,856 @@
+// YAML case files: parse -> fill defaults -> validate, and the resolved case written next to
+// every run's results. See CaseFile.h for the rules (required keys, defaults, messages).
+#include <io/CaseFile.h>
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <system_error>
+#include <vector>
+
+namespace indentsim::io
+{
+  namespace
+  {
+    namespace fs = std::filesystem;
+
+    // ------------------------------------------------------------------------------------------
+    // The schema: allowed keys per section and allowed values of the enumerations.
+
+    const std::vector<std::string> top_level_keys = {
+      "test", "material", "indenter", "specimen", "loading", "contact", "solver", "output"};
+
+    const std::map<std::string, std::vector<std::string>> section_keys = {
+      {"material",
+       {"model", "young_modulus", "poisson_ratio", "yield_stress", "hardening_modulus",
+        "yield_stress_measure"}},
+      {"indenter", {"shape", "a", "delta"}},
+      {"specimen", {"size", "refined_region", "contact_elements", "symmetry", "f_bar"}},
+      {"loading", {"max_depth", "steps", "unload", "unload_steps", "max_cutbacks"}},
+      {"contact",
+       {"friction_coefficient", "penalty", "penetration_tolerance", "max_augmentations"}},
+      {"solver", {"residual_tolerance", "absolute_tolerance", "max_newton_iterations"}},
+      {"output", {"directory", "vtu_every"}}};
+
+    const std::vector<std::string> allowed_tests = {"indentation", "tensile"};
+    const std::vector<std::string> allowed_models = {"neo_hookean", "j2"};
+    const std::vector<std::string> allowed_shapes = {"rounded_cone"};
+    const std::vector<std::string> allowed_symmetries = {"full", "quarter"};
+    const std::vector<std::string> allowed_yield_measures = {"cauchy", "kirchhoff"};
+
+    // Successive halvings of a load increment beyond this leave increments of 1e-9 of the
+    // original: more would only hide a model problem.
+    constexpr unsigned int max_allowed_cutbacks = 30;
+
+    // ------------------------------------------------------------------------------------------
+    // Formatting helpers.
+
+    // Shortest text that reads back to the identical double, independent of the locale.
+    std::string format_number(const double value)
+    {
+      std::array<char, 64> buffer{};
+      const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+      return std::string(buffer.data(), result.ptr);
+    }
+
+    std::string format_triple(const std::array<double, 3> &values)
+    {
+      return "[" + format_number(values[0]) + ", " + format_number(values[1]) + ", " +
+             format_number(values[2]) + "]";
+    }
+
+    std::string format_bool(const bool value) { return value ? "true" : "false"; }
+
+    std::string join(const std::vector<std::string> &words, const std::string &separator = ", ")
+    {
+      std::string text;
+      for (std::size_t i = 0; i < words.size(); ++i)
+        text += (i == 0 ? "" : separator) + words[i];
+      return text;
+    }
+
+    // The node as it was written, in one line (flow style for lists and maps).
+    std::string node_text(const YAML::Node &node)
+    {
+      if (!node.IsDefined() || node.IsNull())
+        return "(no value)";
+      if (node.IsScalar())
+        return node.Scalar();
+      YAML::Emitter emitter;
+      emitter.SetSeqFormat(YAML::Flow);
+      emitter.SetMapFormat(YAML::Flow);
+      emitter << node;
+      return emitter.c_str();
+    }
+
+    // Levenshtein distance, for "did you mean" suggestions.
+    std::size_t edit_distance(const std::string &a, const std::string &b)
+    {
+      std::vector<std::size_t> previous(b.size() + 1), current(b.size() + 1);
+      for (std::size_t j = 0; j <= b.size(); ++j)
+        previous[j] = j;
+      for (std::size_t i = 1; i <= a.size(); ++i)
+        {
+          current[0] = i;
+          for (std::size_t j = 1; j <= b.size(); ++j)
+            {
+              const std::size_t substitution =
+                previous[j - 1] +
+                (std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                     std::tolower(static_cast<unsigned char>(b[j - 1])) ?
+                   0 :
+                   1);
+              current[j] = std::min({previous[j] + 1, current[j - 1] + 1, substitution});
+            }
+          std::swap(previous, current);
+        }
+      return previous[b.size()];
+    }
+
+    // The closest candidate if it is plausibly a typo of `word`, else "".
+    std::string closest_match(const std::string &word, const std::vector<std::string> &candidates)
+    {
+      std::string best;
+      std::size_t best_distance = std::numeric_limits<std::size_t>::max();
+      for (const auto &candidate : candidates)
+        {
+          const std::size_t distance = edit_distance(word, candidate);
+          if (distance < best_distance)
+            {
+              best_distance = distance;
+              best = candidate;
+            }
+        }
+      const std::size_t threshold = std::max<std::size_t>(2, word.size() / 3);
+      return best_distance <= threshold ? best : std::string();
+    }
+
+    std::string key_path(const std::string &section, const std::string &key)
+    {
+      return section.empty() ? key : section + "." + key;
+    }
+
+    // ------------------------------------------------------------------------------------------
+    // Where each value came from, so that value checks after parsing can name the line.
+    struct ValueOrigin
+    {
+      int         line = -1; // 0-based, as yaml-cpp counts
+      std::string text;      // the value as written
+    };
+    using OriginMap = std::map<std::string, ValueOrigin>;
+
+    [[noreturn]] void fail(const std::string &source, const int line, const std::string &message)
+    {
+      std::string location = source.empty() ? std::string("case file") : source;
+      if (line >= 0)
+        location += ":" + std::to_string(line + 1);
+      throw CaseFileError(location + ": " + message);
+    }
+
+    // ------------------------------------------------------------------------------------------
+    // Reads YAML nodes into a Case: structure (unknown, duplicate, missing keys) and types.
+    // Value ranges are checked afterwards by validate(), which also serves validate_case().
+    class CaseReader
+    {
+    public:
+      explicit CaseReader(std::string source_name)
+        : source(std::move(source_name))
+      {}
+
+      Case read(const YAML::Node &root)
+      {
+        Case result;
+        result.source_file = source;
+
+        if (root.IsDefined() && !root.IsNull() && !root.IsMap())
+          fail(line_of(root),
+               "the case file must be a mapping of keys (test, material, indenter, ...), got '" +
+                 node_text(root) + "'");
+        check_keys(root, "", top_level_keys);
+
+        if (!read_string(root, "", "test", "the kind of test", result.test))
+          fail(-1,
+               "missing required key 'test' (allowed: " + join(allowed_tests, ", ") +
+                 "; only indentation is implemented yet)");
+
+        {
+          const YAML::Node map = section(root, "material");
+          auto &material = result.material;
+          if (!read_string(map, "material", "model", "the material model", material.model))
+            fail(line_of(map),
+                 "missing required key 'material.model' (allowed: " + join(allowed_models) + ")");
+          read_double(map, "material", "young_modulus", "E in GPa", material.young_modulus);
+          read_double(map, "material", "poisson_ratio", "nu", material.poisson_ratio);
+          read_double(map, "material", "yield_stress", "sigma_y0 in GPa", material.yield_stress);
+          read_double(map, "material", "hardening_modulus", "H in GPa",
+                      material.hardening_modulus);
+          read_string(map, "material", "yield_stress_measure", "a stress measure",
+                      material.yield_stress_measure);
+        }
+        {
+          const YAML::Node map = section(root, "indenter");
+          auto &indenter = result.indenter;
+          read_string(map, "indenter", "shape", "an indenter shape", indenter.shape);
+          read_double(map, "indenter", "a", "the slope parameter a", indenter.a);
+          read_double(map, "indenter", "delta", "the tip rounding delta in um", indenter.delta);
+        }
+        {
+          const YAML::Node map = section(root, "specimen");
+          auto &specimen = result.specimen;
+          read_triple(map, "specimen", "size", specimen.size);
+          read_triple(map, "specimen", "refined_region", specimen.refined_region);
+          read_unsigned(map, "specimen", "contact_elements", specimen.contact_elements);
+          read_string(map, "specimen", "symmetry", "a symmetry", specimen.symmetry);
+          // F-bar by default for plasticity (isochoric flow locks plain hexahedra), plain
+          // displacement element by default for hyperelasticity.
+          if (!read_bool(map, "specimen", "f_bar", specimen.f_bar))
+            specimen.f_bar = (result.material.model == "j2");
+        }
+        {
+          const YAML::Node map = section(root, "loading");
+          auto &loading = result.loading;
+          read_double(map, "loading", "max_depth", "a depth in um", loading.max_depth);
+          read_unsigned(map, "loading", "steps", loading.steps);
+          read_bool(map, "loading", "unload", loading.unload);
+          read_unsigned(map, "loading", "unload_steps", loading.unload_steps);
+          read_unsigned(map, "loading", "max_cutbacks", loading.max_cutbacks);
+        }
+        {
+          const YAML::Node map = section(root, "contact");
+          auto &contact = result.contact;
+          read_double(map, "contact", "friction_coefficient", "the Coulomb coefficient mu",
+                      contact.friction_coefficient);
+          read_double(map, "contact", "penalty", "a penalty in GPa/um", contact.penalty);
+          read_double(map, "contact", "penetration_tolerance", "a length in um",
+                      contact.penetration_tolerance);
+          read_unsigned(map, "contact", "max_augmentations", contact.max_augmentations);
+        }
+        {
+          const YAML::Node map = section(root, "solver");
+          auto &solver = result.solver;
+          read_double(map, "solver", "residual_tolerance", "a relative tolerance",
+                      solver.residual_tolerance);
+          read_double(map, "solver", "absolute_tolerance", "a force in mN",
+                      solver.absolute_tolerance);
+          read_unsigned(map, "solver", "max_newton_iterations", solver.max_newton_iterations);
+        }
+        {
+          const YAML::Node map = section(root, "output");
+          auto &output = result.output;
+          read_string(map, "output", "directory", "a directory path", output.directory);
+          read_unsigned(map, "output", "vtu_every", output.vtu_every);
+        }
+        return result;
+      }
+
+      const OriginMap &origins() const { return value_origins; }
+
+    private:
+      std::string source;
+      OriginMap   value_origins;
+
+      static int line_of(const YAML::Node &node)
+      {
+        if (!node.IsDefined())
+          return -1;
+        const YAML::Mark mark = node.Mark();
+        return mark.is_null() ? -1 : mark.line;
+      }
+
+      [[noreturn]] void fail(const int line, const std::string &message) const
+      {
+        io::fail(source, line, message);
+      }
+
+      // Unknown and duplicate keys at one level; `section_name` is "" for the top level.
+      void check_keys(const YAML::Node                &map,
+                      const std::string               &section_name,
+                      const std::vector<std::string>  &allowed) const
+      {
+        if (!map.IsDefined() || !map.IsMap())
+          return;
+        std::map<std::string, int> seen;
+        for (const auto &entry : map)
+          {
+            const int line = line_of(entry.first);
+            if (!entry.first.IsScalar())
+              fail(line,
+                   "key '" + node_text(entry.first) + "'" +
+                     (section_name.empty() ? "" : " in '" + section_name + "'") +
+                     " is not a plain name; allowed keys: " + join(allowed));
+            const std::string key = entry.first.Scalar();
+            const std::string path = key_path(section_name, key);
+            if (const auto previous = seen.find(key); previous != seen.end())
+              fail(line,
+                   "duplicate key '" + path + "' (first given on line " +
+                     std::to_string(previous->second + 1) + "); give each key once");
+            seen.emplace(key, line);
+
+            if (std::find(allowed.begin(), allowed.end(), key) != allowed.end())
+              continue;
+
+            std::string hint;
+            // A known key placed in the wrong section is the likeliest mistake.
+            for (const auto &[other_section, other_keys] : section_keys)
+              if (other_section != section_name &&
+                  std::find(other_keys.begin(), other_keys.end(), key) != other_keys.end())
+                {
+                  hint = "; did you mean '" + other_section + "." + key + "' (under '" +
+                         other_section + ":')?";
+                  break;
+                }
+            if (hint.empty())
+              if (const std::string guess = closest_match(key, allowed); !guess.empty())
+                hint = "; did you mean '" + key_path(section_name, guess) + "'?";
+            fail(line,
+                 "unknown key '" + path + "'" + (hint.empty() ? std::string(".") : hint) +
+                   " Allowed keys " +
+                   (section_name.empty() ? std::string("at the top level") :
+                                           "in '" + section_name + "'") +
+                   ": " + join(allowed) + ".");
+          }
+      }
+
+      // A section map; an absent or empty (null) section gives an undefined node: all defaults.
+      YAML::Node section(const YAML::Node &root, const std::string &name) const
+      {
+        if (!root.IsDefined() || !root.IsMap())
+          return YAML::Node(YAML::NodeType::Undefined);
+        const YAML::Node node = root[name];
+        if (!node.IsDefined() || node.IsNull())
+          return YAML::Node(YAML::NodeType::Undefined);
+        if (!node.IsMap())
+          fail(line_of(node),
+               "'" + name + "' = " + node_text(node) +
+                 ": expected a mapping of keys (allowed: " + join(section_keys.at(name)) + ")");
+        check_keys(node, name, section_keys.at(name));
+        return node;
+      }
+
+      // The value node of `key`, or an undefined node if the key is absent.
+      YAML::Node value_node(const YAML::Node  &map,
+                            const std::string &section_name,
+                            const std::string &key)
+      {
+        if (!map.IsDefined() || !map.IsMap())
+          return YAML::Node(YAML::NodeType::Undefined);
+        const YAML::Node node = map[key];
+        if (node.IsDefined())
+          value_origins[key_path(section_name, key)] = {line_of(node), node_text(node)};
+        return node;
+      }
+
+      bool read_double(const YAML::Node  &map,
+                       const std::string &section_name,
+                       const std::string &key,
+                       const std::string &meaning,
+                       double            &value)
+      {
+        const YAML::Node node = value_node(map, section_name, key);
+        if (!node.IsDefined())
+          return false;
+        value = parse_double(node, key_path(section_name, key), meaning);
+        return true;
+      }
+
+      double parse_double(const YAML::Node  &node,
+                          const std::string &path,
+                          const std::string &meaning) const
+      {
+        const std::string expected = "expected a number (" + meaning + ")";
+        if (node.IsNull())
+          fail(line_of(node), path + " has no value; " + expected);
+        if (!node.IsScalar())
+          fail(line_of(node), path + " = " + node_text(node) + ": " + expected);
+        std::string text = node.Scalar();
+        const std::size_t start = (!text.empty() && text[0] == '+') ? 1 : 0;
+        double            value = 0.;
+        const auto        result =
+          std::from_chars(text.data() + start, text.data() + text.size(), value);
+        if (result.ec != std::errc() || result.ptr != text.data() + text.size() ||
+            !std::isfinite(value))
+          fail(line_of(node), path + " = \"" + text + "\": " + expected);
+        return value;
+      }
+
+      bool read_unsigned(const YAML::Node  &map,
+                         const std::string &section_name,
+                         const std::string &key,
+                         unsigned int      &value)
+      {
+        const YAML::Node node = value_node(map, section_name, key);
+        if (!node.IsDefined())
+          return false;
+        const std::string path = key_path(section_name, key);
+        const std::string expected = "expected a non-negative whole number";
+        if (node.IsNull())
+          fail(line_of(node), path + " has no value; " + expected);
+        if (!node.IsScalar())
+          fail(line_of(node), path + " = " + node_text(node) + ": " + expected);
+        const std::string text = node.Scalar();
+        if (!text.empty() && text[0] == '-')
+          fail(line_of(node), path + " = " + text + ": negative; " + expected);
+        const std::size_t  start = (!text.empty() && text[0] == '+') ? 1 : 0;
+        unsigned long long parsed = 0;
+        const auto         result =
+          std::from_chars(text.data() + start, text.data() + text.size(), parsed);
+        if (result.ec == std::errc::result_out_of_range ||
+            (result.ec == std::errc() && parsed > std::numeric_limits<unsigned int>::max()))
+          fail(line_of(node), path + " = " + text + ": too large; " + expected);
+        if (result.ec != std::errc() || result.ptr != text.data() + text.size() ||
+            start == text.size())
+          fail(line_of(node), path + " = \"" + text + "\": " + expected);
+        value = static_cast<unsigned int>(parsed);
+        return true;
+      }
+
+      bool read_bool(const YAML::Node  &map,
+                     const std::string &section_name,
+                     const std::string &key,
+                     bool              &value)
+      {
+        const YAML::Node node = value_node(map, section_name, key);
+        if (!node.IsDefined())
+          return false;
+        const std::string path = key_path(section_name, key);
+        const std::string expected = "expected true or false";
+        if (node.IsNull())
+          fail(line_of(node), path + " has no value; " + expected);
+        if (!node.IsScalar())
+          fail(line_of(node), path + " = " + node_text(node) + ": " + expected);
+        try
+          {
+            value = node.as<bool>();
+          }
+        catch (const YAML::Exception &)
+          {
+            fail(line_of(node), path + " = \"" + node.Scalar() + "\": " + expected);
+          }
+        return true;
+      }
+
+      bool read_string(const YAML::Node  &map,
+                       const std::string &section_name,
+                       const std::string &key,
+                       const std::string &meaning,
+                       std::string       &value)
+      {
+        const YAML::Node node = value_node(map, section_name, key);
+        if (!node.IsDefined())
+          return false;
+        const std::string path = key_path(section_name, key);
+        if (node.IsNull())
+          fail(line_of(node), path + " has no value; expected " + meaning);
+        if (!node.IsScalar())
+          fail(line_of(node),
+               path + " = " + node_text(node) + ": expected " + meaning + " (a single word)");
+        value = node.Scalar();
+        return true;
+      }
+
+      void read_triple(const YAML::Node       &map,
+                       const std::string      &section_name,
+                       const std::string      &key,
+                       std::array<double, 3>  &values)
+      {
+        const YAML::Node node = value_node(map, section_name, key);
+        if (!node.IsDefined())
+          return;
+        const std::string path = key_path(section_name, key);
+        const std::string expected = "expected a list of 3 numbers [x, y, z] in um";
+        if (!node.IsSequence())
+          fail(line_of(node), path + " = " + node_text(node) + ": " + expected);
+        if (node.size() != 3)
+          fail(line_of(node),
+               path + " = " + node_text(node) + ": " + expected + ", got " +
+                 std::to_string(node.size()) + " entries");
+        for (std::size_t i = 0; i < 3; ++i)
+          values[i] = parse_double(node[i], path + "[" + std::to_string(i) + "]", "um");
+      }
+    };
+
+    // ------------------------------------------------------------------------------------------
+    // Value checks, shared by read_case_file (with line numbers) and validate_case.
+    class CaseValidator
+    {
+    public:
+      // `origins` is null for a case that was not read from a file.
+      CaseValidator(const Case &checked_case, const OriginMap *origins)
+        : checked(checked_case)
+        , value_origins(origins)
+      {}
+
+      void validate() const
+      {
+        const auto &m = checked.material;
+        const auto &ind = checked.indenter;
+        const auto &s = checked.specimen;
+        const auto &l = checked.loading;
+        const auto &c = checked.contact;
+        const auto &sol = checked.solver;
+        const auto &o = checked.output;
+
+        check_choice("test", checked.test, allowed_tests);
+        if (checked.test == "tensile")
+          reject("test", checked.test,
+                 "the tensile test is not implemented yet; only 'indentation' is allowed");
+
+        check_choice("material.model", m.model, allowed_models);
+        if (!(m.young_modulus > 0.))
+          reject("material.young_modulus", format_number(m.young_modulus),
+                 "Young's modulus E must be > 0 GPa");
+        if (!(m.poisson_ratio > -1. && m.poisson_ratio < 0.5))
+          reject("material.poisson_ratio", format_number(m.poisson_ratio),
+                 "Poisson's ratio must satisfy -1 < nu < 0.5 (0.5 is incompressible, which a "
+                 "displacement formulation cannot represent)");
+        if (!(m.yield_stress > 0.))
+          reject("material.yield_stress", format_number(m.yield_stress),
+                 "the initial yield stress sigma_y0 must be > 0 GPa");
+        if (!(m.hardening_modulus >= 0.))
+          reject("material.hardening_modulus", format_number(m.hardening_modulus),
+                 "the hardening modulus H must be >= 0 GPa (0: perfect plasticity)");
+        check_choice("material.yield_stress_measure", m.yield_stress_measure,
+                     allowed_yield_measures);
+
+        check_choice("indenter.shape", ind.shape, allowed_shapes);
+        if (!(ind.a > 0.))
+          reject("indenter.a", format_number(ind.a),
+                 "the slope parameter a (tan of the cone half-angle) must be > 0");
+        if (!(ind.delta >= 0.))
+          reject("indenter.delta", format_number(ind.delta),
+                 "the tip rounding delta must be >= 0 um (0: sharp cone)");
+
+        static const char *axis_names[3] = {"x", "y", "z"};
+        for (unsigned int d = 0; d < 3; ++d)
+          if (!(s.size[d] > 0.))
+            reject("specimen.size", format_triple(s.size),
+                   std::string("every edge length must be > 0 um; the ") + axis_names[d] +
+                     " entry is not");
+        for (unsigned int d = 0; d < 3; ++d)
+          if (!(s.refined_region[d] > 0.))
+            reject("specimen.refined_region", format_triple(s.refined_region),
+                   std::string("every edge length must be > 0 um; the ") + axis_names[d] +
+                     " entry is not");
+        for (unsigned int d = 0; d < 3; ++d)
+          if (s.refined_region[d] > s.size[d])
+            reject("specimen.refined_region", format_triple(s.refined_region),
+                   std::string("the refined region must fit inside the specimen: its ") +
+                     axis_names[d] + " extent " + format_number(s.refined_region[d]) +
+                     " um exceeds specimen.size = " + format_triple(s.size));
+        if (s.contact_elements < 4 || s.contact_elements % 4 != 0)
+          reject("specimen.contact_elements", std::to_string(s.contact_elements),
+                 "N must be a positive multiple of 4 (4, 8, 12, 16, ...) so that the mesh can be "
+                 "built: the 2:1 coarsening around the refined region needs N/2 even, and with "
+                 "symmetry: quarter the modelled N/2 x N/2 faces must be even as well; a "
+                 "multiple of 4 satisfies both");
+        check_choice("specimen.symmetry", s.symmetry, allowed_symmetries);
+
+        if (!(l.max_depth > 0.))
+          reject("loading.max_depth", format_number(l.max_depth), "must be > 0 um");
+        if (!(l.max_depth < s.refined_region[2]))
+          reject("loading.max_depth", format_number(l.max_depth),
+                 "must be smaller than the depth of the refined region, specimen.refined_region"
+                 "[2] = " +
+                   format_number(s.refined_region[2]) + " um");
+        if (l.steps == 0)
+          reject("loading.steps", "0", "must be >= 1");
+        if (l.max_cutbacks > max_allowed_cutbacks)
+          reject("loading.max_cutbacks", std::to_string(l.max_cutbacks),
+                 "must be <= " + std::to_string(max_allowed_cutbacks));
+
+        if (!(c.friction_coefficient >= 0.))
+          reject("contact.friction_coefficient", format_number(c.friction_coefficient),
+                 "must be >= 0 (and friction is not implemented yet; only 0 is allowed)");
+        if (c.friction_coefficient > 0.)
+          reject("contact.friction_coefficient", format_number(c.friction_coefficient),
+                 "friction is not implemented yet; only 0 is allowed");
+        if (!(c.penalty >= 0.))
+          reject("contact.penalty", format_number(c.penalty),
+                 "must be >= 0 GPa/um (0: chosen automatically)");
+        if (!(c.penetration_tolerance > 0.))
+          reject("contact.penetration_tolerance", format_number(c.penetration_tolerance),
+                 "must be > 0 um");
+        if (c.max_augmentations == 0)
+          reject("contact.max_augmentations", "0", "must be >= 1");
+
+        if (!(sol.residual_tolerance > 0. && sol.residual_tolerance < 1.))
+          reject("solver.residual_tolerance", format_number(sol.residual_tolerance),
+                 "must satisfy 0 < tolerance < 1 (relative to the first residual)");
+        if (!(sol.absolute_tolerance > 0.))
+          reject("solver.absolute_tolerance", format_number(sol.absolute_tolerance),
+                 "must be > 0 mN");
+        if (sol.max_newton_iterations == 0)
+          reject("solver.max_newton_iterations", "0", "must be >= 1");
+
+        if (o.directory.empty())
+          reject("output.directory", "\"\"", "must be a non-empty directory path");
+      }
+
+    private:
+      const Case      &checked;
+      const OriginMap *value_origins;
+
+      [[noreturn]] void reject(const std::string &path,
+                               const std::string &value,
+                               const std::string &what) const
+      {
+        int         line = -1;
+        std::string shown = value;
+        if (value_origins != nullptr)
+          {
+            if (const auto origin = value_origins->find(path); origin != value_origins->end())
+              line = origin->second.line;
+            else
+              shown += " (default)";
+          }
+        fail(checked.source_file, line, path + " = " + shown + ": " + what);
+      }
+
+      void check_choice(const std::string              &path,
+                        const std::string              &value,
+                        const std::vector<std::string> &allowed) const
+      {
+        if (std::find(allowed.begin(), allowed.end(), value) != allowed.end())
+          return;
+        std::string message = "unknown value; allowed: " + join(allowed, " | ");
+        if (const std::string guess = closest_match(value, allowed); !guess.empty())
+          message += " (did you mean '" + guess + "'?)";
+        reject(path, "'" + value + "'", message);
+      }
+    };
+
+    // The output-directory entries that belong to an earlier run.
+    bool is_known_output_file(const fs::path &path)
+    {
+      const std::string name = path.filename().string();
+      for (const char *known : output_files::known_names)
+        if (name == known)
+          return true;
+      if (name.rfind(output_files::paraview_basename, 0) == 0)
+        for (const char *extension : output_files::paraview_extensions)
+          if (path.extension() == extension)
+            return true;
+      return false;
+    }
+
+    std::vector<fs::path> earlier_results(const fs::path &directory)
+    {
+      std::vector<fs::path> found;
+      std::error_code       error;
+      for (const auto &entry : fs::directory_iterator(directory, error))
+        if (entry.is_regular_file(error) && is_known_output_file(entry.path()))
+          found.push_back(entry.path());
+      std::sort(found.begin(), found.end());
+      return found;
+    }
+  } // namespace
+
+  // --------------------------------------------------------------------------------------------
+
+  Case parse_case_yaml(const std::string &yaml_text, const std::string &source_name)
+  {
+    YAML::Node root;
+    try
+      {
+        root = YAML::Load(yaml_text);
+      }
+    catch (const YAML::ParserException &error)
+      {
+        std::string location = source_name;
+        if (!error.mark.is_null())
+          location += ":" + std::to_string(error.mark.line + 1) + ":" +
+                      std::to_string(error.mark.column + 1);
+        throw CaseFileError(location + ": YAML syntax error: " + error.msg);
+      }
+
+    CaseReader reader(source_name);
+    Case       result;
+    try
+      {
+        result = reader.read(root);
+      }
+    catch (const YAML::Exception &error)
+      {
+        // yaml-cpp reports structural problems (e.g. an invalid node) as exceptions.
+        fail(source_name, error.mark.is_null() ? -1 : error.mark.line, error.msg);
+      }
+    CaseValidator(result, &reader.origins()).validate();
+    return result;
+  }
+
+  Case read_case_file(const std::string &path)
+  {
+    std::error_code error;
+    if (!fs::exists(path, error))
+      throw CaseFileError("case file '" + path + "' does not exist");
+    if (fs::is_directory(path, error))
+      throw CaseFileError("case file '" + path + "' is a directory, expected a YAML file");
+    std::ifstream input(path);
+    if (!input)
+      throw CaseFileError("case file '" + path + "' cannot be opened for reading");
+    std::ostringstream text;
+    text << input.rdbuf();
+    return parse_case_yaml(text.str(), path);
+  }
+
+  void validate_case(const Case &resolved_case)
+  {
+    CaseValidator(resolved_case, nullptr).validate();
+  }
+
+  std::string resolved_case_yaml(const Case &resolved_case)
+  {
+    // Strings that the user chose freely are quoted by yaml-cpp; enumerations are plain words.
+    const auto quoted = [](const std::string &text) {
+      YAML::Emitter emitter;
+      emitter << YAML::DoubleQuoted << text;
+      return std::string(emitter.c_str());
+    };
+
+    std::ostringstream out;
+    // One "key: value   # comment" line, comments aligned.
+    const auto line = [&out](const std::string &indent_key_value, const std::string &comment) {
+      constexpr std::size_t comment_column = 36;
+      out << indent_key_value;
+      if (!comment.empty())
+        {
+          const std::size_t width = indent_key_value.size();
+          out << std::string(width < comment_column ? comment_column - width : 1, ' ') << "# "
+              << comment;
+        }
+      out << '\n';
+    };
+
+    const Case &c = resolved_case;
+    out << "# indentsim resolved case: every key with its default filled in.\n"
+        << "# Units: lengths um, forces mN, stresses and moduli GPa (1 GPa*um^2 = 1 mN).\n";
+    if (!c.source_file.empty())
+      out << "# Read from: " << c.source_file << '\n';
+    line("test: " + c.test, "indentation (tensile: not implemented yet)");
+
+    out << "material:\n";
+    line("  model: " + c.material.model, "neo_hookean | j2");
+    line("  young_modulus: " + format_number(c.material.young_modulus), "E [GPa]");
+    line("  poisson_ratio: " + format_number(c.material.poisson_ratio), "nu [-], -1 < nu < 0.5");
+    line("  yield_stress: " + format_number(c.material.yield_stress), "sigma_y0 [GPa] (j2)");
+    line("  hardening_modulus: " + format_number(c.material.hardening_modulus),
+         "H [GPa], linear isotropic hardening (j2)");
+    line("  yield_stress_measure: " + c.material.yield_stress_measure,
+         "cauchy | kirchhoff: stress in the Mises yield function (j2)");
+
+    out << "indenter:\n";
+    line("  shape: " + c.indenter.shape,
+         "rounded_cone: z = sqrt((x^2+y^2)/a^2 + delta^2) - delta");
+    line("  a: " + format_number(c.indenter.a), "slope [-], cone half-angle atan(a)");
+    line("  delta: " + format_number(c.indenter.delta), "tip rounding [um], tip radius a^2*delta");
+
+    out << "specimen:\n";
+    line("  size: " + format_triple(c.specimen.size), "full block edge lengths [um]");
+    line("  refined_region: " + format_triple(c.specimen.refined_region),
+         "refined block under the tip [um]");
+    line("  contact_elements: " + std::to_string(c.specimen.contact_elements),
+         "N: N x N faces across the refined top face");
+    line("  symmetry: " + c.specimen.symmetry, "full | quarter (x >= 0, y >= 0)");
+    line("  f_bar: " + format_bool(c.specimen.f_bar), "F-bar element");
+
+    out << "loading:\n";
+    line("  max_depth: " + format_number(c.loading.max_depth), "[um]");
+    line("  steps: " + std::to_string(c.loading.steps), "increments from 0 to max_depth");
+    line("  unload: " + format_bool(c.loading.unload), "then back until the force vanishes");
+    line("  unload_steps: " + std::to_string(c.loading.unload_steps),
+         "0: same increment size as loading");
+    line("  max_cutbacks: " + std::to_string(c.loading.max_cutbacks),
+         "successive halvings of an increment");
+
+    out << "contact:\n";
+    line("  friction_coefficient: " + format_number(c.contact.friction_coefficient),
+         "Coulomb mu [-] (only 0 is implemented)");
+    line("  penalty: " + format_number(c.contact.penalty), "[GPa/um], 0: automatic");
+    line("  penetration_tolerance: " + format_number(c.contact.penetration_tolerance), "[um]");
+    line("  max_augmentations: " + std::to_string(c.contact.max_augmentations), "");
+
+    out << "solver:\n";
+    line("  residual_tolerance: " + format_number(c.solver.residual_tolerance),
+         "relative to the first residual of an increment");
+    line("  absolute_tolerance: " + format_number(c.solver.absolute_tolerance), "[mN]");
+    line("  max_newton_iterations: " + std::to_string(c.solver.max_newton_iterations), "");
+
+    out << "output:\n";
+    line("  directory: " + quoted(c.output.directory),
+         "relative paths: relative to the working directory");
+    line("  vtu_every: " + std::to_string(c.output.vtu_every),
+         "VTU every k-th step (0: at max depth and end)");
+    return out.str();
+  }
+
+  void write_resolved_case(const Case &resolved_case, const std::string &path)
+  {
+    std::ofstream output(path);
+    if (!output)
+      throw CaseFileError("cannot write the resolved case to '" + path + "'");
+    output << resolved_case_yaml(resolved_case);
+    output.close();
+    if (!output)
+      throw CaseFileError("writing the resolved case to '" + path + "' failed");
+  }
+
+  void prepare_output_directory(const std::string &directory, bool overwrite)
+  {
+    if (directory.empty())
+      throw CaseFileError("output directory: the path is empty");
+    const fs::path  dir(directory);
+    std::error_code error;
+
+    if (fs::exists(dir, error) && !fs::is_directory(dir, error))
+      throw CaseFileError("output directory '" + directory +
+                          "' exists but is not a directory; choose another one with --output DIR");
+    fs::create_directories(dir, error);
+    if (error || !fs::is_directory(dir))
+      throw CaseFileError("output directory '" + directory + "' cannot be created" +
+                          (error ? ": " + error.message() : std::string()));
+
+    const std::vector<fs::path> earlier = earlier_results(dir);
+    if (!earlier.empty())
+      {
+        if (!overwrite)
+          throw CaseFileError("output directory '" + directory +
+                              "' already contains results of an earlier run (" +
+                              earlier.front().filename().string() +
+                              (earlier.size() > 1 ?
+                                 " and " + std::to_string(earlier.size() - 1) + " more" :
+                                 std::string()) +
+                              "); pass --overwrite to replace them, or choose another directory "
+                              "(--output DIR or output.directory)");
+        for (const auto &file : earlier)
+          {
+            fs::remove(file, error);
+            if (error)
+              throw CaseFileError("output directory '" + directory + "': cannot remove '" +
+                                  file.string() + "': " + error.message());
+          }
+      }
+
+    // Permission bits do not tell the whole story (read-only mounts, ACLs, root): try it.
+    const fs::path probe = dir / ".indentsim_write_probe";
+    {
+      std::ofstream probe_stream(probe);
+      probe_stream << "probe\n";
+      probe_stream.close();
+      if (!probe_stream)
+        {
+          fs::remove(probe, error);
+          throw CaseFileError("output directory '" + directory +
+                              "' is not writable; choose another one with --output DIR");
+        }
+    }
+    fs::remove(probe, error);
+  }
+} // namespace indentsim::io

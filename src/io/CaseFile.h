@@ -1,0 +1,70 @@
+// Reading, validating and writing YAML case files, and protecting an output directory.
+//
+// A case file is YAML in um, mN, GPa. Only two keys are required: `test` and `material.model`;
+// every other key has the default listed in Case.h (and in the README). `specimen.f_bar`, when
+// absent, defaults to true for `j2` and false for `neo_hookean`. A relative `output.directory`
+// is relative to the current working directory (not to the case file).
+//
+// Bad input never reaches the solver: every problem raises one CaseFileError whose message names
+// the file, the key path (e.g. `material.poisson_ratio`), the offending value and what is allowed.
+#pragma once
+
+#include <io/Case.h>
+
+#include <array>
+#include <stdexcept>
+#include <string>
+
+namespace indentsim::io
+{
+  // Bad input or I/O concerning a case file or an output directory.
+  class CaseFileError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  // Parses, fills defaults and validates. Throws CaseFileError.
+  Case read_case_file(const std::string &path);
+
+  // The same from YAML text; `source_name` stands for the file name in messages and in
+  // Case::source_file.
+  Case parse_case_yaml(const std::string &yaml_text, const std::string &source_name);
+
+  // The value checks applied by read_case_file, for a case assembled or modified in code (for
+  // example after `--output` replaced output.directory). Throws CaseFileError.
+  void validate_case(const Case &resolved_case);
+
+  // Every key (defaults filled in) as YAML with unit comments; read_case_file() of this text
+  // gives back an identical Case (numbers are written in shortest round-trip form).
+  std::string resolved_case_yaml(const Case &resolved_case);
+
+  // Writes resolved_case_yaml() to `path`. Throws CaseFileError if it cannot be written.
+  void write_resolved_case(const Case &resolved_case, const std::string &path);
+
+  // File names every run writes into its output directory; the writers use these names so that
+  // the directory protection below recognizes an earlier run.
+  namespace output_files
+  {
+    inline constexpr const char *load_penetration_csv = "load_penetration.csv";
+    inline constexpr const char *load_penetration_png = "load_penetration.png";
+    inline constexpr const char *resolved_case        = "resolved_case.yaml";
+    inline constexpr const char *log                  = "run.log";
+    // ParaView series: specimen.pvd, specimen_<step>.pvtu, specimen_<step>.<rank>.vtu.
+    inline constexpr const char *paraview_basename = "specimen";
+
+    // Exact names that mark an earlier run and are removed by --overwrite.
+    inline constexpr std::array<const char *, 4> known_names = {
+      {load_penetration_csv, load_penetration_png, resolved_case, log}};
+    // Files named paraview_basename* with these extensions are ours as well.
+    inline constexpr std::array<const char *, 3> paraview_extensions = {
+      {".pvd", ".vtu", ".pvtu"}};
+  } // namespace output_files
+
+  // Creates `directory` (with parents) and checks that it is writable by creating and removing a
+  // probe file. If it already holds an earlier run's results (any of output_files) and
+  // `overwrite` is false, throws CaseFileError telling the user to pass --overwrite or choose
+  // another directory. With `overwrite` true, removes only our own known output files (the names
+  // above and specimen*.pvd/.vtu/.pvtu); nothing else, and no folder, is ever deleted.
+  void prepare_output_directory(const std::string &directory, bool overwrite);
+} // namespace indentsim::io

@@ -1,0 +1,46 @@
+// The command line of the indentsim executable:
+//   indentsim run CASE.yaml [--output DIR] [--overwrite]
+//   indentsim check CASE.yaml [--output DIR]
+//   indentsim --help | --version
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace indentsim::io
+{
+  // Bad usage; what() holds the problem followed by the usage text.
+  class CommandLineError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  enum class Command
+  {
+    run,     // validate the case, prepare the output directory, compute
+    check,   // validate the case and print the resolved case; no computation
+    help,
+    version
+  };
+
+  struct CommandLineOptions
+  {
+    Command                    command = Command::help;
+    std::string                case_file;         // run, check
+    std::optional<std::string> output_directory;  // --output DIR: replaces output.directory
+    bool                       overwrite = false; // --overwrite: replace an earlier run's results
+  };
+
+  // `arguments` excludes the program name. Throws CommandLineError.
+  CommandLineOptions parse_command_line(const std::vector<std::string> &arguments);
+
+  // From main()'s arguments (argv[0] is skipped).
+  CommandLineOptions parse_command_line(int argc, const char *const *argv);
+
+  std::string usage_text(); // the short synopsis
+  std::string help_text();  // synopsis, commands, options, units
+  std::string version_text();
+} // namespace indentsim::io

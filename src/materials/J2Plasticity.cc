@@ -1,0 +1,308 @@
+#include <materials/ImplicitLocalProblem.h>
+#include <materials/J2Plasticity.h>
+#include <materials/TensorFunctions.h>
+
+#include <Sacado.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+namespace indentsim::materials
+{
+  namespace
+  {
+    const double sqrt_3_2 = std::sqrt(1.5);
+
+    // Unknowns of the return mapping: eps_e (6, unrolled) and Delta gamma; parameters:
+    // eps_e^tr (6, unrolled) and J.
+    constexpr int n_unknowns = 7;
+    constexpr int n_parameters = 7;
+    constexpr int delta_gamma_index = 6;
+    constexpr int J_index = 6;
+    using ReturnMapping = ImplicitLocalProblem<n_unknowns, n_parameters>;
+
+    // Forward-AD number over the nine components F_kL (index 3 k + L) for the tangent.
+    using ADNumberF = Sacado::Fad::SFad<double, 9>;
+
+    // Residual of the backward-Euler exponential-map return (see J2Plasticity.h), scaled to
+    // strain units (the yield condition is divided by mu) so one tolerance fits both parts:
+    //   R_eps = eps_e - eps_e^tr + Delta gamma N(eps_e),   N = sqrt(3/2) dev b_e / |dev b_e|,
+    //   R_f   = (sqrt(3/2) |dev tau| / J^m - sigma_y0 - H (gamma_p,n + Delta gamma)) / mu,
+    // using dev tau = mu dev b_e (eq. 3 with eq. 2) and b_e = exp(2 eps_e) (eq. 9).
+    struct ReturnMappingResidual
+    {
+      double mu;
+      double yield_stress_n; // sigma_y(gamma_p,n)
+      double hardening_modulus;
+      bool   cauchy;
+
+      template <typename Number>
+      void operator()(const std::array<Number, n_unknowns>   &x,
+                      const std::array<Number, n_parameters> &p,
+                      std::array<Number, n_unknowns>         &R) const
+      {
+        using std::exp;
+        // dev b_e = exp(2 tr(eps_e)/3) dev(exp(2 dev eps_e) - I), written with exp - I so that
+        // the small deviatoric part keeps full relative accuracy (it sets N).
+        const Number mean_eps_e = (x[0] + x[1] + x[2]) / 3.0;
+        dealii::SymmetricTensor<2, 3, Number> two_dev_eps_e;
+        for (unsigned int k = 0; k < 6; ++k)
+          two_dev_eps_e.access_raw_entry(k) = 2.0 * (k < 3 ? x[k] - mean_eps_e : x[k]);
+        const auto dev_b_e = scaled(exp(2.0 * mean_eps_e),
+                                    deviator_symmetric(expm1_symmetric(two_dev_eps_e)));
+        const Number norm_dev_b_e = norm_symmetric(dev_b_e);
+        const Number flow_factor = (sqrt_3_2 * x[delta_gamma_index]) / norm_dev_b_e;
+        for (unsigned int k = 0; k < 6; ++k)
+          R[k] = x[k] - p[k] + flow_factor * dev_b_e.access_raw_entry(k);
+        const Number equivalent_stress_over_mu =
+          cauchy ? Number(sqrt_3_2 * norm_dev_b_e / p[J_index]) : Number(sqrt_3_2 * norm_dev_b_e);
+        R[delta_gamma_index] =
+          equivalent_stress_over_mu -
+          (yield_stress_n + hardening_modulus * x[delta_gamma_index]) / mu;
+      }
+    };
+  } // namespace
+
+  J2Plasticity::J2Plasticity(const double             young_modulus,
+                             const double             poisson_ratio,
+                             const double             yield_stress,
+                             const double             hardening_modulus,
+                             const YieldStressMeasure yield_stress_measure)
+    : elasticity(young_modulus, poisson_ratio)
+    , yield_stress(yield_stress)
+    , hardening_modulus(hardening_modulus)
+    , measure(yield_stress_measure)
+  {
+    if (!(yield_stress > 0.0) || !std::isfinite(yield_stress))
+      throw std::invalid_argument("J2Plasticity: yield_stress = " + std::to_string(yield_stress) +
+                                  " GPa; it must be positive and finite");
+    if (!(hardening_modulus >= 0.0) || !std::isfinite(hardening_modulus))
+      throw std::invalid_argument("J2Plasticity: hardening_modulus = " +
+                                  std::to_string(hardening_modulus) +
+                                  " GPa; it must be non-negative and finite");
+  }
+
+  void J2Plasticity::initial_state(std::span<double> state) const
+  {
+    Assert(state.size() == n_state, dealii::ExcDimensionMismatch(state.size(), n_state));
+    for (unsigned int k = 0; k < 6; ++k)
+      state[k] = (k < 3 ? 1.0 : 0.0);
+    state[gamma_p_index] = 0.0;
+  }
+
+  dealii::SymmetricTensor<2, 3>
+  J2Plasticity::plastic_metric_inverse(std::span<const double> state)
+  {
+    dealii::SymmetricTensor<2, 3> C_p_inverse;
+    for (unsigned int k = 0; k < 6; ++k)
+      C_p_inverse.access_raw_entry(k) = state[k];
+    return C_p_inverse;
+  }
+
+  double J2Plasticity::yield_function(const Tensor<2, 3> &tau,
+                                      const double        J,
+                                      const double        gamma_p) const
+  {
+    const double mean = (tau[0][0] + tau[1][1] + tau[2][2]) / 3.0;
+    double       norm_squared = 0.0;
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        norm_squared += std::pow(tau[i][j] - (i == j ? mean : 0.0), 2);
+    const double sigma_HMH =
+      sqrt_3_2 * std::sqrt(norm_squared) / (measure == YieldStressMeasure::cauchy ? J : 1.0);
+    return sigma_HMH - flow_stress(gamma_p);
+  }
+
+  UpdateStatus J2Plasticity::update(const Tensor<2, 3>     &F,
+                                    std::span<const double> state_old,
+                                    MaterialPointResponse  &response,
+                                    std::span<double>       state_new,
+                                    const bool              compute_tangent) const
+  {
+    Assert(state_old.size() == n_state, dealii::ExcDimensionMismatch(state_old.size(), n_state));
+    Assert(state_new.size() == n_state, dealii::ExcDimensionMismatch(state_new.size(), n_state));
+
+    double J_minus_one = 0.0;
+    if (!admissible_deformation(F, J_minus_one))
+      return UpdateStatus::invalid_deformation;
+    const double J = 1.0 + J_minus_one;
+    const double mu = elasticity.shear_modulus();
+    const bool   cauchy = (measure == YieldStressMeasure::cauchy);
+
+    const dealii::SymmetricTensor<2, 3> C_p_inverse_n = plastic_metric_inverse(state_old);
+    const double                        gamma_p_n = state_old[gamma_p_index];
+    const double                        yield_stress_n = flow_stress(gamma_p_n);
+
+    // Elastic predictor: tau(b_e^tr) directly, no logarithm needed (dev tau = mu dev b_e).
+    const dealii::SymmetricTensor<2, 3> b_e_trial = push_forward_symmetric(F, C_p_inverse_n);
+    const dealii::SymmetricTensor<2, 3> dev_b_e_trial = deviator_symmetric(b_e_trial);
+    const double norm_dev_b_e_trial = norm_symmetric(dev_b_e_trial);
+    const double trial_yield_function =
+      sqrt_3_2 * mu * norm_dev_b_e_trial / (cauchy ? J : 1.0) - yield_stress_n;
+
+    if (trial_yield_function <= 0.0)
+      {
+        // Elastic step (KKT, eq. 8, with Delta gamma = 0): the neo-Hookean response in
+        // b_e = F C_p^-1 F^T with the plastic state frozen.
+        elasticity.elastic_response(F, C_p_inverse_n, J_minus_one, response, compute_tangent);
+        std::copy(state_old.begin(), state_old.end(), state_new.begin());
+        return UpdateStatus::success;
+      }
+
+    // Plastic corrector. Trial log strain eps_e^tr = 1/2 log b_e^tr; when the tangent is
+    // wanted it is computed once with derivatives with respect to F.
+    dealii::Tensor<2, 3, ADNumberF>        F_ad;
+    std::array<ADNumberF, n_parameters>    parameters_ad;
+    ReturnMapping::Parameters              parameters;
+    if (compute_tangent)
+      {
+        for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int L = 0; L < 3; ++L)
+            F_ad[k][L] = ADNumberF(9, 3 * k + L, F[k][L]);
+        const auto log_b_e_trial = log_spd(push_forward_symmetric(F_ad, C_p_inverse_n));
+        for (unsigned int k = 0; k < 6; ++k)
+          parameters_ad[k] = 0.5 * log_b_e_trial.access_raw_entry(k);
+        parameters_ad[J_index] = determinant_3x3(F_ad);
+        parameters_ad[J_index].val() = J; // same value, without the cancellation of det F
+        for (unsigned int a = 0; a < n_parameters; ++a)
+          parameters[a] = parameters_ad[a].val();
+      }
+    else
+      {
+        const auto log_b_e_trial = log_spd(b_e_trial);
+        for (unsigned int k = 0; k < 6; ++k)
+          parameters[k] = 0.5 * log_b_e_trial.access_raw_entry(k);
+        parameters[J_index] = J;
+      }
+
+    // Local Newton. First initial guess: the radial return of the Hencky approximation
+    // dev tau ~ 2 mu dev eps_e, for which sigma_HMH = sqrt(3/2) 2 mu |dev eps_e| / J^m drops by
+    // 3 mu Delta gamma / J^m along N (exact for small elastic strains, so Newton starts in its
+    // quadratic range; the neo-Hookean f^tr would overshoot for large trial strains, where
+    // exp(2 eps) >> 1 + 2 eps, and could land on the spurious reversed-flow root).
+    // Fallback: Newton from the trial state itself (Delta gamma = 0).
+    const double J_m = cauchy ? J : 1.0;
+    ReturnMapping::Unknowns unknowns;
+    const auto set_hencky_guess = [&]() {
+      const double mean = (parameters[0] + parameters[1] + parameters[2]) / 3.0;
+      dealii::SymmetricTensor<2, 3> dev_eps_trial;
+      for (unsigned int k = 0; k < 6; ++k)
+        dev_eps_trial.access_raw_entry(k) = parameters[k] - (k < 3 ? mean : 0.0);
+      const double norm_dev = norm_symmetric(dev_eps_trial);
+      const double delta_gamma_0 =
+        std::max(sqrt_3_2 * 2.0 * mu * norm_dev / J_m - yield_stress_n, 0.0) /
+        (3.0 * mu / J_m + hardening_modulus);
+      for (unsigned int k = 0; k < 6; ++k)
+        unknowns[k] = parameters[k] - delta_gamma_0 * sqrt_3_2 *
+                                          dev_eps_trial.access_raw_entry(k) / norm_dev;
+      unknowns[delta_gamma_index] = delta_gamma_0;
+    };
+    const auto set_trial_guess = [&]() {
+      for (unsigned int k = 0; k < 6; ++k)
+        unknowns[k] = parameters[k];
+      unknowns[delta_gamma_index] = 0.0;
+    };
+
+    const ReturnMappingResidual residual{mu, yield_stress_n, hardening_modulus, cauchy};
+    LocalNewtonSettings         settings;
+    // Round-off of the residual is ~1e-16 of the largest strain involved.
+    double strain_scale = yield_stress_n / mu;
+    for (unsigned int k = 0; k < 6; ++k)
+      strain_scale = std::max(strain_scale, std::abs(parameters[k]));
+    settings.tolerance = 1e-14 * strain_scale;
+    bool converged = false;
+    for (unsigned int attempt = 0; attempt < 2 && !converged; ++attempt)
+      {
+        if (attempt == 0)
+          set_hencky_guess();
+        else
+          set_trial_guess();
+        const LocalNewtonResult newton =
+          ReturnMapping::solve(residual, parameters, unknowns, settings);
+        // Delta gamma > 0 is guaranteed for f^tr > 0 (KKT); anything else is a spurious root.
+        converged = newton.converged && unknowns[delta_gamma_index] > 0.0;
+      }
+    const double delta_gamma = unknowns[delta_gamma_index];
+    if (!converged)
+      {
+        std::copy(state_old.begin(), state_old.end(), state_new.begin());
+        return UpdateStatus::local_newton_failed;
+      }
+
+    dealii::SymmetricTensor<2, 3> b_e;
+    if (compute_tangent)
+      {
+        // Consistent tangent: eps_e(F) through the implicit function theorem, then
+        // P = tau(b_e) F^-T differentiated by forward AD over the components of F.
+        ReturnMapping::Sensitivity dx_dp;
+        if (!ReturnMapping::sensitivity(residual, parameters, unknowns, dx_dp))
+          {
+            std::copy(state_old.begin(), state_old.end(), state_new.begin());
+            return UpdateStatus::local_newton_failed;
+          }
+        const auto unknowns_ad = ReturnMapping::linearized_solution(unknowns, dx_dp, parameters_ad);
+        dealii::SymmetricTensor<2, 3, ADNumberF> two_eps_e_ad;
+        for (unsigned int k = 0; k < 6; ++k)
+          two_eps_e_ad.access_raw_entry(k) = 2.0 * unknowns_ad[k];
+        const auto b_e_ad = exp_symmetric(two_eps_e_ad);
+
+        // tau = mu (b_e - 1) + lambda/2 (J^2 - 1) 1 (eq. 3); the pressure value is taken from
+        // J - 1, its derivative lambda J dJ/dF from AD.
+        const ADNumberF &J_ad = parameters_ad[J_index];
+        ADNumberF pressure_term = 0.5 * elasticity.lame_lambda() * (J_ad * J_ad - 1.0);
+        pressure_term.val() = 0.5 * elasticity.lame_lambda() * J_minus_one * (J_minus_one + 2.0);
+        dealii::Tensor<2, 3, ADNumberF> tau_ad;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              tau_ad[i][j] = mu * b_e_ad[i][j];
+              if (i == j)
+                tau_ad[i][j] += pressure_term - mu;
+            }
+        const auto F_inverse_ad = inverse_3x3(F_ad);
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int J_col = 0; J_col < 3; ++J_col)
+            {
+              ADNumberF P_iJ = tau_ad[i][0] * F_inverse_ad[J_col][0];
+              for (unsigned int m = 1; m < 3; ++m)
+                P_iJ += tau_ad[i][m] * F_inverse_ad[J_col][m];
+              response.P[i][J_col] = P_iJ.val();
+              response.tau[i][J_col] = tau_ad[i][J_col].val();
+              for (unsigned int k = 0; k < 3; ++k)
+                for (unsigned int L = 0; L < 3; ++L)
+                  response.dP_dF[i][J_col][k][L] = P_iJ.dx(3 * k + L);
+            }
+        for (unsigned int k = 0; k < 6; ++k)
+          b_e.access_raw_entry(k) = b_e_ad.access_raw_entry(k).val();
+      }
+    else
+      {
+        dealii::SymmetricTensor<2, 3> two_eps_e;
+        for (unsigned int k = 0; k < 6; ++k)
+          two_eps_e.access_raw_entry(k) = 2.0 * unknowns[k];
+        b_e = exp_symmetric(two_eps_e);
+        const dealii::SymmetricTensor<2, 3> tau = elasticity.kirchhoff_stress(b_e, J_minus_one);
+        const Tensor<2, 3>                  F_inverse = inverse_3x3(F);
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int J_col = 0; J_col < 3; ++J_col)
+            {
+              double P_iJ = 0.0;
+              for (unsigned int m = 0; m < 3; ++m)
+                P_iJ += tau[i][m] * F_inverse[J_col][m];
+              response.P[i][J_col] = P_iJ;
+              response.tau[i][J_col] = tau[i][J_col];
+            }
+      }
+
+    // Updated plastic metric C_p^-1 = F^-1 b_e F^-T (eq. 9 pulled back) and gamma_p.
+    const dealii::SymmetricTensor<2, 3> C_p_inverse =
+      push_forward_symmetric(inverse_3x3(F), b_e);
+    for (unsigned int k = 0; k < 6; ++k)
+      state_new[k] = C_p_inverse.access_raw_entry(k);
+    state_new[gamma_p_index] = gamma_p_n + delta_gamma;
+    return UpdateStatus::success;
+  }
+} // namespace indentsim::materials

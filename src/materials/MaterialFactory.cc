@@ -1,0 +1,35 @@
+#include <materials/J2Plasticity.h>
+#include <materials/MaterialFactory.h>
+#include <materials/NeoHookean.h>
+
+#include <stdexcept>
+
+namespace indentsim::materials
+{
+  std::unique_ptr<MaterialModel> create_material(const io::MaterialParameters &parameters)
+  {
+    if (parameters.model == "neo_hookean")
+      return std::make_unique<NeoHookean>(parameters.young_modulus, parameters.poisson_ratio);
+
+    if (parameters.model == "j2")
+      {
+        YieldStressMeasure measure;
+        if (parameters.yield_stress_measure == "cauchy")
+          measure = YieldStressMeasure::cauchy;
+        else if (parameters.yield_stress_measure == "kirchhoff")
+          measure = YieldStressMeasure::kirchhoff;
+        else
+          throw std::invalid_argument("material.yield_stress_measure = \"" +
+                                      parameters.yield_stress_measure +
+                                      "\" is not supported; allowed: cauchy, kirchhoff");
+        return std::make_unique<J2Plasticity>(parameters.young_modulus,
+                                              parameters.poisson_ratio,
+                                              parameters.yield_stress,
+                                              parameters.hardening_modulus,
+                                              measure);
+      }
+
+    throw std::invalid_argument("material.model = \"" + parameters.model +
+                                "\" is not supported; allowed: neo_hookean, j2");
+  }
+} // namespace indentsim::materials

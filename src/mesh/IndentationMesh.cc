@@ -1,0 +1,122 @@
+#include "mesh/IndentationMesh.h"
+
+#include <deal.II/grid/grid_generator.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace indentsim::mesh
+{
+  using namespace dealii;
+
+  int refinement_levels_for(const unsigned int n)
+  {
+    if (n < 2 || n % 2 != 0)
+      return -1;
+    int levels = 0;
+    while (n % (1u << (levels + 2)) == 0 && (1u << (levels + 1)) * 3 <= n)
+      ++levels;
+    return levels;
+  }
+
+  std::vector<double> graded_spacing(const double length, const double first, const double ratio)
+  {
+    std::vector<double> sizes;
+    if (length <= 0)
+      return sizes;
+    double sum = 0, next = first;
+    while (sum + next <= length * (1 + 1e-12))
+      {
+        sizes.push_back(next);
+        sum += next;
+        next *= ratio;
+      }
+    if (sizes.empty())
+      return {length};
+    // Fill the remainder by stretching all cells proportionally (keeps the grading ratio).
+    for (double &s : sizes)
+      s *= length / sum;
+    return sizes;
+  }
+
+  MeshInfo build_indentation_mesh(parallel::distributed::Triangulation<3> &triangulation,
+                                  const io::SpecimenParameters            &specimen)
+  {
+    const unsigned int n = specimen.contact_elements;
+    const int          levels = refinement_levels_for(n);
+    if (levels < 0)
+      throw std::invalid_argument("specimen.contact_elements = " + std::to_string(n) +
+                                  " cannot be meshed: it must be an even number >= 2");
+
+    MeshInfo info;
+    info.quarter = (specimen.symmetry == "quarter");
+    info.refinement_levels = levels;
+    info.contact_element_size = specimen.refined_region[0] / n;
+    info.refined_half_x = specimen.refined_region[0] / 2;
+    info.refined_half_y = specimen.refined_region[1] / 2;
+
+    const double coarse = info.contact_element_size * (1u << levels);
+    const double grading = 1.6; // size ratio of neighbouring coarse cells outside the region
+
+    // Spacing along x or y: refined region cells of size `coarse` (approximately in y when the
+    // region is not square), graded cells outside.
+    auto lateral_spacing = [&](const double half_length, const double half_refined) {
+      const unsigned int n_half = std::max(1, int(std::lround(half_refined / coarse)));
+      std::vector<double> inner(n_half, half_refined / n_half);
+      const std::vector<double> outer =
+        graded_spacing(half_length - half_refined, half_refined / n_half, grading);
+      std::vector<double> half_spacing(inner);
+      half_spacing.insert(half_spacing.end(), outer.begin(), outer.end());
+      if (info.quarter)
+        return half_spacing;
+      std::vector<double> full(half_spacing.rbegin(), half_spacing.rend());
+      full.insert(full.end(), half_spacing.begin(), half_spacing.end());
+      return full;
+    };
+
+    const std::vector<double> x_spacing =
+      lateral_spacing(specimen.size[0] / 2, specimen.refined_region[0] / 2);
+    const std::vector<double> y_spacing =
+      lateral_spacing(specimen.size[1] / 2, specimen.refined_region[1] / 2);
+
+    // Depth: the refined region's depth in whole layers of about `coarse`, graded below.
+    const double       depth = specimen.refined_region[2];
+    const unsigned int n_layers = std::max(1, int(std::lround(depth / coarse)));
+    std::vector<double> z_spacing_top(n_layers, depth / n_layers);
+    const std::vector<double> below =
+      graded_spacing(specimen.size[2] - depth, depth / n_layers, grading);
+    // subdivided_hyper_rectangle orders cells from p1 (bottom) to p2 (top).
+    std::vector<double> z_spacing(below.rbegin(), below.rend());
+    z_spacing.insert(z_spacing.end(), z_spacing_top.begin(), z_spacing_top.end());
+
+    info.fine_layer_thickness = depth / n_layers / (1u << levels);
+    info.refined_depth = depth;
+
+    const Point<3> p1(info.quarter ? 0. : -specimen.size[0] / 2,
+                      info.quarter ? 0. : -specimen.size[1] / 2,
+                      -specimen.size[2]);
+    const Point<3> p2(specimen.size[0] / 2, specimen.size[1] / 2, 0.);
+    GridGenerator::subdivided_hyper_rectangle(triangulation,
+                                              {x_spacing, y_spacing, z_spacing},
+                                              p1,
+                                              p2,
+                                              /*colorize=*/true);
+
+    // Refine the cells inside the refined region L times; p4est balances the rest 2:1.
+    const double tol = 1e-8 * specimen.size[0];
+    for (int level = 0; level < levels; ++level)
+      {
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              const Point<3> c = cell->center();
+              if (std::abs(c[0]) < info.refined_half_x - tol &&
+                  std::abs(c[1]) < info.refined_half_y - tol && c[2] > -depth + tol)
+                cell->set_refine_flag();
+            }
+        triangulation.execute_coarsening_and_refinement();
+      }
+    return info;
+  }
+} // namespace indentsim::mesh

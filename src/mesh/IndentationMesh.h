@@ -1,0 +1,49 @@
+// Block specimen refined toward the indent through hanging nodes. Units: um.
+//
+// Geometry: the specimen occupies [-Lx/2, Lx/2] x [-Ly/2, Ly/2] x [-Lz, 0] (full model) or
+// [0, Lx/2] x [0, Ly/2] x [-Lz, 0] (quarter model with symmetry planes x = 0 and y = 0).
+// The indenter axis is the z axis and the top face z = 0 is the contact surface.
+//
+// Construction: a tensor-product coarse grid whose cells inside the refined region have edge
+// length s = 2^L h (h = refined_region_x / N is the contact-element size) and grow geometrically
+// outside it; the coarse cells of the refined region are then refined L times. p4est's 2:1
+// balance produces the coarsening by 2:1 steps with depth and distance; the resulting hanging
+// nodes are handled by exact AffineConstraints (DoFTools::make_hanging_node_constraints).
+#pragma once
+
+#include "io/Case.h"
+
+#include <deal.II/distributed/tria.h>
+
+namespace indentsim::mesh
+{
+  // Boundary ids of the block's faces.
+  namespace boundary
+  {
+    constexpr dealii::types::boundary_id x_min = 0, x_max = 1, y_min = 2, y_max = 3, bottom = 4,
+                                         top = 5;
+  }
+
+  struct MeshInfo
+  {
+    double       contact_element_size = 0; // h: edge of the refined cells on the top face [um]
+    double       fine_layer_thickness = 0; // z-size of the refined cells [um]
+    unsigned int refinement_levels = 0;    // L
+    bool         quarter = false;
+    // The refined region's footprint on the top face: |x| <= half_x, |y| <= half_y.
+    double refined_half_x = 0, refined_half_y = 0, refined_depth = 0;
+  };
+
+  // Number of refinement levels L used for N contact elements: the largest L with 2^(L+1) | N
+  // (so that the quarter model is exactly a quarter of the full one) and 2^L <= N/3 (so that the
+  // refined region spans at least three coarse cells). Returns -1 if N cannot be meshed (N < 2 or
+  // odd N).
+  int refinement_levels_for(unsigned int n_contact_elements);
+
+  MeshInfo build_indentation_mesh(dealii::parallel::distributed::Triangulation<3> &triangulation,
+                                  const io::SpecimenParameters                    &specimen);
+
+  // Geometric grading: cell sizes starting at `first` and growing by `ratio` that fill `length`
+  // exactly (the sizes are rescaled so that they sum to `length`).
+  std::vector<double> graded_spacing(double length, double first, double ratio);
+} // namespace indentsim::mesh

@@ -1,0 +1,61 @@
+// Total-Lagrangian finite-strain hexahedron kernel with an optional F-bar modification.
+// Units: stresses in GPa, lengths in um, element forces in mN.
+//
+// Pointwise physics only: the kernel receives the shape-function gradients G_a = dF/du_a at the
+// quadrature points and at the element centre, the element's displacement values and the
+// material, and returns the element residual, tangent and updated material states. It knows
+// nothing about meshes, constraints or MPI.
+//
+// F-bar (de Souza Neto et al. 1996, in the variationally consistent total-Lagrangian form):
+//   F_bar = theta F,  theta = (J_0 / J)^(1/3),  J_0 = det F at the element centre.
+// The residual is R_a = sum_q P(F_bar) : dF_bar/du_a w_q with
+//   dF_bar/du_a = B_a = theta [G_a + 1/3 F c_a],  c_a = tr(F_0^-1 G0_a) - tr(F^-1 G_a),
+// and the tangent K_ab = B_a : A : B_b + P : dB_a/du_b, which is symmetric whenever the material
+// tangent A = dP/dF is. Without F-bar, theta = 1 and B_a = G_a (plain displacement element).
+#pragma once
+
+#include "materials/MaterialModel.h"
+
+#include <deal.II/base/tensor.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <span>
+#include <vector>
+
+namespace indentsim::solver
+{
+  using dealii::Tensor;
+
+  struct ElementScratch
+  {
+    explicit ElementScratch(unsigned int n_dofs = 24, unsigned int n_q_points = 8);
+    unsigned int                           n_dofs, n_q_points;
+    std::vector<std::vector<Tensor<2, 3>>> G;   // [q][a] dF/du_a at quadrature point q
+    std::vector<Tensor<2, 3>>              G0;  // [a] dF/du_a at the element centre
+    std::vector<double>                    JxW; // [q] reference volume weights
+    // Work arrays (allocated once).
+    std::vector<Tensor<2, 3>> B, A_B, H, H0;
+    std::vector<double>       c, g;
+  };
+
+  struct ElementResult
+  {
+    materials::UpdateStatus status = materials::UpdateStatus::success;
+    // Cauchy stress at each quadrature point [GPa] (filled when requested).
+    std::vector<Tensor<2, 3>> cauchy_stress;
+  };
+
+  // Computes residual (and tangent when `tangent` is not null) for one element.
+  // `state_old` / `state_new` hold n_q_points consecutive material states.
+  materials::UpdateStatus
+  element_residual_and_tangent(const materials::MaterialModel &material,
+                               bool                            use_f_bar,
+                               const dealii::Vector<double>   &u_local,
+                               std::span<const double>         state_old,
+                               std::span<double>               state_new,
+                               ElementScratch                 &scratch,
+                               dealii::Vector<double>         &residual,
+                               dealii::FullMatrix<double>     *tangent,
+                               std::vector<Tensor<2, 3>>      *cauchy_stress = nullptr);
+} // namespace indentsim::solver

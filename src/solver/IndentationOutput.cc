@@ -1,0 +1,153 @@
+// ParaView output of IndentationProblem: deformed mesh (Eulerian mapping), displacement,
+// cell-averaged Cauchy stress, von Mises stress, equivalent plastic strain and nodal contact
+// pressure. Units: um, GPa.
+#include "solver/FiniteStrainElement.h"
+#include "solver/IndentationProblem.h"
+
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q_eulerian.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <fstream>
+
+namespace indentsim::solver
+{
+  using namespace dealii;
+
+  void IndentationProblem::compute_cell_fields(Vector<float>              &von_mises,
+                                               Vector<float>              &plastic_strain,
+                                               std::vector<Vector<float>> &cauchy)
+  {
+    const QGauss<3> quadrature(2);
+    const QGauss<3> centre(1);
+    FEValues<3>     fe_values(fe_, quadrature, update_gradients | update_JxW_values);
+    FEValues<3>     fe_centre(fe_, centre, update_gradients);
+    const FEValuesExtractors::Vector displacement(0);
+    const unsigned int n_dofs_cell = fe_.n_dofs_per_cell();
+    ElementScratch     scratch(n_dofs_cell, n_q_points_);
+    Vector<double>     u_local(n_dofs_cell), r_local(n_dofs_cell);
+    std::vector<Tensor<2, 3>> sigma(n_q_points_);
+    std::vector<double>       scratch_state(std::size_t(n_q_points_) * n_state_);
+
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        fe_values.reinit(cell);
+        fe_centre.reinit(cell);
+        for (unsigned int q = 0; q < n_q_points_; ++q)
+          {
+            scratch.JxW[q] = fe_values.JxW(q);
+            for (unsigned int a = 0; a < n_dofs_cell; ++a)
+              scratch.G[q][a] = fe_values[displacement].gradient(a, q);
+          }
+        for (unsigned int a = 0; a < n_dofs_cell; ++a)
+          scratch.G0[a] = fe_centre[displacement].gradient(a, 0);
+        cell->get_dof_values(solution_, u_local);
+        const std::size_t offset = std::size_t(cell->active_cell_index()) * n_q_points_ * n_state_;
+        element_residual_and_tangent(
+          *material_,
+          use_f_bar_,
+          u_local,
+          std::span<const double>(state_old_).subspan(offset, scratch_state.size()),
+          scratch_state,
+          scratch,
+          r_local,
+          nullptr,
+          &sigma);
+        const unsigned int index = cell->active_cell_index();
+        Tensor<2, 3>       mean;
+        double             mises = 0, eps_p = 0;
+        for (unsigned int q = 0; q < n_q_points_; ++q)
+          {
+            mean += sigma[q] / n_q_points_;
+            const Tensor<2, 3> s = sigma[q] - trace(sigma[q]) / 3. * unit_symmetric_tensor<3>();
+            mises += std::sqrt(1.5 * scalar_product(s, s)) / n_q_points_;
+            eps_p += material_->equivalent_plastic_strain(std::span<const double>(scratch_state).subspan(
+                       q * n_state_, n_state_)) /
+                     n_q_points_;
+          }
+        von_mises[index] = mises;
+        plastic_strain[index] = eps_p;
+        unsigned int k = 0;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = i; j < 3; ++j)
+            cauchy[k++][index] = mean[i][j];
+      }
+  }
+
+  void IndentationProblem::write_vtu(const unsigned int index, const double depth)
+  {
+    const unsigned int n_cells_local = triangulation_.n_active_cells();
+    Vector<float>      von_mises(n_cells_local), plastic_strain(n_cells_local),
+      subdomain(n_cells_local);
+    std::vector<Vector<float>> cauchy(6, Vector<float>(n_cells_local));
+    compute_cell_fields(von_mises, plastic_strain, cauchy);
+    for (const auto &cell : triangulation_.active_cell_iterators())
+      subdomain[cell->active_cell_index()] = triangulation_.locally_owned_subdomain();
+
+    // Nodal contact pressure on a scalar Q1 field.
+    DoFHandler<3> scalar_dofs(triangulation_);
+    const FE_Q<3> fe_scalar(1);
+    scalar_dofs.distribute_dofs(fe_scalar);
+    const IndexSet owned = scalar_dofs.locally_owned_dofs();
+    const IndexSet relevant = DoFTools::extract_locally_relevant_dofs(scalar_dofs);
+    PETScWrappers::MPI::Vector pressure(owned, communicator_);
+    {
+      std::map<types::global_dof_index, double> pressure_by_dof; // vector dof x -> pressure
+      for (const auto &node : contact_->nodes())
+        pressure_by_dof[node.dofs[0]] = node.pressure;
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const typename DoFHandler<3>::active_cell_iterator scalar_cell(
+              &triangulation_, cell->level(), cell->index(), &scalar_dofs);
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                const auto it = pressure_by_dof.find(cell->vertex_dof_index(v, 0));
+                const auto dof = scalar_cell->vertex_dof_index(v, 0);
+                if (it != pressure_by_dof.end() && owned.is_element(dof))
+                  pressure(dof) = it->second;
+              }
+          }
+      pressure.compress(VectorOperation::insert);
+    }
+    PETScWrappers::MPI::Vector pressure_ghosted(owned, relevant, communicator_);
+    pressure_ghosted = pressure;
+
+    DataOut<3> data_out;
+    data_out.attach_dof_handler(dof_handler_);
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
+      3, DataComponentInterpretation::component_is_part_of_vector);
+    data_out.add_data_vector(solution_,
+                             std::vector<std::string>(3, "displacement_um"),
+                             DataOut<3>::type_dof_data,
+                             vector_field);
+    data_out.add_data_vector(scalar_dofs, pressure_ghosted, "contact_pressure_GPa");
+    const char *names[6] = {"cauchy_xx_GPa", "cauchy_xy_GPa", "cauchy_xz_GPa",
+                            "cauchy_yy_GPa", "cauchy_yz_GPa", "cauchy_zz_GPa"};
+    for (unsigned int k = 0; k < 6; ++k)
+      data_out.add_data_vector(cauchy[k], names[k]);
+    data_out.add_data_vector(von_mises, "von_mises_GPa");
+    data_out.add_data_vector(plastic_strain, "equivalent_plastic_strain");
+    data_out.add_data_vector(subdomain, "mpi_rank");
+
+    // The geometry is written in the deformed configuration.
+    const MappingQEulerian<3, PETScWrappers::MPI::Vector> deformed(1, dof_handler_, solution_);
+    data_out.build_patches(deformed, 1);
+    const std::string pvtu = data_out.write_vtu_with_pvtu_record(
+      output_directory_ + "/", "specimen", index, communicator_, 4, 8);
+    vtu_records_.emplace_back(depth, pvtu);
+    if (Utilities::MPI::this_mpi_process(communicator_) == 0)
+      {
+        std::ofstream pvd(output_directory_ + "/specimen.pvd");
+        DataOutBase::write_pvd_record(pvd, vtu_records_);
+      }
+    scalar_dofs.clear();
+  }
+} // namespace indentsim::solver

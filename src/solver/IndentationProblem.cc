@@ -1,0 +1,558 @@
+#include "solver/IndentationProblem.h"
+
+#include "indenter/IndenterFactory.h"
+#include "materials/MaterialFactory.h"
+#include "solver/FiniteStrainElement.h"
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q_eulerian.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/petsc_solver.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace indentsim::solver
+{
+  using namespace dealii;
+
+  std::string to_string(const IncrementStatus status)
+  {
+    switch (status)
+      {
+        case IncrementStatus::converged:
+          return "converged";
+        case IncrementStatus::material_failure:
+          return "material update failed";
+        case IncrementStatus::contact_search_failure:
+          return "contact search failed";
+        case IncrementStatus::newton_diverged:
+          return "Newton diverged";
+        case IncrementStatus::too_many_iterations:
+          return "Newton iteration limit reached";
+        case IncrementStatus::too_many_augmentations:
+          return "augmentation limit reached";
+      }
+    return "unknown";
+  }
+
+  IndentationProblem::IndentationProblem(const io::Case &the_case,
+                                         const MPI_Comm  communicator,
+                                         const bool      verbose)
+    : case_(the_case)
+    , communicator_(communicator)
+    , pcout_(std::cout, verbose && Utilities::MPI::this_mpi_process(communicator) == 0)
+    , triangulation_(communicator,
+                     Triangulation<3>::limit_level_difference_at_vertices,
+                     parallel::distributed::Triangulation<3>::default_setting)
+    , fe_(FE_Q<3>(1), 3)
+    , dof_handler_(triangulation_)
+    , material_(materials::create_material(the_case.material))
+    , indenter_(indenter::create_indenter(the_case.indenter))
+    , use_f_bar_(the_case.specimen.f_bar)
+  {}
+
+  IndentationProblem::~IndentationProblem()
+  {
+    dof_handler_.clear();
+  }
+
+  unsigned int IndentationProblem::n_cells() const
+  {
+    return triangulation_.n_global_active_cells();
+  }
+  unsigned int IndentationProblem::n_dofs() const
+  {
+    return dof_handler_.n_dofs();
+  }
+  unsigned int IndentationProblem::n_constrained_dofs() const
+  {
+    unsigned int local = 0;
+    for (const auto &line : constraints_all_.get_lines())
+      if (locally_owned_.is_element(line.index))
+        ++local;
+    return Utilities::MPI::sum(local, communicator_);
+  }
+
+  unsigned int IndentationProblem::n_hanging_node_constraints() const
+  {
+    unsigned int local = 0;
+    for (const auto &line : constraints_hanging_.get_lines())
+      if (locally_owned_.is_element(line.index))
+        ++local;
+    return Utilities::MPI::sum(local, communicator_);
+  }
+
+  void IndentationProblem::setup()
+  {
+    mesh_info_ = mesh::build_indentation_mesh(triangulation_, case_.specimen);
+    dof_handler_.distribute_dofs(fe_);
+    locally_owned_ = dof_handler_.locally_owned_dofs();
+    locally_relevant_ = DoFTools::extract_locally_relevant_dofs(dof_handler_);
+
+    constraints_hanging_.clear();
+    constraints_hanging_.reinit(locally_relevant_);
+    DoFTools::make_hanging_node_constraints(dof_handler_, constraints_hanging_);
+    constraints_hanging_.close();
+
+    constraints_all_.clear();
+    constraints_all_.reinit(locally_relevant_);
+    constraints_all_.merge(constraints_hanging_);
+    const Functions::ZeroFunction<3> zero(3);
+    VectorTools::interpolate_boundary_values(
+      dof_handler_, mesh::boundary::bottom, zero, constraints_all_);
+    if (mesh_info_.quarter)
+      {
+        const FEValuesExtractors::Scalar ux(0), uy(1);
+        VectorTools::interpolate_boundary_values(
+          dof_handler_, mesh::boundary::x_min, zero, constraints_all_, fe_.component_mask(ux));
+        VectorTools::interpolate_boundary_values(
+          dof_handler_, mesh::boundary::y_min, zero, constraints_all_, fe_.component_mask(uy));
+      }
+    constraints_all_.close();
+
+    DynamicSparsityPattern dsp(locally_relevant_);
+    DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_all_, false);
+    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_, communicator_, locally_relevant_);
+    matrix_.reinit(locally_owned_, locally_owned_, dsp, communicator_);
+
+    solution_.reinit(locally_owned_, locally_relevant_, communicator_);
+    solution_converged_.reinit(locally_owned_, locally_relevant_, communicator_);
+    residual_.reinit(locally_owned_, communicator_);
+
+    n_state_ = material_->n_state_variables();
+    const std::size_t n_states = std::size_t(triangulation_.n_active_cells()) * n_q_points_;
+    state_old_.assign(n_states * n_state_, 0.0);
+    for (std::size_t i = 0; i < n_states; ++i)
+      material_->initial_state(std::span<double>(state_old_).subspan(i * n_state_, n_state_));
+    state_new_ = state_old_;
+
+    const double penalty = case_.contact.penalty > 0 ?
+                             case_.contact.penalty :
+                             1000. * material_->reference_modulus() /
+                               mesh_info_.contact_element_size;
+    contact_ = std::make_unique<contact::NodeToSurfaceContact>(*indenter_, penalty);
+    contact_->setup(dof_handler_,
+                    constraints_hanging_,
+                    mesh::boundary::top,
+                    mesh_info_.refined_half_x,
+                    mesh_info_.refined_half_y,
+                    communicator_);
+
+    pcout_ << "Mesh: " << n_cells() << " cells, " << n_dofs() << " DOFs, "
+           << n_constrained_dofs() << " constrained DOFs (hanging nodes and supports), "
+           << "contact element size " << mesh_info_.contact_element_size << " um, "
+           << Utilities::MPI::n_mpi_processes(communicator_) << " MPI rank(s)\n"
+           << "Contact: penalty " << penalty << " GPa/um, contact-surface area "
+           << contact_->total_area() << " um^2 (model)\n";
+  }
+
+  IndentationProblem::AssemblyResult IndentationProblem::assemble(const bool with_matrix)
+  {
+    AssemblyResult result;
+    const QGauss<3> quadrature(2);
+    const QGauss<3> centre(1);
+    FEValues<3>     fe_values(fe_, quadrature, update_gradients | update_JxW_values);
+    FEValues<3>     fe_centre(fe_, centre, update_gradients);
+    const FEValuesExtractors::Vector displacement(0);
+
+    const unsigned int n_dofs_cell = fe_.n_dofs_per_cell();
+    ElementScratch     scratch(n_dofs_cell, n_q_points_);
+    Vector<double>     u_local(n_dofs_cell), r_local(n_dofs_cell);
+    FullMatrix<double> k_local(n_dofs_cell, n_dofs_cell);
+    std::vector<types::global_dof_index> dofs(n_dofs_cell);
+
+    if (with_matrix)
+      matrix_ = 0;
+    residual_ = 0;
+    double local_reaction = 0;
+
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        fe_values.reinit(cell);
+        fe_centre.reinit(cell);
+        for (unsigned int q = 0; q < n_q_points_; ++q)
+          {
+            scratch.JxW[q] = fe_values.JxW(q);
+            for (unsigned int a = 0; a < n_dofs_cell; ++a)
+              scratch.G[q][a] = fe_values[displacement].gradient(a, q);
+          }
+        for (unsigned int a = 0; a < n_dofs_cell; ++a)
+          scratch.G0[a] = fe_centre[displacement].gradient(a, 0);
+        cell->get_dof_values(solution_, u_local);
+
+        const std::size_t offset = std::size_t(cell->active_cell_index()) * n_q_points_ * n_state_;
+        const std::size_t length = std::size_t(n_q_points_) * n_state_;
+        const auto status = element_residual_and_tangent(
+          *material_,
+          use_f_bar_,
+          u_local,
+          std::span<const double>(state_old_).subspan(offset, length),
+          std::span<double>(state_new_).subspan(offset, length),
+          scratch,
+          r_local,
+          with_matrix ? &k_local : nullptr);
+        if (status != materials::UpdateStatus::success)
+          {
+            result.status = status;
+            continue; // keep going so that every rank reaches the collective calls
+          }
+        cell->get_dof_indices(dofs);
+        if (with_matrix)
+          constraints_all_.distribute_local_to_global(k_local, r_local, dofs, matrix_, residual_);
+        else
+          constraints_all_.distribute_local_to_global(r_local, dofs, residual_);
+
+        // Bottom reaction: the internal force at the supported nodes (z components).
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == mesh::boundary::bottom)
+            for (unsigned int a = 0; a < n_dofs_cell; ++a)
+              if (fe_.system_to_component_index(a).first == 2 &&
+                  fe_.has_support_on_face(a, f))
+                local_reaction += r_local[a];
+      }
+    contact_->assemble(constraints_all_, residual_, with_matrix ? &matrix_ : nullptr);
+    if (with_matrix)
+      matrix_.compress(VectorOperation::add);
+    residual_.compress(VectorOperation::add);
+
+    // Bottom-face nodes are shared by at most... every bottom node's reaction is the sum of
+    // the contributions of its cells, so summing over cells gives the total reaction.
+    result.bottom_reaction = Utilities::MPI::sum(local_reaction, communicator_);
+    const unsigned int failed = Utilities::MPI::max(
+      static_cast<unsigned int>(result.status != materials::UpdateStatus::success), communicator_);
+    if (failed && result.status == materials::UpdateStatus::success)
+      result.status = materials::UpdateStatus::local_newton_failed;
+    return result;
+  }
+
+  IncrementStatus IndentationProblem::solve_increment(const double depth, StepRecord &record)
+  {
+    const auto  &solver_parameters = case_.solver;
+    double       reference = 0;
+    record.newton_iterations = 0;
+    record.augmentations = 0;
+
+    PETScWrappers::MPI::Vector du(locally_owned_, communicator_);
+    PETScWrappers::MPI::Vector u_owned(locally_owned_, communicator_);
+
+    for (unsigned int pass = 0; pass <= case_.contact.max_augmentations; ++pass)
+      {
+        bool converged = false;
+        for (unsigned int it = 0; it <= solver_parameters.max_newton_iterations; ++it)
+          {
+            contact_->evaluate(solution_, depth);
+            if (contact_->summary().search_failed)
+              return IncrementStatus::contact_search_failure;
+            const AssemblyResult assembly = assemble(true);
+            if (assembly.status != materials::UpdateStatus::success)
+              return IncrementStatus::material_failure;
+            record.bottom_reaction = assembly.bottom_reaction;
+
+            const double norm = residual_.l2_norm();
+            if (pass == 0 && it == 0)
+              reference = std::max(norm, solver_parameters.absolute_tolerance);
+            pcout_ << "      pass " << pass << " it " << std::setw(2) << it << "  |R| = "
+                   << std::scientific << std::setprecision(3) << norm << " mN"
+                   << std::defaultfloat << '\n';
+            if (!std::isfinite(norm) || norm > 1e10 * reference)
+              return IncrementStatus::newton_diverged;
+            if (norm <= std::max(solver_parameters.residual_tolerance * reference,
+                                 solver_parameters.absolute_tolerance))
+              {
+                converged = true;
+                break;
+              }
+            if (it == solver_parameters.max_newton_iterations)
+              break;
+
+            // Newton update K du = -R.
+            residual_ *= -1.0;
+            SolverControl                    control(1, 0);
+            PETScWrappers::SparseDirectMUMPS direct(control, communicator_);
+            direct.solve(matrix_, du, residual_);
+            constraints_all_.distribute(du);
+            u_owned = solution_;
+            u_owned += du;
+            solution_ = u_owned;
+            ++record.newton_iterations;
+          }
+        if (!converged)
+          return IncrementStatus::too_many_iterations;
+
+        const contact::ContactSummary summary = contact_->summary();
+        if (summary.max_penetration <= case_.contact.penetration_tolerance)
+          {
+            const double factor = symmetry_factor();
+            record.depth = depth;
+            record.force = summary.force_z * factor;
+            record.contact_area = summary.contact_area * factor;
+            record.contact_radius = summary.contact_radius;
+            record.n_active_nodes = summary.n_active;
+            record.max_penetration = summary.max_penetration;
+            record.bottom_reaction *= factor;
+            return IncrementStatus::converged;
+          }
+        contact_->augment();
+        ++record.augmentations;
+      }
+    return IncrementStatus::too_many_augmentations;
+  }
+
+  void IndentationProblem::accept_increment()
+  {
+    state_old_.swap(state_new_);
+    // state_new_ now holds the previous state; it is overwritten by the next assembly.
+    state_new_ = state_old_;
+    solution_converged_ = solution_;
+    contact_->accept_increment();
+  }
+
+  void IndentationProblem::reject_increment()
+  {
+    state_new_ = state_old_;
+    solution_ = solution_converged_;
+    contact_->reject_increment();
+  }
+
+  void IndentationProblem::set_displacement(
+    const std::function<Tensor<1, 3>(const Point<3> &)> &u)
+  {
+    PETScWrappers::MPI::Vector u_owned(locally_owned_, communicator_);
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            const Tensor<1, 3> value = u(cell->vertex(v));
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                const auto dof = cell->vertex_dof_index(v, d);
+                if (locally_owned_.is_element(dof))
+                  u_owned(dof) = value[d];
+              }
+          }
+    u_owned.compress(VectorOperation::insert);
+    constraints_hanging_.distribute(u_owned);
+    solution_ = u_owned;
+  }
+
+  double IndentationProblem::interior_residual_norm()
+  {
+    contact_->evaluate(solution_, -1e30); // indenter far away: no contact
+    assemble(false);
+    const IndexSet boundary_dofs = DoFTools::extract_boundary_dofs(dof_handler_);
+    double         local = 0;
+    for (const auto dof : locally_owned_)
+      if (!boundary_dofs.is_element(dof))
+        local += residual_(dof) * residual_(dof);
+    return std::sqrt(Utilities::MPI::sum(local, communicator_));
+  }
+
+  double IndentationProblem::max_stress_error(const Tensor<2, 3> &expected)
+  {
+    const QGauss<3> quadrature(2);
+    const QGauss<3> centre(1);
+    FEValues<3>     fe_values(fe_, quadrature, update_gradients | update_JxW_values);
+    FEValues<3>     fe_centre(fe_, centre, update_gradients);
+    const FEValuesExtractors::Vector displacement(0);
+    const unsigned int n_dofs_cell = fe_.n_dofs_per_cell();
+    ElementScratch     scratch(n_dofs_cell, n_q_points_);
+    Vector<double>     u_local(n_dofs_cell), r_local(n_dofs_cell);
+    std::vector<Tensor<2, 3>> cauchy(n_q_points_);
+    std::vector<double>       scratch_state(std::size_t(n_q_points_) * n_state_);
+    double                    error = 0;
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        fe_values.reinit(cell);
+        fe_centre.reinit(cell);
+        for (unsigned int q = 0; q < n_q_points_; ++q)
+          {
+            scratch.JxW[q] = fe_values.JxW(q);
+            for (unsigned int a = 0; a < n_dofs_cell; ++a)
+              scratch.G[q][a] = fe_values[displacement].gradient(a, q);
+          }
+        for (unsigned int a = 0; a < n_dofs_cell; ++a)
+          scratch.G0[a] = fe_centre[displacement].gradient(a, 0);
+        cell->get_dof_values(solution_, u_local);
+        const std::size_t offset = std::size_t(cell->active_cell_index()) * n_q_points_ * n_state_;
+        element_residual_and_tangent(
+          *material_,
+          use_f_bar_,
+          u_local,
+          std::span<const double>(state_old_).subspan(offset, scratch_state.size()),
+          scratch_state,
+          scratch,
+          r_local,
+          nullptr,
+          &cauchy);
+        for (const auto &sigma : cauchy)
+          error = std::max(error, (sigma - expected).norm());
+      }
+    return Utilities::MPI::max(error, communicator_);
+  }
+} // namespace indentsim::solver
+
+namespace indentsim::solver
+{
+  namespace
+  {
+    void write_csv_header(std::ostream &out)
+    {
+      out << "step,depth_um,force_mN,contact_radius_um,contact_area_um2,n_active_nodes,"
+             "newton_iterations,augmentations,cutbacks,max_penetration_um,bottom_reaction_mN,"
+             "wall_time_s\n";
+    }
+
+    void write_csv_row(std::ostream &out, const StepRecord &r)
+    {
+      out << r.step << ',' << std::setprecision(10) << r.depth << ',' << r.force << ','
+          << r.contact_radius << ',' << r.contact_area << ',' << r.n_active_nodes << ','
+          << r.newton_iterations << ',' << r.augmentations << ',' << r.cutbacks << ','
+          << std::setprecision(4) << r.max_penetration << ',' << std::setprecision(10)
+          << r.bottom_reaction << ',' << std::setprecision(4) << r.wall_time << '\n'
+          << std::flush;
+    }
+
+    std::string format_duration(const double seconds)
+    {
+      std::ostringstream s;
+      const long total = std::lround(seconds);
+      s << total / 60 << "m" << std::setw(2) << std::setfill('0') << total % 60 << "s";
+      return s.str();
+    }
+  } // namespace
+
+  void IndentationProblem::run(const std::string &output_directory)
+  {
+    output_directory_ = output_directory;
+    const bool    root = Utilities::MPI::this_mpi_process(communicator_) == 0;
+    std::ofstream csv, log;
+    if (root && !output_directory_.empty())
+      {
+        csv.open(output_directory_ + "/load_penetration.csv");
+        log.open(output_directory_ + "/run.log");
+        write_csv_header(csv);
+        log << "# indentsim " << INDENTSIM_VERSION << " run log. Units: um, mN, GPa, s.\n"
+            << "# cells " << n_cells() << ", DOFs " << n_dofs() << ", constrained DOFs "
+            << n_constrained_dofs() << ", MPI ranks "
+            << Utilities::MPI::n_mpi_processes(communicator_) << '\n'
+            << "# step depth_um force_mN newton_iterations augmentations cutbacks "
+               "max_penetration_um wall_time_s\n";
+      }
+    wall_timer_.restart();
+
+    StepRecord initial;
+    records_.push_back(initial);
+    if (csv.is_open())
+      write_csv_row(csv, initial);
+
+    const auto  &loading = case_.loading;
+    const double nominal_increment = loading.max_depth / loading.steps;
+    const double unload_increment = loading.unload_steps > 0 ?
+                                      loading.max_depth / loading.unload_steps :
+                                      nominal_increment;
+    double       depth = 0, increment = nominal_increment;
+    bool         unloading = false;
+    unsigned int step = 0, total_newton = 0, vtu_index = 0;
+
+    if (!output_directory_.empty())
+      write_vtu(vtu_index++, 0.0);
+
+    while (true)
+      {
+        const double target_increment = unloading ? unload_increment : nominal_increment;
+        increment = std::min(increment, target_increment);
+        StepRecord   record;
+        unsigned int cutbacks = 0;
+        double       new_depth = 0;
+        while (true)
+          {
+            new_depth = unloading ? std::max(0.0, depth - increment) :
+                                    std::min(loading.max_depth, depth + increment);
+            const IncrementStatus status = solve_increment(new_depth, record);
+            if (status == IncrementStatus::converged)
+              break;
+            reject_increment();
+            ++cutbacks;
+            pcout_ << "    step " << step + 1 << " to depth " << new_depth << " um: "
+                   << to_string(status) << "; cutting the increment back to " << increment / 2
+                   << " um\n";
+            if (log.is_open())
+              log << "# step " << step + 1 << ": " << to_string(status)
+                  << ", increment cut back to " << increment / 2 << " um\n";
+            if (cutbacks > loading.max_cutbacks)
+              throw std::runtime_error("increment to depth " + std::to_string(new_depth) +
+                                       " um failed after " + std::to_string(cutbacks - 1) +
+                                       " cut-backs (" + to_string(status) + ")");
+            increment /= 2;
+          }
+        depth = new_depth;
+        ++step;
+        record.step = step;
+        record.cutbacks = cutbacks;
+        record.wall_time = wall_timer_.wall_time();
+        total_newton += record.newton_iterations;
+        records_.push_back(record);
+
+        const bool at_max = !unloading && depth >= loading.max_depth * (1 - 1e-12);
+        const bool finished =
+          (unloading && (record.n_active_nodes == 0 || depth <= 0)) || (at_max && !loading.unload);
+        if (!output_directory_.empty() &&
+            (at_max || finished || (case_.output.vtu_every > 0 && step % case_.output.vtu_every == 0)))
+          write_vtu(vtu_index++, depth);
+        accept_increment();
+
+        // Progress: one line per step, with an ETA from the mean step time of this run.
+        const double elapsed = record.wall_time;
+        const double remaining_depth =
+          unloading ? depth * 0.25 : (loading.max_depth - depth) + (loading.unload ? 0.25 * loading.max_depth : 0);
+        const double eta = depth > 0 ? elapsed / (step) * remaining_depth / nominal_increment : 0;
+        pcout_ << "step " << std::setw(3) << step << (unloading ? " unload" : " load  ")
+               << "  depth " << std::fixed << std::setprecision(4) << depth << " um  force "
+               << std::setprecision(3) << record.force << " mN  (bottom reaction "
+               << record.bottom_reaction << ")  active " << record.n_active_nodes
+               << "  Newton " << record.newton_iterations << "  aug " << record.augmentations
+               << "  cut " << cutbacks << "  pen " << std::scientific << std::setprecision(1)
+               << record.max_penetration << std::defaultfloat << "  wall "
+               << format_duration(elapsed) << "  ETA ~" << format_duration(eta) << '\n';
+        if (csv.is_open())
+          write_csv_row(csv, record);
+        if (log.is_open())
+          log << step << ' ' << std::setprecision(8) << depth << ' ' << record.force << ' '
+              << record.newton_iterations << ' ' << record.augmentations << ' ' << cutbacks
+              << ' ' << record.max_penetration << ' ' << std::setprecision(4) << elapsed
+              << std::endl;
+
+        if (finished)
+          break;
+        if (at_max)
+          {
+            unloading = true;
+            increment = unload_increment;
+          }
+        // After a cut-back, grow the increment again once a step converges easily.
+        if (cutbacks == 0 && record.newton_iterations <= 8)
+          increment *= 2;
+      }
+    pcout_ << "Finished: " << step << " steps, " << total_newton << " Newton iterations, wall time "
+           << format_duration(wall_timer_.wall_time()) << '\n';
+    if (log.is_open())
+      log << "# finished: " << step << " steps, " << total_newton << " Newton iterations, "
+          << wall_timer_.wall_time() << " s\n";
+  }
+} // namespace indentsim::solver

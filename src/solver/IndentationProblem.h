@@ -1,0 +1,142 @@
+// Depth-controlled indentation of a block by a rigid indenter: the finite-strain quasi-static
+// boundary-value problem, its Newton solver with augmented-Lagrangian contact, the load stepper
+// with cut-back, and the outputs. Units: um, mN, GPa.
+//
+// Constraints are layered as in deal.II's step-42: hanging-node constraints, then
+// Dirichlet-and-hanging constraints (bottom face fixed, symmetry planes of the quarter model);
+// all are homogeneous, so the Newton updates use the same object. The lateral faces are
+// traction-free. Contact enters as nodal forces (see contact/NodeToSurfaceContact.h).
+#pragma once
+
+#include "contact/NodeToSurfaceContact.h"
+#include "indenter/IndenterSurface.h"
+#include "io/Case.h"
+#include "materials/MaterialModel.h"
+#include "mesh/IndentationMesh.h"
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/petsc_sparse_matrix.h>
+#include <deal.II/lac/petsc_vector.h>
+
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace indentsim::solver
+{
+  // One row of the load-penetration record. Forces and areas are those of the whole indent
+  // (multiplied by 4 for the quarter model).
+  struct StepRecord
+  {
+    unsigned int step = 0;
+    double       depth = 0;           // indenter apex depth [um]
+    double       force = 0;           // indenter force [mN]
+    double       contact_radius = 0;  // [um]
+    double       contact_area = 0;    // sum of tributary areas of active nodes [um^2]
+    unsigned int n_active_nodes = 0;  // active nodes of the model (not symmetry-multiplied)
+    unsigned int newton_iterations = 0;
+    unsigned int augmentations = 0;
+    unsigned int cutbacks = 0;
+    double       max_penetration = 0; // [um]
+    double       bottom_reaction = 0; // [mN], whole indent
+    double       wall_time = 0;       // [s] since the start of the run
+  };
+
+  enum class IncrementStatus
+  {
+    converged,
+    material_failure,
+    contact_search_failure,
+    newton_diverged,
+    too_many_iterations,
+    too_many_augmentations
+  };
+  std::string to_string(IncrementStatus status);
+
+  class IndentationProblem
+  {
+  public:
+    IndentationProblem(const io::Case &the_case, MPI_Comm communicator, bool verbose = true);
+    ~IndentationProblem();
+
+    // Builds mesh, dofs, constraints, history and contact nodes.
+    void setup();
+
+    // Runs the whole loading programme; writes outputs into `output_directory` (which must exist)
+    // unless it is empty.
+    void run(const std::string &output_directory);
+
+    // Solves one increment to depth `depth` from the last converged state (no cut-back).
+    IncrementStatus solve_increment(double depth, StepRecord &record);
+    // Accepts or rejects the increment just solved.
+    void accept_increment();
+    void reject_increment();
+
+    const std::vector<StepRecord> &records() const { return records_; }
+
+    unsigned int n_cells() const;
+    unsigned int n_dofs() const;
+    unsigned int n_constrained_dofs() const;
+    unsigned int n_hanging_node_constraints() const;
+    const mesh::MeshInfo &mesh_info() const { return mesh_info_; }
+    double symmetry_factor() const { return mesh_info_.quarter ? 4.0 : 1.0; }
+    const dealii::DoFHandler<3> &dof_handler() const { return dof_handler_; }
+    const dealii::PETScWrappers::MPI::Vector &solution() const { return solution_; }
+
+    // Sets the displacement to u(X) (for patch tests); hanging-node constraints are applied.
+    void set_displacement(const std::function<dealii::Tensor<1, 3>(const dealii::Point<3> &)> &u);
+    // Assembles the residual for the current displacement (no contact) and returns its l2 norm
+    // over the dofs off the boundary [mN]; max_stress_error returns the largest deviation of the
+    // Cauchy stress from `expected_cauchy` over all quadrature points [GPa].
+    double interior_residual_norm();
+    double max_stress_error(const dealii::Tensor<2, 3> &expected_cauchy);
+
+  private:
+    struct AssemblyResult
+    {
+      materials::UpdateStatus status = materials::UpdateStatus::success;
+      double                  bottom_reaction = 0; // z reaction on the bottom face [mN]
+    };
+    AssemblyResult assemble(bool with_matrix);
+    void           write_vtu(unsigned int index, double depth);
+    void           compute_cell_fields(dealii::Vector<float> &von_mises,
+                                       dealii::Vector<float> &plastic_strain,
+                                       std::vector<dealii::Vector<float>> &cauchy);
+
+    const io::Case                     &case_;
+    MPI_Comm                            communicator_;
+    dealii::ConditionalOStream          pcout_;
+    dealii::parallel::distributed::Triangulation<3> triangulation_;
+    mesh::MeshInfo                      mesh_info_;
+    dealii::FESystem<3>                 fe_;
+    dealii::DoFHandler<3>               dof_handler_;
+    dealii::IndexSet                    locally_owned_, locally_relevant_;
+    dealii::AffineConstraints<double>   constraints_hanging_;
+    dealii::AffineConstraints<double>   constraints_all_; // Dirichlet and hanging nodes
+
+    std::unique_ptr<materials::MaterialModel>     material_;
+    std::unique_ptr<indenter::IndenterSurface>    indenter_;
+    std::unique_ptr<contact::NodeToSurfaceContact> contact_;
+    bool                                          use_f_bar_;
+
+    dealii::PETScWrappers::MPI::SparseMatrix matrix_;
+    dealii::PETScWrappers::MPI::Vector       solution_;           // ghosted
+    dealii::PETScWrappers::MPI::Vector       solution_converged_; // ghosted
+    dealii::PETScWrappers::MPI::Vector       residual_;           // owned
+
+    // Material states: [active_cell_index][q][variable], flattened.
+    unsigned int        n_q_points_ = 8, n_state_ = 0;
+    std::vector<double> state_old_, state_new_;
+
+    std::vector<StepRecord>                          records_;
+    std::vector<std::pair<double, std::string>>      vtu_records_; // (step, pvtu file)
+    std::string                                      output_directory_;
+    dealii::Timer                                    wall_timer_;
+  };
+} // namespace indentsim::solver

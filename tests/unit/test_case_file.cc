@@ -1,0 +1,539 @@
+// Case files, the resolved case, output-directory protection and the command line.
+#include <io/CaseFile.h>
+#include <io/CommandLine.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+namespace
+{
+  namespace fs = std::filesystem;
+  using namespace indentsim::io;
+
+  // A fresh, empty scratch directory for one test, under $INDENTSIM_TEST_TMP (fallback /tmp).
+  fs::path scratch_directory(const std::string &test_name)
+  {
+    const char *root = std::getenv("INDENTSIM_TEST_TMP");
+    const fs::path dir = fs::path(root != nullptr && *root != '\0' ? root : "/tmp") /
+                         ("case_file_" + std::to_string(::getpid())) / test_name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+  }
+
+  fs::path write_text(const fs::path &path, const std::string &text)
+  {
+    std::ofstream out(path);
+    out << text;
+    return path;
+  }
+
+  const std::string minimal_case = "test: indentation\nmaterial:\n  model: j2\n";
+
+  // Parses `yaml` (as file "bad.yaml") and returns the error message, or "" if none was thrown.
+  std::string error_of(const std::string &yaml)
+  {
+    try
+      {
+        parse_case_yaml(yaml, "bad.yaml");
+      }
+    catch (const CaseFileError &error)
+      {
+        return error.what();
+      }
+    return "";
+  }
+
+  // Asserts that `yaml` is rejected with a message naming the file and containing every part.
+  void expect_rejected(const std::string &yaml, std::initializer_list<std::string> parts)
+  {
+    const std::string message = error_of(yaml);
+    SCOPED_TRACE("case file:\n" + yaml + "\nmessage: " + message);
+    ASSERT_FALSE(message.empty()) << "no CaseFileError thrown";
+    EXPECT_EQ(message.rfind("bad.yaml", 0), 0u) << "message does not start with the file name";
+    for (const auto &part : parts)
+      EXPECT_NE(message.find(part), std::string::npos) << "missing '" << part << "'";
+  }
+
+  // minimal_case plus one more section.
+  std::string with(const std::string &extra) { return minimal_case + extra; }
+} // namespace
+
+// The paper's J2 example parses into exactly the paper's parameters (Table 1, eq. 16).
+TEST(CaseFile, PaperExampleHasThePaperValues)
+{
+  const Case c = read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/paper_j2_n12.yaml");
+  EXPECT_EQ(c.test, "indentation");
+  EXPECT_EQ(c.material.model, "j2");
+  EXPECT_DOUBLE_EQ(c.material.young_modulus, 69.0);
+  EXPECT_DOUBLE_EQ(c.material.poisson_ratio, 0.26);
+  EXPECT_DOUBLE_EQ(c.material.yield_stress, 0.305);
+  EXPECT_DOUBLE_EQ(c.material.hardening_modulus, 0.5);
+  EXPECT_EQ(c.indenter.shape, "rounded_cone");
+  EXPECT_DOUBLE_EQ(c.indenter.a, 2.48);
+  EXPECT_DOUBLE_EQ(c.indenter.delta, 0.005);
+  EXPECT_EQ(c.specimen.size, (std::array<double, 3>{{360., 360., 180.}}));
+  EXPECT_EQ(c.specimen.refined_region, (std::array<double, 3>{{120., 120., 30.}}));
+  EXPECT_EQ(c.specimen.contact_elements, 12u);
+  EXPECT_EQ(c.specimen.symmetry, "quarter");
+  EXPECT_TRUE(c.specimen.f_bar);
+  EXPECT_DOUBLE_EQ(c.loading.max_depth, 6.0);
+  EXPECT_EQ(c.loading.steps, 64u);
+  EXPECT_TRUE(c.loading.unload);
+  EXPECT_DOUBLE_EQ(c.contact.friction_coefficient, 0.0);
+  EXPECT_EQ(c.output.directory, "results/paper_j2_n12");
+  EXPECT_NE(c.source_file.find("paper_j2_n12.yaml"), std::string::npos);
+}
+
+// The elastic Hertz example is a valid case with the advertised depth and mesh.
+TEST(CaseFile, ElasticHertzExampleIsValid)
+{
+  const Case c = read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/elastic_hertz.yaml");
+  EXPECT_EQ(c.material.model, "neo_hookean");
+  EXPECT_FALSE(c.specimen.f_bar);
+  EXPECT_DOUBLE_EQ(c.loading.max_depth / c.indenter.delta, 0.1);
+  EXPECT_EQ(c.loading.steps, 4u);
+  EXPECT_FALSE(c.loading.unload);
+  EXPECT_EQ(c.specimen.contact_elements, 16u);
+  EXPECT_EQ(c.specimen.symmetry, "quarter");
+  EXPECT_EQ(c.output.directory, "results/elastic_hertz");
+}
+
+// Only `test` and `material.model` are required; every other key takes the Case.h default.
+TEST(CaseFile, MinimalCaseGetsAllDefaults)
+{
+  Case expected;
+  expected.source_file = "minimal.yaml";
+  const Case c = parse_case_yaml(minimal_case, "minimal.yaml");
+  EXPECT_TRUE(c == expected);
+}
+
+// The F-bar default follows the material: on for j2, off for neo_hookean, and an explicit value wins.
+TEST(CaseFile, FBarDefaultDependsOnModel)
+{
+  EXPECT_TRUE(parse_case_yaml(minimal_case, "a.yaml").specimen.f_bar);
+  EXPECT_FALSE(
+    parse_case_yaml("test: indentation\nmaterial:\n  model: neo_hookean\n", "a.yaml").specimen.f_bar);
+  EXPECT_FALSE(parse_case_yaml(with("specimen:\n  f_bar: false\n"), "a.yaml").specimen.f_bar);
+  EXPECT_TRUE(parse_case_yaml("test: indentation\nmaterial:\n  model: neo_hookean\n"
+                              "specimen:\n  f_bar: true\n",
+                              "a.yaml")
+                .specimen.f_bar);
+}
+
+// Writing the resolved case and reading it back gives an identical case for every key.
+TEST(CaseFile, ResolvedCaseRoundTrips)
+{
+  // Every value differs from its default, so a key the writer forgot cannot go unnoticed.
+  Case c;
+  c.test = "indentation";
+  c.material = {"neo_hookean", 70.5, 0.3, 0.25, 0.75, "kirchhoff"};
+  c.indenter = {"rounded_cone", 1.9, 0.0123};
+  c.specimen = {{{300., 310., 150.}}, {{100., 90., 25.}}, 16, "quarter", false};
+  c.loading = {5.5, 33, false, 7, 5};
+  c.contact = {0.0, 12.5, 3e-7, 17};
+  c.solver = {1e-9, 2.5e-11, 31};
+  c.output = {"out dir: #1/\"quoted\"", 3};
+  c.source_file = "whatever.yaml";
+  validate_case(c);
+  ASSERT_FALSE(c.material == Case().material);
+
+  const fs::path dir = scratch_directory("round_trip");
+  const std::string path = (dir / "resolved_case.yaml").string();
+  write_resolved_case(c, path);
+  Case back = read_case_file(path);
+  EXPECT_EQ(back.source_file, path);
+  back.source_file = c.source_file;
+  EXPECT_TRUE(back == c) << resolved_case_yaml(c) << "\nread back as\n" << resolved_case_yaml(back);
+  EXPECT_EQ(resolved_case_yaml(back), resolved_case_yaml(c));
+
+  // Numbers that have no short decimal form survive as well.
+  Case awkward;
+  awkward.material.young_modulus = 1. / 3.;
+  awkward.loading.max_depth = 0.1 + 0.2;
+  Case awkward_back = parse_case_yaml(resolved_case_yaml(awkward), "");
+  awkward_back.source_file = awkward.source_file;
+  EXPECT_TRUE(awkward_back == awkward);
+}
+
+// The resolved case documents units next to the values it writes.
+TEST(CaseFile, ResolvedCaseCarriesUnitComments)
+{
+  const std::string text = resolved_case_yaml(Case());
+  for (const std::string fragment :
+       {"young_modulus: 69", "# E [GPa]", "max_depth: 6", "delta: 0.005", "[um]", "[mN]",
+        "size: [360, 360, 180]", "f_bar: true", "directory: \"results/run\""})
+    EXPECT_NE(text.find(fragment), std::string::npos) << fragment << "\n" << text;
+}
+
+// A misspelt or misplaced key at any level is an error that suggests the intended key.
+TEST(CaseFile, UnknownKeysAreRejectedWithSuggestion)
+{
+  expect_rejected("tset: indentation\nmaterial:\n  model: j2\n",
+                  {"unknown key 'tset'", "did you mean 'test'"});
+  expect_rejected(with("  youngs_modulus: 70\n"),
+                  {"unknown key 'material.youngs_modulus'", "did you mean 'material.young_modulus'",
+                   ":4:"});
+  expect_rejected(with("loading:\n  max_depht: 5\n"),
+                  {"loading.max_depht", "did you mean 'loading.max_depth'"});
+  expect_rejected(with("max_depth: 5\n"),
+                  {"unknown key 'max_depth'", "did you mean 'loading.max_depth'"});
+  expect_rejected(with("specimen:\n  elephant: 1\n"),
+                  {"unknown key 'specimen.elephant'", "Allowed keys in 'specimen'",
+                   "contact_elements"});
+  expect_rejected(with("output:\n  directory: a\n  directory: b\n"),
+                  {"duplicate key 'output.directory'"});
+}
+
+// A case without `test` or `material.model` is rejected, naming the missing key.
+TEST(CaseFile, MissingRequiredKeys)
+{
+  expect_rejected("material:\n  model: j2\n", {"missing required key 'test'", "indentation"});
+  expect_rejected("test: indentation\n", {"missing required key 'material.model'", "j2"});
+  expect_rejected("test: indentation\nmaterial:\n  young_modulus: 69\n",
+                  {"material.model", "neo_hookean"});
+  expect_rejected("", {"missing required key 'test'"});
+}
+
+// Values of the wrong type name the key, the value and the expected type.
+TEST(CaseFile, WrongTypesAreRejected)
+{
+  expect_rejected(with("  young_modulus: abc\n"),
+                  {"material.young_modulus", "abc", "expected a number"});
+  expect_rejected(with("  young_modulus:\n"), {"material.young_modulus", "no value"});
+  expect_rejected(with("loading:\n  steps: -3\n"), {"loading.steps", "-3", "negative"});
+  expect_rejected(with("specimen:\n  contact_elements: 12.5\n"),
+                  {"specimen.contact_elements", "12.5", "whole number"});
+  expect_rejected(with("specimen:\n  size: [360, 360]\n"),
+                  {"specimen.size", "[360, 360]", "3 numbers", "got 2"});
+  expect_rejected(with("specimen:\n  refined_region: 120\n"),
+                  {"specimen.refined_region", "120", "list of 3"});
+  expect_rejected(with("specimen:\n  size: [360, wide, 180]\n"),
+                  {"specimen.size[1]", "wide", "expected a number"});
+  expect_rejected(with("loading:\n  unload: maybe\n"),
+                  {"loading.unload", "maybe", "true or false"});
+  expect_rejected(with("indenter:\n  shape: [rounded_cone]\n"), {"indenter.shape", "rounded_cone"});
+  expect_rejected(with("contact: 0.0\n"), {"'contact' = 0.0", "mapping"});
+  expect_rejected(with("solver:\n  max_newton_iterations: 1e99\n"),
+                  {"solver.max_newton_iterations", "1e99"});
+}
+
+// A YAML syntax error is reported with the file and the line.
+TEST(CaseFile, SyntaxErrorNamesTheLine)
+{
+  expect_rejected("test: indentation\nmaterial:\n  model: [j2\n  young_modulus: 69\n",
+                  {"YAML syntax error"});
+  const std::string message = error_of("test: indentation\nmaterial: {model: j2\n");
+  EXPECT_NE(message.find("bad.yaml:"), std::string::npos) << message;
+  EXPECT_NE(message.find("YAML syntax error"), std::string::npos) << message;
+
+  const fs::path dir = scratch_directory("syntax");
+  const std::string path = write_text(dir / "broken.yaml", "test: indentation\nmaterial:\n"
+                                                           "  model: j2\n  a: b: c\n")
+                             .string();
+  try
+    {
+      read_case_file(path);
+      FAIL() << "no error for broken YAML";
+    }
+  catch (const CaseFileError &error)
+    {
+      const std::string text = error.what();
+      EXPECT_NE(text.find(path + ":4:"), std::string::npos) << text;
+      EXPECT_NE(text.find("YAML syntax error"), std::string::npos) << text;
+    }
+}
+
+// A case file that does not exist gives an error naming the path.
+TEST(CaseFile, MissingFileIsReported)
+{
+  const std::string path =
+    (scratch_directory("missing_file") / "no_such_case.yaml").string();
+  try
+    {
+      read_case_file(path);
+      FAIL() << "no error for a missing file";
+    }
+  catch (const CaseFileError &error)
+    {
+      EXPECT_NE(std::string(error.what()).find(path), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find("does not exist"), std::string::npos);
+    }
+}
+
+// Material parameters outside their physical range are rejected with key, value and range.
+TEST(CaseFile, MaterialRangesAreChecked)
+{
+  expect_rejected(with("  young_modulus: 0\n"), {"material.young_modulus = 0", "> 0", ":4:"});
+  expect_rejected(with("  young_modulus: -69\n"), {"material.young_modulus = -69"});
+  expect_rejected(with("  poisson_ratio: 0.5\n"),
+                  {"material.poisson_ratio = 0.5", "-1 < nu < 0.5"});
+  expect_rejected(with("  poisson_ratio: -1\n"), {"material.poisson_ratio = -1"});
+  expect_rejected(with("  yield_stress: 0\n"), {"material.yield_stress = 0", "> 0"});
+  expect_rejected(with("  hardening_modulus: -0.1\n"),
+                  {"material.hardening_modulus = -0.1", ">= 0"});
+  EXPECT_EQ(error_of(with("  hardening_modulus: 0\n  poisson_ratio: 0.499\n")), "");
+}
+
+// Indenter and specimen geometry that cannot be meshed or makes no sense is rejected.
+TEST(CaseFile, GeometryRangesAreChecked)
+{
+  expect_rejected(with("indenter:\n  a: 0\n"), {"indenter.a = 0", "> 0"});
+  expect_rejected(with("indenter:\n  delta: -0.001\n"), {"indenter.delta = -0.001", ">= 0"});
+  EXPECT_EQ(error_of(with("indenter:\n  delta: 0\n")), "") << "a sharp cone is allowed";
+  expect_rejected(with("specimen:\n  size: [360, 0, 180]\n"),
+                  {"specimen.size = [360, 0, 180]", "> 0", "y entry"});
+  expect_rejected(with("specimen:\n  refined_region: [120, 120, -30]\n"),
+                  {"specimen.refined_region = [120, 120, -30]", "z entry"});
+  expect_rejected(with("specimen:\n  refined_region: [400, 120, 30]\n"),
+                  {"specimen.refined_region = [400, 120, 30]", "x extent", "[360, 360, 180]"});
+  expect_rejected(with("specimen:\n  size: [360, 360, 20]\n"),
+                  {"specimen.refined_region = [120, 120, 30] (default)", "z extent",
+                   "specimen.size = [360, 360, 20]"});
+  expect_rejected(with("specimen:\n  contact_elements: 10\n"),
+                  {"specimen.contact_elements = 10", "multiple of 4", "quarter"});
+  expect_rejected(with("specimen:\n  contact_elements: 0\n"),
+                  {"specimen.contact_elements = 0", "multiple of 4"});
+  EXPECT_EQ(error_of(with("specimen:\n  contact_elements: 8\n  symmetry: quarter\n")), "");
+}
+
+// Loading, contact, solver and output settings outside their admissible range are rejected.
+TEST(CaseFile, LoadingContactSolverRangesAreChecked)
+{
+  expect_rejected(with("loading:\n  steps: 0\n"), {"loading.steps = 0", ">= 1"});
+  expect_rejected(with("loading:\n  max_depth: 0\n"), {"loading.max_depth = 0", "> 0"});
+  expect_rejected(with("loading:\n  max_depth: -2\n"), {"loading.max_depth = -2"});
+  expect_rejected(with("loading:\n  max_depth: 30\n"),
+                  {"loading.max_depth = 30", "refined_region[2] = 30"});
+  expect_rejected(with("contact:\n  friction_coefficient: -0.1\n"),
+                  {"contact.friction_coefficient = -0.1", ">= 0"});
+  expect_rejected(with("contact:\n  friction_coefficient: 0.2\n"),
+                  {"contact.friction_coefficient = 0.2",
+                   "friction is not implemented yet; only 0 is allowed"});
+  expect_rejected(with("contact:\n  penalty: -1\n"), {"contact.penalty = -1"});
+  expect_rejected(with("contact:\n  penetration_tolerance: 0\n"),
+                  {"contact.penetration_tolerance = 0"});
+  expect_rejected(with("solver:\n  residual_tolerance: 1.5\n"),
+                  {"solver.residual_tolerance = 1.5"});
+  expect_rejected(with("solver:\n  max_newton_iterations: 0\n"),
+                  {"solver.max_newton_iterations = 0"});
+  expect_rejected(with("output:\n  directory: \"\"\n"), {"output.directory"});
+}
+
+// Unknown enumeration values list the allowed values; the reserved tensile test is refused.
+TEST(CaseFile, UnknownChoicesListAllowedValues)
+{
+  expect_rejected("test: indentation\nmaterial:\n  model: elastic\n",
+                  {"material.model = 'elastic'", "neo_hookean | j2"});
+  expect_rejected("test: indentation\nmaterial:\n  model: J2\n",
+                  {"material.model = 'J2'", "did you mean 'j2'"});
+  expect_rejected(with("indenter:\n  shape: sphere\n"),
+                  {"indenter.shape = 'sphere'", "rounded_cone"});
+  expect_rejected(with("specimen:\n  symmetry: half\n"),
+                  {"specimen.symmetry = 'half'", "full | quarter"});
+  expect_rejected("test: compression\nmaterial:\n  model: j2\n",
+                  {"test = 'compression'", "indentation | tensile"});
+  expect_rejected(with("  yield_stress_measure: mises\n"),
+                  {"material.yield_stress_measure = 'mises'", "cauchy | kirchhoff"});
+  expect_rejected("test: tensile\nmaterial:\n  model: j2\n",
+                  {"test = tensile", "not implemented yet"});
+}
+
+// validate_case applies the same checks to a case changed in code (e.g. by --output).
+TEST(CaseFile, ValidateCaseChecksProgrammaticCases)
+{
+  Case c;
+  EXPECT_NO_THROW(validate_case(c));
+  c.output.directory = "";
+  EXPECT_THROW(validate_case(c), CaseFileError);
+  c = Case();
+  c.material.poisson_ratio = 0.6;
+  try
+    {
+      validate_case(c);
+      FAIL() << "nu = 0.6 accepted";
+    }
+  catch (const CaseFileError &error)
+    {
+      EXPECT_NE(std::string(error.what()).find("material.poisson_ratio = 0.6"), std::string::npos)
+        << error.what();
+    }
+}
+
+// A new output directory is created, with its parents, and is usable.
+TEST(OutputDirectory, IsCreated)
+{
+  const fs::path dir = scratch_directory("create") / "a" / "b";
+  prepare_output_directory(dir.string(), false);
+  EXPECT_TRUE(fs::is_directory(dir));
+  EXPECT_TRUE(fs::is_empty(dir)) << "the write probe was left behind";
+  // Unrelated files do not count as an earlier run.
+  write_text(dir / "notes.txt", "mine");
+  EXPECT_NO_THROW(prepare_output_directory(dir.string(), false));
+}
+
+// An earlier run's results are never overwritten without --overwrite.
+TEST(OutputDirectory, RefusesEarlierResultsWithoutOverwrite)
+{
+  const fs::path dir = scratch_directory("refuse");
+  write_text(dir / "load_penetration.csv", "step,depth_um,force_mN\n");
+  try
+    {
+      prepare_output_directory(dir.string(), false);
+      FAIL() << "earlier results accepted without --overwrite";
+    }
+  catch (const CaseFileError &error)
+    {
+      const std::string message = error.what();
+      EXPECT_NE(message.find(dir.string()), std::string::npos) << message;
+      EXPECT_NE(message.find("--overwrite"), std::string::npos) << message;
+      EXPECT_NE(message.find("load_penetration.csv"), std::string::npos) << message;
+    }
+  EXPECT_TRUE(fs::exists(dir / "load_penetration.csv"));
+
+  const fs::path other = scratch_directory("refuse_resolved");
+  write_text(other / "resolved_case.yaml", "test: indentation\n");
+  EXPECT_THROW(prepare_output_directory(other.string(), false), CaseFileError);
+  const fs::path paraview = scratch_directory("refuse_paraview");
+  write_text(paraview / "specimen.pvd", "<VTKFile/>");
+  EXPECT_THROW(prepare_output_directory(paraview.string(), false), CaseFileError);
+}
+
+// --overwrite removes only indentsim's own output files and keeps everything else.
+TEST(OutputDirectory, OverwriteRemovesOnlyOwnFiles)
+{
+  const fs::path dir = scratch_directory("overwrite");
+  for (const char *name : {"load_penetration.csv", "load_penetration.png", "resolved_case.yaml",
+                           "run.log", "specimen.pvd", "specimen_0003.pvtu",
+                           "specimen_0003.0.vtu"})
+    write_text(dir / name, "old");
+  for (const char *name : {"notes.txt", "my_mesh.vtu", "load_penetration_paper.csv"})
+    write_text(dir / name, "keep");
+  fs::create_directories(dir / "my_analysis");
+  write_text(dir / "my_analysis" / "resolved_case.yaml", "keep");
+
+  prepare_output_directory(dir.string(), true);
+  for (const char *name : {"load_penetration.csv", "load_penetration.png", "resolved_case.yaml",
+                           "run.log", "specimen.pvd", "specimen_0003.pvtu",
+                           "specimen_0003.0.vtu"})
+    EXPECT_FALSE(fs::exists(dir / name)) << name;
+  for (const char *name : {"notes.txt", "my_mesh.vtu", "load_penetration_paper.csv"})
+    EXPECT_TRUE(fs::exists(dir / name)) << name;
+  EXPECT_TRUE(fs::exists(dir / "my_analysis" / "resolved_case.yaml"));
+  // The emptied directory now counts as fresh.
+  EXPECT_NO_THROW(prepare_output_directory(dir.string(), false));
+}
+
+// A directory that cannot be created or written gives an error naming it.
+TEST(OutputDirectory, UnusableDirectoryIsReported)
+{
+  const fs::path root = scratch_directory("unusable");
+  write_text(root / "a_file", "x");
+  const std::string below_file = (root / "a_file" / "out").string();
+  try
+    {
+      prepare_output_directory(below_file, false);
+      FAIL() << "a directory below a regular file was accepted";
+    }
+  catch (const CaseFileError &error)
+    {
+      EXPECT_NE(std::string(error.what()).find(below_file), std::string::npos) << error.what();
+    }
+  EXPECT_THROW(prepare_output_directory((root / "a_file").string(), false), CaseFileError);
+}
+
+// A read-only directory is detected by the write probe (permissions do not bind root).
+TEST(OutputDirectory, ReadOnlyDirectoryIsReported)
+{
+  if (::geteuid() == 0)
+    GTEST_SKIP() << "running as root: permission bits cannot make a directory read-only";
+  const fs::path dir = scratch_directory("read_only");
+  fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
+  try
+    {
+      prepare_output_directory(dir.string(), false);
+      ADD_FAILURE() << "a read-only directory was accepted";
+    }
+  catch (const CaseFileError &error)
+    {
+      EXPECT_NE(std::string(error.what()).find("not writable"), std::string::npos)
+        << error.what();
+    }
+  fs::permissions(dir, fs::perms::owner_all);
+}
+
+// The documented command forms parse into the right command and options.
+TEST(CommandLine, ParsesTheDocumentedForms)
+{
+  auto options = parse_command_line({"run", "case.yaml"});
+  EXPECT_EQ(options.command, Command::run);
+  EXPECT_EQ(options.case_file, "case.yaml");
+  EXPECT_FALSE(options.output_directory.has_value());
+  EXPECT_FALSE(options.overwrite);
+
+  options = parse_command_line({"run", "case.yaml", "--output", "out", "--overwrite"});
+  EXPECT_EQ(options.command, Command::run);
+  EXPECT_EQ(options.output_directory.value_or(""), "out");
+  EXPECT_TRUE(options.overwrite);
+
+  options = parse_command_line({"run", "--overwrite", "--output=o2", "c.yaml"});
+  EXPECT_EQ(options.case_file, "c.yaml");
+  EXPECT_EQ(options.output_directory.value_or(""), "o2");
+
+  options = parse_command_line({"check", "case.yaml"});
+  EXPECT_EQ(options.command, Command::check);
+  EXPECT_EQ(options.case_file, "case.yaml");
+
+  const char *argv[] = {"indentsim", "--version"};
+  EXPECT_EQ(parse_command_line(2, argv).command, Command::version);
+  EXPECT_EQ(parse_command_line({"--help"}).command, Command::help);
+  EXPECT_EQ(parse_command_line({"-h"}).command, Command::help);
+}
+
+// Bad usage raises an error that carries the usage text.
+TEST(CommandLine, BadUsageShowsUsage)
+{
+  for (const std::vector<std::string> &arguments :
+       std::vector<std::vector<std::string>>{{},
+                                             {"case.yaml"},
+                                             {"simulate", "case.yaml"},
+                                             {"run"},
+                                             {"run", "a.yaml", "b.yaml"},
+                                             {"run", "a.yaml", "--output"},
+                                             {"run", "a.yaml", "--frobnicate"},
+                                             {"check", "a.yaml", "--overwrite"},
+                                             {"--version", "extra"}})
+    {
+      std::string joined;
+      for (const auto &argument : arguments)
+        joined += argument + " ";
+      try
+        {
+          parse_command_line(arguments);
+          ADD_FAILURE() << "accepted: indentsim " << joined;
+        }
+      catch (const CommandLineError &error)
+        {
+          EXPECT_NE(std::string(error.what()).find("Usage:"), std::string::npos) << joined;
+        }
+    }
+}
+
+// The help text lists the commands and options and states the units.
+TEST(CommandLine, HelpListsCommandsOptionsAndUnits)
+{
+  const std::string help = help_text();
+  for (const std::string fragment :
+       {"run CASE.yaml", "check CASE.yaml", "--output DIR", "--overwrite", "--help", "--version",
+        "um", "mN", "GPa"})
+    EXPECT_NE(help.find(fragment), std::string::npos) << fragment;
+  EXPECT_NE(version_text().find("indentsim"), std::string::npos);
+}

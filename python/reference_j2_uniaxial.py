@@ -19,11 +19,11 @@ from the current stretch alone (REFERENCES.md, "Homogeneous uniaxial tension, fi
 The last equation is the only root solve (bisection in alpha to full double precision). If the
 elastic solution (alpha = 0) is below yield, alpha = 0.
 
-Usage:
-  /usr/bin/python3 python/reference_j2_uniaxial.py --out tests/unit/data/j2_uniaxial_reference.csv
-  /usr/bin/python3 python/reference_j2_uniaxial.py --yield-stress-measure kirchhoff \
+Usage (needs numpy: Debian package python3-numpy, see scripts/install_dependencies.sh):
+  python3 python/reference_j2_uniaxial.py --out tests/unit/data/j2_uniaxial_reference.csv
+  python3 python/reference_j2_uniaxial.py --yield-stress-measure kirchhoff \
       --out tests/unit/data/j2_uniaxial_reference_kirchhoff.csv
-(needs numpy, Debian package python3-numpy). Defaults are the paper's Table 1 parameters.
+Defaults are the paper's Table 1 parameters; 101 rows, log strain 0 to 0.2 in steps of 0.002.
 """
 
 import argparse

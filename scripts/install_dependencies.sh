@@ -5,7 +5,7 @@
 set -euo pipefail
 
 packages=(cmake g++ ccache libdeal.ii-dev libyaml-cpp-dev libgtest-dev googletest
-          python3 python3-numpy python3-matplotlib openmpi-bin)
+          python3 python3-numpy python3-matplotlib openmpi-bin libopenblas0-openmp)
 
 missing=()
 for package in "${packages[@]}"; do

@@ -1,3 +1,5 @@
+#include <cstdio>
+#include <cstdlib>
 #include <materials/ImplicitLocalProblem.h>
 #include <materials/J2Plasticity.h>
 #include <materials/TensorFunctions.h>
@@ -47,21 +49,20 @@ namespace indentsim::materials
         using std::exp;
         // dev b_e = exp(2 tr(eps_e)/3) dev(exp(2 dev eps_e) - I), written with exp - I so that
         // the small deviatoric part keeps full relative accuracy (it sets N).
-        const Number mean_eps_e = (x[0] + x[1] + x[2]) / 3.0;
+        const Number                          mean_eps_e = (x[0] + x[1] + x[2]) / 3.0;
         dealii::SymmetricTensor<2, 3, Number> two_dev_eps_e;
         for (unsigned int k = 0; k < 6; ++k)
           two_dev_eps_e.access_raw_entry(k) = 2.0 * (k < 3 ? x[k] - mean_eps_e : x[k]);
-        const auto dev_b_e = scaled(exp(2.0 * mean_eps_e),
-                                    deviator_symmetric(expm1_symmetric(two_dev_eps_e)));
+        const auto dev_b_e =
+          scaled(exp(2.0 * mean_eps_e), deviator_symmetric(expm1_symmetric(two_dev_eps_e)));
         const Number norm_dev_b_e = norm_symmetric(dev_b_e);
         const Number flow_factor = (sqrt_3_2 * x[delta_gamma_index]) / norm_dev_b_e;
         for (unsigned int k = 0; k < 6; ++k)
           R[k] = x[k] - p[k] + flow_factor * dev_b_e.access_raw_entry(k);
         const Number equivalent_stress_over_mu =
           cauchy ? Number(sqrt_3_2 * norm_dev_b_e / p[J_index]) : Number(sqrt_3_2 * norm_dev_b_e);
-        R[delta_gamma_index] =
-          equivalent_stress_over_mu -
-          (yield_stress_n + hardening_modulus * x[delta_gamma_index]) / mu;
+        R[delta_gamma_index] = equivalent_stress_over_mu -
+                               (yield_stress_n + hardening_modulus * x[delta_gamma_index]) / mu;
       }
     };
   } // namespace
@@ -80,9 +81,9 @@ namespace indentsim::materials
       throw std::invalid_argument("J2Plasticity: yield_stress = " + std::to_string(yield_stress) +
                                   " GPa; it must be positive and finite");
     if (!(hardening_modulus >= 0.0) || !std::isfinite(hardening_modulus))
-      throw std::invalid_argument("J2Plasticity: hardening_modulus = " +
-                                  std::to_string(hardening_modulus) +
-                                  " GPa; it must be non-negative and finite");
+      throw std::invalid_argument(
+        "J2Plasticity: hardening_modulus = " + std::to_string(hardening_modulus) +
+        " GPa; it must be non-negative and finite");
   }
 
   void J2Plasticity::initial_state(std::span<double> state) const
@@ -93,8 +94,7 @@ namespace indentsim::materials
     state[gamma_p_index] = 0.0;
   }
 
-  dealii::SymmetricTensor<2, 3>
-  J2Plasticity::plastic_metric_inverse(std::span<const double> state)
+  dealii::SymmetricTensor<2, 3> J2Plasticity::plastic_metric_inverse(std::span<const double> state)
   {
     dealii::SymmetricTensor<2, 3> C_p_inverse;
     for (unsigned int k = 0; k < 6; ++k)
@@ -102,9 +102,8 @@ namespace indentsim::materials
     return C_p_inverse;
   }
 
-  double J2Plasticity::yield_function(const Tensor<2, 3> &tau,
-                                      const double        J,
-                                      const double        gamma_p) const
+  double
+  J2Plasticity::yield_function(const Tensor<2, 3> &tau, const double J, const double gamma_p) const
   {
     const double mean = (tau[0][0] + tau[1][1] + tau[2][2]) / 3.0;
     double       norm_squared = 0.0;
@@ -139,8 +138,8 @@ namespace indentsim::materials
     // Elastic predictor: tau(b_e^tr) directly, no logarithm needed (dev tau = mu dev b_e).
     const dealii::SymmetricTensor<2, 3> b_e_trial = push_forward_symmetric(F, C_p_inverse_n);
     const dealii::SymmetricTensor<2, 3> dev_b_e_trial = deviator_symmetric(b_e_trial);
-    const double norm_dev_b_e_trial = norm_symmetric(dev_b_e_trial);
-    const double trial_yield_function =
+    const double                        norm_dev_b_e_trial = norm_symmetric(dev_b_e_trial);
+    const double                        trial_yield_function =
       sqrt_3_2 * mu * norm_dev_b_e_trial / (cauchy ? J : 1.0) - yield_stress_n;
 
     if (trial_yield_function <= 0.0)
@@ -154,9 +153,9 @@ namespace indentsim::materials
 
     // Plastic corrector. Trial log strain eps_e^tr = 1/2 log b_e^tr; when the tangent is
     // wanted it is computed once with derivatives with respect to F.
-    dealii::Tensor<2, 3, ADNumberF>        F_ad;
-    std::array<ADNumberF, n_parameters>    parameters_ad;
-    ReturnMapping::Parameters              parameters;
+    dealii::Tensor<2, 3, ADNumberF>     F_ad;
+    std::array<ADNumberF, n_parameters> parameters_ad;
+    ReturnMapping::Parameters           parameters;
     if (compute_tangent)
       {
         for (unsigned int k = 0; k < 3; ++k)
@@ -184,10 +183,10 @@ namespace indentsim::materials
     // quadratic range; the neo-Hookean f^tr would overshoot for large trial strains, where
     // exp(2 eps) >> 1 + 2 eps, and could land on the spurious reversed-flow root).
     // Fallback: Newton from the trial state itself (Delta gamma = 0).
-    const double J_m = cauchy ? J : 1.0;
+    const double            J_m = cauchy ? J : 1.0;
     ReturnMapping::Unknowns unknowns;
-    const auto set_hencky_guess = [&]() {
-      const double mean = (parameters[0] + parameters[1] + parameters[2]) / 3.0;
+    const auto              set_hencky_guess = [&]() {
+      const double                  mean = (parameters[0] + parameters[1] + parameters[2]) / 3.0;
       dealii::SymmetricTensor<2, 3> dev_eps_trial;
       for (unsigned int k = 0; k < 6; ++k)
         dev_eps_trial.access_raw_entry(k) = parameters[k] - (k < 3 ? mean : 0.0);
@@ -196,8 +195,8 @@ namespace indentsim::materials
         std::max(sqrt_3_2 * 2.0 * mu * norm_dev / J_m - yield_stress_n, 0.0) /
         (3.0 * mu / J_m + hardening_modulus);
       for (unsigned int k = 0; k < 6; ++k)
-        unknowns[k] = parameters[k] - delta_gamma_0 * sqrt_3_2 *
-                                          dev_eps_trial.access_raw_entry(k) / norm_dev;
+        unknowns[k] =
+          parameters[k] - delta_gamma_0 * sqrt_3_2 * dev_eps_trial.access_raw_entry(k) / norm_dev;
       unknowns[delta_gamma_index] = delta_gamma_0;
     };
     const auto set_trial_guess = [&]() {
@@ -213,6 +212,7 @@ namespace indentsim::materials
     for (unsigned int k = 0; k < 6; ++k)
       strain_scale = std::max(strain_scale, std::abs(parameters[k]));
     settings.tolerance = 1e-14 * strain_scale;
+    settings.stagnation_tolerance = 1e-11 * strain_scale;
     bool converged = false;
     for (unsigned int attempt = 0; attempt < 2 && !converged; ++attempt)
       {
@@ -224,10 +224,30 @@ namespace indentsim::materials
           ReturnMapping::solve(residual, parameters, unknowns, settings);
         // Delta gamma > 0 is guaranteed for f^tr > 0 (KKT); anything else is a spurious root.
         converged = newton.converged && unknowns[delta_gamma_index] > 0.0;
+        // A trial state on the yield surface to round-off returns Delta gamma = 0 (+- round-off):
+        // that is the elastic solution, not a failure.
+        if (newton.converged && !converged &&
+            std::abs(unknowns[delta_gamma_index]) <= 1e-10 * strain_scale)
+          {
+            elasticity.elastic_response(F, C_p_inverse_n, J_minus_one, response, compute_tangent);
+            std::copy(state_old.begin(), state_old.end(), state_new.begin());
+            return UpdateStatus::success;
+          }
       }
     const double delta_gamma = unknowns[delta_gamma_index];
     if (!converged)
       {
+        if (std::getenv("INDENTSIM_DEBUG_J2"))
+          {
+            std::fprintf(stderr, "J2FAIL F");
+            for (unsigned int k = 0; k < 3; ++k)
+              for (unsigned int L = 0; L < 3; ++L)
+                std::fprintf(stderr, " %.17g", F[k][L]);
+            std::fprintf(stderr, " state");
+            for (const double v : state_old)
+              std::fprintf(stderr, " %.17g", v);
+            std::fprintf(stderr, "\n");
+          }
         std::copy(state_old.begin(), state_old.end(), state_new.begin());
         return UpdateStatus::local_newton_failed;
       }
@@ -252,7 +272,7 @@ namespace indentsim::materials
         // tau = mu (b_e - 1) + lambda/2 (J^2 - 1) 1 (eq. 3); the pressure value is taken from
         // J - 1, its derivative lambda J dJ/dF from AD.
         const ADNumberF &J_ad = parameters_ad[J_index];
-        ADNumberF pressure_term = 0.5 * elasticity.lame_lambda() * (J_ad * J_ad - 1.0);
+        ADNumberF        pressure_term = 0.5 * elasticity.lame_lambda() * (J_ad * J_ad - 1.0);
         pressure_term.val() = 0.5 * elasticity.lame_lambda() * J_minus_one * (J_minus_one + 2.0);
         dealii::Tensor<2, 3, ADNumberF> tau_ad;
         for (unsigned int i = 0; i < 3; ++i)
@@ -298,8 +318,7 @@ namespace indentsim::materials
       }
 
     // Updated plastic metric C_p^-1 = F^-1 b_e F^-T (eq. 9 pulled back) and gamma_p.
-    const dealii::SymmetricTensor<2, 3> C_p_inverse =
-      push_forward_symmetric(inverse_3x3(F), b_e);
+    const dealii::SymmetricTensor<2, 3> C_p_inverse = push_forward_symmetric(inverse_3x3(F), b_e);
     for (unsigned int k = 0; k < 6; ++k)
       state_new[k] = C_p_inverse.access_raw_entry(k);
     state_new[gamma_p_index] = gamma_p_n + delta_gamma;

@@ -53,7 +53,7 @@ namespace indentsim::materials
                                const double                         J_minus_one) const
   {
     // eq. 3 applied to eq. 2; J^2 - 1 = (J - 1)(J + 1).
-    const double pressure_term = 0.5 * lambda * J_minus_one * (J_minus_one + 2.0);
+    const double                  pressure_term = 0.5 * lambda * J_minus_one * (J_minus_one + 2.0);
     dealii::SymmetricTensor<2, 3> tau;
     for (unsigned int k = 0; k < 6; ++k)
       tau.access_raw_entry(k) = mu * b_e.access_raw_entry(k);
@@ -106,23 +106,21 @@ namespace indentsim::materials
       for (unsigned int J_index = 0; J_index < 3; ++J_index)
         for (unsigned int k = 0; k < 3; ++k)
           for (unsigned int L = 0; L < 3; ++L)
-            response.dP_dF[i][J_index][k][L] =
-              (i == k ? mu * C_p_inverse[L][J_index] : 0.0) +
-              c_1 * F_inverse[L][i] * F_inverse[J_index][k] +
-              c_2 * F_inverse[J_index][i] * F_inverse[L][k];
+            response.dP_dF[i][J_index][k][L] = (i == k ? mu * C_p_inverse[L][J_index] : 0.0) +
+                                               c_1 * F_inverse[L][i] * F_inverse[J_index][k] +
+                                               c_2 * F_inverse[J_index][i] * F_inverse[L][k];
   }
 
-  UpdateStatus NeoHookean::update(const Tensor<2, 3>     &F,
+  UpdateStatus NeoHookean::update(const Tensor<2, 3> &F,
                                   std::span<const double> /*state_old*/,
-                                  MaterialPointResponse  &response,
+                                  MaterialPointResponse &response,
                                   std::span<double> /*state_new*/,
                                   const bool compute_tangent) const
   {
     double J_minus_one = 0.0;
     if (!admissible_deformation(F, J_minus_one))
       return UpdateStatus::invalid_deformation;
-    elastic_response(F, dealii::unit_symmetric_tensor<3>(), J_minus_one, response,
-                     compute_tangent);
+    elastic_response(F, dealii::unit_symmetric_tensor<3>(), J_minus_one, response, compute_tangent);
     return UpdateStatus::success;
   }
 } // namespace indentsim::materials

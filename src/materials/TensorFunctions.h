@@ -28,8 +28,10 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <type_traits>
 
 namespace indentsim::materials
@@ -60,6 +62,7 @@ namespace indentsim::materials
       double       weights[8];
     };
 
+    // clang-format off
     inline constexpr GaussLegendreRule log_pade_rules[] = {
       {3,
        0.0075,
@@ -98,6 +101,7 @@ namespace indentsim::materials
        {0.050614268145188129576, 0.11119051722668723527, 0.15685332293894364367,
         0.18134189168918099148, 0.18134189168918099148, 0.15685332293894364367,
         0.11119051722668723527, 0.050614268145188129576}}};
+    // clang-format on
 
     // Largest admissible |eigenvalue of X| for the [m/m] Pade approximant of exp(X), m = 3..7,
     // to full double accuracy (value and derivative).
@@ -189,9 +193,8 @@ namespace indentsim::materials
   template <typename Number>
   inline Number determinant_symmetric(const dealii::SymmetricTensor<2, 3, Number> &A)
   {
-    const Number &a = A.access_raw_entry(0), &b = A.access_raw_entry(1),
-                 &c = A.access_raw_entry(2), &d = A.access_raw_entry(3),
-                 &e = A.access_raw_entry(4), &f = A.access_raw_entry(5);
+    const Number &a = A.access_raw_entry(0), &b = A.access_raw_entry(1), &c = A.access_raw_entry(2),
+                 &d = A.access_raw_entry(3), &e = A.access_raw_entry(4), &f = A.access_raw_entry(5);
     return a * (b * c - f * f) + d * (e * f - d * c) + e * (d * f - b * e);
   }
 
@@ -200,9 +203,8 @@ namespace indentsim::materials
   inline dealii::SymmetricTensor<2, 3, Number>
   inverse_symmetric(const dealii::SymmetricTensor<2, 3, Number> &A)
   {
-    const Number &a = A.access_raw_entry(0), &b = A.access_raw_entry(1),
-                 &c = A.access_raw_entry(2), &d = A.access_raw_entry(3),
-                 &e = A.access_raw_entry(4), &f = A.access_raw_entry(5);
+    const Number &a = A.access_raw_entry(0), &b = A.access_raw_entry(1), &c = A.access_raw_entry(2),
+                 &d = A.access_raw_entry(3), &e = A.access_raw_entry(4), &f = A.access_raw_entry(5);
     dealii::SymmetricTensor<2, 3, Number> C;
     C.access_raw_entry(0) = b * c - f * f;
     C.access_raw_entry(1) = a * c - e * e;
@@ -210,8 +212,8 @@ namespace indentsim::materials
     C.access_raw_entry(3) = e * f - d * c;
     C.access_raw_entry(4) = d * f - b * e;
     C.access_raw_entry(5) = d * e - a * f;
-    const Number det = a * C.access_raw_entry(0) + d * C.access_raw_entry(3) +
-                       e * C.access_raw_entry(4);
+    const Number det =
+      a * C.access_raw_entry(0) + d * C.access_raw_entry(3) + e * C.access_raw_entry(4);
     const Number inverse_det = 1.0 / det;
     for (unsigned int k = 0; k < 6; ++k)
       C.access_raw_entry(k) *= inverse_det;
@@ -232,11 +234,11 @@ namespace indentsim::materials
       {
         const unsigned int i = (k < 3 ? k : (k == 5 ? 1 : 0));
         const unsigned int j = (k < 3 ? k : (k == 3 ? 1 : 2));
-        Number             sum = A.access_raw_entry(symmetric_index[i][0]) *
-                         B.access_raw_entry(symmetric_index[0][j]);
+        Number             sum =
+          A.access_raw_entry(symmetric_index[i][0]) * B.access_raw_entry(symmetric_index[0][j]);
         for (unsigned int m = 1; m < 3; ++m)
-          sum += A.access_raw_entry(symmetric_index[i][m]) *
-                 B.access_raw_entry(symmetric_index[m][j]);
+          sum +=
+            A.access_raw_entry(symmetric_index[i][m]) * B.access_raw_entry(symmetric_index[m][j]);
         if (k >= 3)
           {
             // (B A)_ij = (A B)_ji
@@ -274,8 +276,7 @@ namespace indentsim::materials
     C[2][0] = F[1][0] * F[2][1] - F[1][1] * F[2][0];
     C[2][1] = F[0][1] * F[2][0] - F[0][0] * F[2][1];
     C[2][2] = F[0][0] * F[1][1] - F[0][1] * F[1][0];
-    const Number inverse_det =
-      1.0 / (F[0][0] * C[0][0] + F[0][1] * C[1][0] + F[0][2] * C[2][0]);
+    const Number inverse_det = 1.0 / (F[0][0] * C[0][0] + F[0][1] * C[1][0] + F[0][2] * C[2][0]);
     for (unsigned int i = 0; i < 3; ++i)
       for (unsigned int j = 0; j < 3; ++j)
         C[i][j] *= inverse_det;
@@ -318,9 +319,9 @@ namespace indentsim::materials
     dealii::SymmetricTensor<2, 3, Number> b;
     for (unsigned int k = 0; k < 6; ++k)
       {
-        const auto   ij = dealii::SymmetricTensor<2, 3, double>::unrolled_to_component_indices(k);
-        const auto   i = ij[0], j = ij[1];
-        Number       sum = G[i][0] * F[j][0];
+        const auto ij = dealii::SymmetricTensor<2, 3, double>::unrolled_to_component_indices(k);
+        const auto i = ij[0], j = ij[1];
+        Number     sum = G[i][0] * F[j][0];
         for (unsigned int m = 1; m < 3; ++m)
           sum += G[i][m] * F[j][m];
         b.access_raw_entry(k) = sum;
@@ -349,9 +350,9 @@ namespace indentsim::materials
         c[j] = c[j - 1] * double(m - j + 1) / double(j * (2 * m - j + 1));
 
       const auto X2 = commuting_product(X, X);
-      auto       power = X2;                                     // X^(2i)
-      V = plus_identity(scaled(c[2], X2), c[0]);                 // even part of p_m
-      auto U_over_X = plus_identity(scaled(c[3], X2), c[1]);     // odd part of p_m, over X
+      auto       power = X2;                                 // X^(2i)
+      V = plus_identity(scaled(c[2], X2), c[0]);             // even part of p_m
+      auto U_over_X = plus_identity(scaled(c[3], X2), c[1]); // odd part of p_m, over X
       for (unsigned int j = 4; j <= m; j += 2)
         {
           power = commuting_product(power, X2); // X^j
@@ -364,9 +365,8 @@ namespace indentsim::materials
 
     // Pade degree m and number of squarings s for exp(X): the smallest m with |X| <= theta_m,
     // else m = 7 and X scaled by 2^-s.
-    inline void exp_degree_and_squarings(const double  norm_X,
-                                         unsigned int &degree,
-                                         unsigned int &n_squarings)
+    inline void
+    exp_degree_and_squarings(const double norm_X, unsigned int &degree, unsigned int &n_squarings)
     {
       degree = 7;
       n_squarings = 0;
@@ -376,14 +376,16 @@ namespace indentsim::materials
             degree = m;
             return;
           }
-      n_squarings = static_cast<unsigned int>(std::ceil(std::log2(norm_X / exp_pade_theta[4])));
+      // A non-finite argument just propagates to the result; beyond 2^64 exp overflows anyway.
+      if (std::isfinite(norm_X))
+        n_squarings = static_cast<unsigned int>(
+          std::min(64.0, std::ceil(std::log2(norm_X / exp_pade_theta[4]))));
     }
 
     // Gauss-Legendre / Pade approximation of log(I + X) for small X.
     template <typename Number>
     dealii::SymmetricTensor<2, 3, Number>
-    pade_log_one_plus(const dealii::SymmetricTensor<2, 3, Number> &X,
-                      const GaussLegendreRule                     &rule)
+    pade_log_one_plus(const dealii::SymmetricTensor<2, 3, Number> &X, const GaussLegendreRule &rule)
     {
       dealii::SymmetricTensor<2, 3, Number> L;
       for (unsigned int k = 0; k < 6; ++k)
@@ -402,8 +404,7 @@ namespace indentsim::materials
   // Newton's method in a stable coupled form; its derivative converges one iteration behind its
   // value, so one more iteration is taken after the value has converged.
   template <typename Number>
-  dealii::SymmetricTensor<2, 3, Number>
-  sqrt_spd(const dealii::SymmetricTensor<2, 3, Number> &A)
+  dealii::SymmetricTensor<2, 3, Number> sqrt_spd(const dealii::SymmetricTensor<2, 3, Number> &A)
   {
     auto Y = A;
     auto Z = identity_symmetric<Number>();
@@ -467,13 +468,12 @@ namespace indentsim::materials
     internal::exp_degree_and_squarings(std::sqrt(scalar_value(norm_squared_symmetric(A))),
                                        degree,
                                        n_squarings);
-    const auto X =
-      n_squarings > 0 ? scaled(std::ldexp(1.0, -static_cast<int>(n_squarings)), A) : A;
+    const auto X = n_squarings > 0 ? scaled(std::ldexp(1.0, -static_cast<int>(n_squarings)), A) : A;
 
     dealii::SymmetricTensor<2, 3, Number> V, U;
     internal::pade_exp_parts(X, degree, V, U);
-    auto E = commuting_product(inverse_symmetric(linear_combination(1.0, V, -1.0, U)),
-                               scaled(2.0, U));
+    auto E =
+      commuting_product(inverse_symmetric(linear_combination(1.0, V, -1.0, U)), scaled(2.0, U));
     for (unsigned int s = 0; s < n_squarings; ++s)
       E = commuting_product(E, plus_identity(E, 2.0));
     return E;
@@ -484,8 +484,7 @@ namespace indentsim::materials
   // the result is ln det A to round-off; the unimodular remainder is square-rooted k times
   // until |A_k - I| <= 0.30, and log A_k is approximated by the smallest adequate Pade degree.
   template <typename Number>
-  dealii::SymmetricTensor<2, 3, Number>
-  log_spd(const dealii::SymmetricTensor<2, 3, Number> &A)
+  dealii::SymmetricTensor<2, 3, Number> log_spd(const dealii::SymmetricTensor<2, 3, Number> &A)
   {
     using std::exp;
     using std::log;
@@ -495,7 +494,7 @@ namespace indentsim::materials
     constexpr unsigned int n_rules = std::size(internal::log_pade_rules);
     const double           theta_max = internal::log_pade_rules[n_rules - 1].theta;
     unsigned int           n_roots = 0;
-    double                 norm_X = std::sqrt(scalar_value(norm_squared_symmetric(plus_identity(A_k, -1.0))));
+    double norm_X = std::sqrt(scalar_value(norm_squared_symmetric(plus_identity(A_k, -1.0))));
     while (norm_X > theta_max && n_roots < 40)
       {
         A_k = sqrt_spd(A_k);
@@ -510,8 +509,8 @@ namespace indentsim::materials
           rule = r;
           break;
         }
-    const auto L = internal::pade_log_one_plus(plus_identity(A_k, -1.0),
-                                               internal::log_pade_rules[rule]);
+    const auto L =
+      internal::pade_log_one_plus(plus_identity(A_k, -1.0), internal::log_pade_rules[rule]);
     return plus_identity(scaled(std::ldexp(1.0, static_cast<int>(n_roots)), L), log_scale);
   }
 } // namespace indentsim::materials

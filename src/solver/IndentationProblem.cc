@@ -17,9 +17,11 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -155,7 +157,7 @@ namespace indentsim::solver
            << "contact element size " << mesh_info_.contact_element_size << " um, "
            << Utilities::MPI::n_mpi_processes(communicator_) << " MPI rank(s)\n"
            << "Contact: penalty " << penalty << " GPa/um, contact-surface area "
-           << contact_->total_area() << " um^2 (model)\n";
+           << contact_->total_area() << " um^2 (model)" << std::endl;
   }
 
   IndentationProblem::AssemblyResult IndentationProblem::assemble(const bool with_matrix)
@@ -248,26 +250,58 @@ namespace indentsim::solver
 
     PETScWrappers::MPI::Vector du(locally_owned_, communicator_);
     PETScWrappers::MPI::Vector u_owned(locally_owned_, communicator_);
+    PETScWrappers::MPI::Vector u_start(locally_owned_, communicator_);
 
     for (unsigned int pass = 0; pass <= case_.contact.max_augmentations; ++pass)
       {
         bool converged = false;
+        // Newton with a backtracking line search on the residual norm: a full step that fails
+        // in a material point or raises the residual (typically an active-set change of the
+        // contact) is halved, down to 1/16; contact chattering and large trial strains are
+        // damped instead of cutting the whole increment back.
+        double       previous_norm = std::numeric_limits<double>::infinity();
+        double       alpha = 1;
+        const double min_alpha = 1. / 16;
         for (unsigned int it = 0; it <= solver_parameters.max_newton_iterations; ++it)
           {
-            contact_->evaluate(solution_, depth);
-            if (contact_->summary().search_failed)
+            const bool searched = contact_->evaluate(solution_, depth);
+            const bool search_failed =
+              Utilities::MPI::max(static_cast<unsigned int>(!searched), communicator_) > 0;
+            const AssemblyResult assembly =
+              search_failed ? AssemblyResult{} : assemble(true);
+            const bool   failed = search_failed ||
+                                assembly.status != materials::UpdateStatus::success;
+            const double norm = failed ? std::numeric_limits<double>::infinity() :
+                                         residual_.l2_norm();
+            if (it > 0 && alpha > min_alpha && !(norm <= previous_norm))
+              {
+                // Minimiser of the quadratic model of phi = |R|^2/2 along the Newton direction
+                // (phi'(0) = -2 phi(0)), kept within [min_alpha, alpha/2].
+                const double phi0 = previous_norm * previous_norm,
+                             phi1 = std::isfinite(norm) ? norm * norm : 1e300;
+                alpha = std::clamp(alpha * phi0 / (phi0 + phi1), min_alpha, alpha / 2);
+                u_owned = u_start;
+                u_owned.add(alpha, du);
+                solution_ = u_owned;
+                pcout_ << "      pass " << pass << " it " << std::setw(2) << it
+                       << "  line search: step length " << alpha << std::endl;
+                continue;
+              }
+            if (search_failed)
               return IncrementStatus::contact_search_failure;
-            const AssemblyResult assembly = assemble(true);
-            if (assembly.status != materials::UpdateStatus::success)
-              return IncrementStatus::material_failure;
+            if (failed)
+              {
+                pcout_ << "      material point: " << materials::to_string(assembly.status)
+                       << std::endl;
+                return IncrementStatus::material_failure;
+              }
             record.bottom_reaction = assembly.bottom_reaction;
 
-            const double norm = residual_.l2_norm();
             if (pass == 0 && it == 0)
               reference = std::max(norm, solver_parameters.absolute_tolerance);
             pcout_ << "      pass " << pass << " it " << std::setw(2) << it << "  |R| = "
                    << std::scientific << std::setprecision(3) << norm << " mN"
-                   << std::defaultfloat << '\n';
+                   << std::defaultfloat << std::endl;
             if (!std::isfinite(norm) || norm > 1e10 * reference)
               return IncrementStatus::newton_diverged;
             if (norm <= std::max(solver_parameters.residual_tolerance * reference,
@@ -285,9 +319,12 @@ namespace indentsim::solver
             PETScWrappers::SparseDirectMUMPS direct(control, communicator_);
             direct.solve(matrix_, du, residual_);
             constraints_all_.distribute(du);
-            u_owned = solution_;
+            u_start = solution_;
+            u_owned = u_start;
             u_owned += du;
             solution_ = u_owned;
+            previous_norm = norm;
+            alpha = 1;
             ++record.newton_iterations;
           }
         if (!converged)
@@ -468,7 +505,8 @@ namespace indentsim::solver
                                       nominal_increment;
     double       depth = 0, increment = nominal_increment;
     bool         unloading = false;
-    unsigned int step = 0, total_newton = 0, vtu_index = 0;
+    unsigned int step = 0, total_newton = 0, vtu_index = 0, easy_steps = 0;
+    double       max_force = 0;
 
     if (!output_directory_.empty())
       write_vtu(vtu_index++, 0.0);
@@ -510,8 +548,14 @@ namespace indentsim::solver
         records_.push_back(record);
 
         const bool at_max = !unloading && depth >= loading.max_depth * (1 - 1e-12);
+        max_force = std::max(max_force, record.force);
+        // Unloading ends when contact is lost or the force has fallen below 0.1 % of its maximum
+        // (the last node leaving the indenter makes the active set toggle; nothing measurable
+        // happens below that force).
         const bool finished =
-          (unloading && (record.n_active_nodes == 0 || depth <= 0)) || (at_max && !loading.unload);
+          (unloading && (record.n_active_nodes == 0 || depth <= 0 ||
+                         record.force <= 1e-3 * max_force)) ||
+          (at_max && !loading.unload);
         if (!output_directory_.empty() &&
             (at_max || finished || (case_.output.vtu_every > 0 && step % case_.output.vtu_every == 0)))
           write_vtu(vtu_index++, depth);
@@ -529,7 +573,7 @@ namespace indentsim::solver
                << "  Newton " << record.newton_iterations << "  aug " << record.augmentations
                << "  cut " << cutbacks << "  pen " << std::scientific << std::setprecision(1)
                << record.max_penetration << std::defaultfloat << "  wall "
-               << format_duration(elapsed) << "  ETA ~" << format_duration(eta) << '\n';
+               << format_duration(elapsed) << "  ETA ~" << format_duration(eta) << std::endl;
         if (csv.is_open())
           write_csv_row(csv, record);
         if (log.is_open())
@@ -545,9 +589,14 @@ namespace indentsim::solver
             unloading = true;
             increment = unload_increment;
           }
-        // After a cut-back, grow the increment again once a step converges easily.
-        if (cutbacks == 0 && record.newton_iterations <= 8)
-          increment *= 2;
+        // After a cut-back, grow the increment again only once three steps in a row have
+        // converged easily, so that a difficult stretch is not retried at every step.
+        easy_steps = (cutbacks == 0 && record.newton_iterations <= 6) ? easy_steps + 1 : 0;
+        if (easy_steps >= 3)
+          {
+            increment *= 2;
+            easy_steps = 0;
+          }
       }
     pcout_ << "Finished: " << step << " steps, " << total_newton << " Newton iterations, wall time "
            << format_duration(wall_timer_.wall_time()) << '\n';

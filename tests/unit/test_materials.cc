@@ -52,7 +52,7 @@ namespace
   Tensor<2, 3> random_rotation(std::mt19937 &generator)
   {
     std::normal_distribution<double> normal(0.0, 1.0);
-    double q[4], norm = 0.0;
+    double                           q[4], norm = 0.0;
     for (double &component : q)
       {
         component = normal(generator);
@@ -119,8 +119,7 @@ namespace
           MaterialPointResponse plus, minus;
           std::vector<double>   scratch(state_old.size());
           EXPECT_EQ(model.update(F_plus, state_old, plus, scratch, false), UpdateStatus::success);
-          EXPECT_EQ(model.update(F_minus, state_old, minus, scratch, false),
-                    UpdateStatus::success);
+          EXPECT_EQ(model.update(F_minus, state_old, minus, scratch, false), UpdateStatus::success);
           for (unsigned int i = 0; i < 3; ++i)
             for (unsigned int J = 0; J < 3; ++J)
               finite_difference[i][J][k][L] = (plus.P[i][J] - minus.P[i][J]) / (2.0 * step);
@@ -164,7 +163,7 @@ namespace
   {
     std::mt19937                           generator(11);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
-    double worst_log = 0.0, worst_exp = 0.0, worst_round_trip = 0.0;
+    double worst_log = 0.0, worst_log_near_identity = 0.0, worst_exp = 0.0, worst_round_trip = 0.0;
     for (unsigned int sample = 0; sample < 400; ++sample)
       {
         double eigenvalues[3];
@@ -189,18 +188,23 @@ namespace
             A += eigenvalues[i] * projector;
             log_A += std::log(eigenvalues[i]) * projector;
           }
-        // Near the identity log is ill-conditioned relative to its own size (the rounding of A
-        // alone is 1e-16 absolute), so the relative measure is floored at |log A| = 0.1.
-        worst_log = std::max(worst_log, (log_spd(A) - log_A).norm() /
-                                          std::max(log_A.norm(), 0.1));
+        // Where |log A| < 1 (eigenvalues near 1) log is ill-conditioned relative to its own
+        // size: the rounding of the entries of A alone is ~1e-16 absolute. There the error is
+        // measured absolutely (and near the identity against |A|, a few units in the last place).
+        worst_log = std::max(worst_log, (log_spd(A) - log_A).norm() / std::max(log_A.norm(), 1.0));
+        if (sample % 4 == 3)
+          worst_log_near_identity =
+            std::max(worst_log_near_identity, (log_spd(A) - log_A).norm() / A.norm());
         worst_exp = std::max(worst_exp, (exp_symmetric(log_A) - A).norm() / A.norm());
         worst_round_trip =
           std::max(worst_round_trip, (exp_symmetric(log_spd(A)) - A).norm() / A.norm());
       }
-    report("max relative error of log_spd", worst_log);
+    report("max error of log_spd relative to max(|log A|, 1)", worst_log);
+    report("max error of log_spd near the identity, relative to |A|", worst_log_near_identity);
     report("max relative error of exp_symmetric", worst_exp);
     report("max relative error of exp(log A)", worst_round_trip);
     EXPECT_LT(worst_log, 1e-14);
+    EXPECT_LT(worst_log_near_identity, 1e-15);
     EXPECT_LT(worst_exp, 1e-14);
     EXPECT_LT(worst_round_trip, 1e-14);
 
@@ -210,12 +214,26 @@ namespace
     B[1][1] = -2.5;
     B[0][1] = 1.5;
     B[1][2] = -0.7;
-    const double error = (exp_symmetric(B) - spectral_function(B, [](double x) {
-                            return std::exp(x);
-                          })).norm() /
-                         exp_symmetric(B).norm();
+    const double error =
+      (exp_symmetric(B) - spectral_function(B, [](double x) { return std::exp(x); })).norm() /
+      exp_symmetric(B).norm();
     report("relative error of exp_symmetric, |B| ~ 4.5", error);
     EXPECT_LT(error, 1e-14);
+
+    // exp(A) - I keeps full relative accuracy for small A (it sets the flow direction of the
+    // return mapping from dev b_e at elastic strains ~1e-3), and for large A too.
+    double worst_expm1 = 0.0;
+    for (const double size : {1e-6, 1e-3, 0.1, 2.0})
+      {
+        SymmetricTensor<2, 3> C;
+        for (unsigned int k = 0; k < 6; ++k)
+          C.access_raw_entry(k) = size * (uniform(generator) - 0.5);
+        const auto reference = spectral_function(C, [](double x) { return std::expm1(x); });
+        worst_expm1 =
+          std::max(worst_expm1, (expm1_symmetric(C) - reference).norm() / reference.norm());
+      }
+    report("max relative error of expm1_symmetric", worst_expm1);
+    EXPECT_LT(worst_expm1, 1e-14);
   }
 
   // The AD derivatives of log and exp must be exact at repeated eigenvalues, where spectral
@@ -277,10 +295,11 @@ namespace
             const auto d_log = (log_spd(A_plus) - log_spd(A_minus)) / (2 * h);
             const auto d_exp = (exp_symmetric(A_plus) - exp_symmetric(A_minus)) / (2 * h);
             for (unsigned int k = 0; k < 6; ++k)
-              worst_fd = std::max({worst_fd,
-                                   std::abs(d_log.access_raw_entry(k) - log_A.access_raw_entry(k).dx(m)),
-                                   std::abs(d_exp.access_raw_entry(k) - exp_A.access_raw_entry(k).dx(m)) /
-                                     std::exp(2.0)});
+              worst_fd =
+                std::max({worst_fd,
+                          std::abs(d_log.access_raw_entry(k) - log_A.access_raw_entry(k).dx(m)),
+                          std::abs(d_exp.access_raw_entry(k) - exp_A.access_raw_entry(k).dx(m)) /
+                            std::exp(2.0)});
           }
       }
     report("max error of AD d log, d exp vs central FD", worst_fd);
@@ -343,14 +362,16 @@ namespace
     EXPECT_LT(response.P.norm(), 1e-14);
 
     const double mu = young_modulus / (2 * (1 + poisson_ratio));
-    const double lambda = young_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));
+    const double lambda =
+      young_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));
     EXPECT_DOUBLE_EQ(model.reference_modulus(), mu);
     Tensor<4, 3> linear;
     for (unsigned int i = 0; i < 3; ++i)
       for (unsigned int J = 0; J < 3; ++J)
         for (unsigned int k = 0; k < 3; ++k)
           for (unsigned int L = 0; L < 3; ++L)
-            linear[i][J][k][L] = lambda * (i == J) * (k == L) + mu * ((i == k) * (J == L) + (i == L) * (J == k));
+            linear[i][J][k][L] =
+              lambda * (i == J) * (k == L) + mu * ((i == k) * (J == L) + (i == L) * (J == k));
     EXPECT_LT((response.dP_dF - linear).norm() / linear.norm(), 1e-14);
   }
 
@@ -367,8 +388,9 @@ namespace
         MaterialPointResponse response, rotated;
         ASSERT_EQ(model.update(F, {}, response, {}), UpdateStatus::success);
         ASSERT_EQ(model.update(Q * F, {}, rotated, {}), UpdateStatus::success);
-        worst = std::max(worst, (rotated.tau - Q * response.tau * dealii::transpose(Q)).norm() /
-                                  response.tau.norm());
+        worst = std::max(worst,
+                         (rotated.tau - Q * response.tau * dealii::transpose(Q)).norm() /
+                           response.tau.norm());
       }
     report("NeoHookean objectivity error", worst);
     EXPECT_LT(worst, 1e-13);
@@ -391,7 +413,7 @@ namespace
   std::vector<double> prestrained_state(const J2Plasticity &model, const Tensor<2, 3> &F_0)
   {
     MaterialPointResponse response;
-    const auto state = updated_state(model, F_0, virgin_state(model), response);
+    const auto            state = updated_state(model, F_0, virgin_state(model), response);
     EXPECT_GT(model.equivalent_plastic_strain(state), 1e-3);
     return state;
   }
@@ -410,9 +432,9 @@ namespace
         for (const double amplitude : {1e-9, 1e-4, 1e-3})
           for (unsigned int sample = 0; sample < 5; ++sample)
             {
-              const Tensor<2, 3> F = random_deformation(generator, amplitude);
+              const Tensor<2, 3>    F = random_deformation(generator, amplitude);
               MaterialPointResponse response;
-              const auto state_new = updated_state(model, F, virgin, response);
+              const auto            state_new = updated_state(model, F, virgin, response);
               ASSERT_EQ(model.equivalent_plastic_strain(state_new), 0.0) << "not elastic";
               worst = std::max(worst, tangent_error(model, F, virgin));
             }
@@ -426,7 +448,7 @@ namespace
             const Tensor<2, 3> F = F_0 - 0.05 * (F_0 - identity()) +
                                    1e-5 * (random_deformation(generator, 1.0) - identity());
             MaterialPointResponse response;
-            const auto state_new = updated_state(model, F, state, response);
+            const auto            state_new = updated_state(model, F, state, response);
             ASSERT_EQ(state_new, state) << "not elastic";
             worst = std::max(worst, tangent_error(model, F, state));
           }
@@ -475,8 +497,8 @@ namespace
 
         // Repeated principal stretches: uniaxial from the virgin state, exactly equal lateral
         // stretches, and a further uniaxial step from a uniaxially pre-strained state.
-        for (const Tensor<2, 3> &F : {diagonal(1.02, 0.995, 0.995), diagonal(1.02, 1.0, 1.0),
-                                      diagonal(0.97, 1.0, 1.0)})
+        for (const Tensor<2, 3> &F :
+             {diagonal(1.02, 0.995, 0.995), diagonal(1.02, 1.0, 1.0), diagonal(0.97, 1.0, 1.0)})
           {
             expect_plastic(F, virgin);
             worst_repeated = std::max(worst_repeated, tangent_error(model, F, virgin));
@@ -486,7 +508,8 @@ namespace
         expect_plastic(F_1, uniaxial_state);
         worst_repeated = std::max(worst_repeated, tangent_error(model, F_1, uniaxial_state));
 
-        report(std::string("J2 (") + name(measure) + ") plastic tangent error, virgin", worst_virgin);
+        report(std::string("J2 (") + name(measure) + ") plastic tangent error, virgin",
+               worst_virgin);
         report(std::string("J2 (") + name(measure) + ") plastic tangent error, pre-strained",
                worst_prestrained);
         report(std::string("J2 (") + name(measure) + ") plastic tangent error, repeated stretches",
@@ -504,9 +527,9 @@ namespace
   {
     for (const auto measure : {YieldStressMeasure::cauchy, YieldStressMeasure::kirchhoff})
       {
-        const J2Plasticity model = make_j2(measure);
-        std::mt19937       generator(7);
-        double             worst_yield = 0.0, worst_det = 0.0;
+        const J2Plasticity  model = make_j2(measure);
+        std::mt19937        generator(7);
+        double              worst_yield = 0.0, worst_det = 0.0;
         std::vector<double> state = virgin_state(model);
         // A random non-proportional path of plastic steps; each step starts from the last.
         Tensor<2, 3> F = identity();
@@ -518,16 +541,21 @@ namespace
             ASSERT_EQ(model.update(F, state, response, state_new), UpdateStatus::success);
             if (model.equivalent_plastic_strain(state_new) > model.equivalent_plastic_strain(state))
               {
-                worst_yield = std::max(worst_yield,
-                                       std::abs(model.yield_function(response.tau, dealii::determinant(F),
-                                                                     model.equivalent_plastic_strain(state_new))));
+                worst_yield =
+                  std::max(worst_yield,
+                           std::abs(
+                             model.yield_function(response.tau,
+                                                  dealii::determinant(F),
+                                                  model.equivalent_plastic_strain(state_new))));
               }
-            worst_det = std::max(worst_det,
-                                 std::abs(dealii::determinant(J2Plasticity::plastic_metric_inverse(state_new)) - 1.0));
+            worst_det = std::max(
+              worst_det,
+              std::abs(dealii::determinant(J2Plasticity::plastic_metric_inverse(state_new)) - 1.0));
             state = state_new;
           }
         EXPECT_GT(model.equivalent_plastic_strain(state), 0.05);
-        report(std::string("J2 (") + name(measure) + ") max |f| after plastic steps [GPa]", worst_yield);
+        report(std::string("J2 (") + name(measure) + ") max |f| after plastic steps [GPa]",
+               worst_yield);
         report(std::string("J2 (") + name(measure) + ") max |det C_p^-1 - 1|", worst_det);
         EXPECT_LT(worst_yield, 1e-10);
         EXPECT_LT(worst_det, 1e-12);
@@ -542,11 +570,13 @@ namespace
     const J2Plasticity    kirchhoff = make_j2(YieldStressMeasure::kirchhoff);
     const Tensor<2, 3>    F = diagonal(1.03, 1.0, 1.0); // J = 1.03, strongly dilatational
     MaterialPointResponse response;
-    const auto state = updated_state(kirchhoff, F, virgin_state(kirchhoff), response);
-    const double gamma_p = kirchhoff.equivalent_plastic_strain(state);
+    const auto            state = updated_state(kirchhoff, F, virgin_state(kirchhoff), response);
+    const double          gamma_p = kirchhoff.equivalent_plastic_strain(state);
     EXPECT_NEAR(kirchhoff.yield_function(response.tau, 1.03, gamma_p), 0.0, 1e-10);
     const double sigma_y = kirchhoff.flow_stress(gamma_p);
-    EXPECT_NEAR(cauchy.yield_function(response.tau, 1.03, gamma_p), sigma_y * (1.0 / 1.03 - 1.0), 1e-10);
+    EXPECT_NEAR(cauchy.yield_function(response.tau, 1.03, gamma_p),
+                sigma_y * (1.0 / 1.03 - 1.0),
+                1e-10);
   }
 
   // Elastic unloading from a plastic state must leave the internal state bit-for-bit unchanged
@@ -562,9 +592,12 @@ namespace
     std::vector<double>   state_new(state.size(), -1.0);
     ASSERT_EQ(model.update(F, state, response, state_new), UpdateStatus::success);
     EXPECT_EQ(state_new, state);
-    EXPECT_LT(model.yield_function(response.tau, dealii::determinant(F), model.equivalent_plastic_strain(state)), 0.0);
-    model.elastic_law().elastic_response(F, J2Plasticity::plastic_metric_inverse(state),
-                                         dealii::determinant(F) - 1.0, elastic, true);
+    EXPECT_LT(model.yield_function(response.tau,
+                                   dealii::determinant(F),
+                                   model.equivalent_plastic_strain(state)),
+              0.0);
+    model.elastic_law().elastic_response(
+      F, J2Plasticity::plastic_metric_inverse(state), dealii::determinant(F) - 1.0, elastic, true);
     EXPECT_LT((response.P - elastic.P).norm(), 1e-12);
   }
 
@@ -574,13 +607,17 @@ namespace
   {
     for (const auto measure : {YieldStressMeasure::cauchy, YieldStressMeasure::kirchhoff})
       {
-        const J2Plasticity    model = make_j2(measure);
-        std::mt19937          generator(9);
-        const Tensor<2, 3>    F = random_rotation(generator) * diagonal(std::exp(0.5), std::exp(-0.3), std::exp(-0.1));
+        const J2Plasticity model = make_j2(measure);
+        std::mt19937       generator(9);
+        const Tensor<2, 3> F =
+          random_rotation(generator) * diagonal(std::exp(0.5), std::exp(-0.3), std::exp(-0.1));
         MaterialPointResponse response;
-        const auto state = updated_state(model, F, virgin_state(model), response);
-        EXPECT_NEAR(model.yield_function(response.tau, dealii::determinant(F), model.equivalent_plastic_strain(state)),
-                    0.0, 1e-10);
+        const auto            state = updated_state(model, F, virgin_state(model), response);
+        EXPECT_NEAR(model.yield_function(response.tau,
+                                         dealii::determinant(F),
+                                         model.equivalent_plastic_strain(state)),
+                    0.0,
+                    1e-10);
         EXPECT_LT(tangent_error(model, F, virgin_state(model)), 1e-6);
       }
   }
@@ -647,18 +684,19 @@ namespace
   {
     const unsigned int rows_per_increment = (reference.size() - 1) / n_increments;
     EXPECT_EQ(rows_per_increment * n_increments, reference.size() - 1);
-    std::vector<double> state = virgin_state(model);
-    double              lateral_stretch = 1.0, previous_log_strain = 0.0;
+    std::vector<double>   state = virgin_state(model);
+    double                lateral_stretch = 1.0, previous_log_strain = 0.0;
     std::array<double, 3> worst = {{0.0, 0.0, 0.0}};
     for (unsigned int increment = 1; increment <= n_increments; ++increment)
       {
-        const ReferenceRow &row = reference[increment * rows_per_increment];
-        const double        lambda = std::exp(row.log_strain);
-        std::vector<double> state_new(state.size());
+        const ReferenceRow   &row = reference[increment * rows_per_increment];
+        const double          lambda = std::exp(row.log_strain);
+        std::vector<double>   state_new(state.size());
         MaterialPointResponse response;
-        const auto lateral_stress = [&](const double lambda_t) {
-          EXPECT_EQ(model.update(diagonal(lambda, lambda_t, lambda_t), state, response, state_new, false),
-                    UpdateStatus::success);
+        const auto            lateral_stress = [&](const double lambda_t) {
+          EXPECT_EQ(
+            model.update(diagonal(lambda, lambda_t, lambda_t), state, response, state_new, false),
+            UpdateStatus::success);
           return response.P[1][1];
         };
         // Secant from the isochoric guess.
@@ -679,9 +717,11 @@ namespace
         lateral_stress(lateral_stretch); // response and state_new at the root
         const double J = lambda * lateral_stretch * lateral_stretch;
         const double sigma = response.tau[0][0] / J;
-        worst[0] = std::max(worst[0], std::abs(sigma - row.cauchy_stress) / std::abs(row.cauchy_stress));
+        worst[0] =
+          std::max(worst[0], std::abs(sigma - row.cauchy_stress) / std::abs(row.cauchy_stress));
         worst[1] = std::max(worst[1], std::abs(lateral_stretch - row.lateral_stretch));
-        worst[2] = std::max(worst[2], std::abs(model.equivalent_plastic_strain(state_new) - row.alpha));
+        worst[2] =
+          std::max(worst[2], std::abs(model.equivalent_plastic_strain(state_new) - row.alpha));
         state = state_new;
         previous_log_strain = row.log_strain;
       }
@@ -704,7 +744,7 @@ namespace
         const J2Plasticity model = make_j2(measure);
         for (const unsigned int n_increments : {1u, 10u, 100u})
           {
-            const auto errors = uniaxial_errors(model, reference, n_increments);
+            const auto        errors = uniaxial_errors(model, reference, n_increments);
             const std::string label = std::string("J2 (") + name(measure) + ") uniaxial, " +
                                       std::to_string(n_increments) + " increments: ";
             report(label + "max relative Cauchy stress error", errors[0]);

@@ -24,8 +24,8 @@ namespace
     c.indenter.a = 2.48;
     c.indenter.delta = 1.0;
     c.specimen.size = {80., 80., 40.};
-    c.specimen.refined_region = {8., 8., 3.};
-    c.specimen.contact_elements = 48; // h = 0.167 um: 4.7 elements across a_c at 0.1 delta
+    c.specimen.refined_region = {6., 6., 2.5};
+    c.specimen.contact_elements = 32; // h = 0.1875 um: 4.2 elements across a_c at 0.1 delta
     c.specimen.symmetry = "quarter";
     c.loading.max_depth = 1.0;
     c.loading.steps = 10;
@@ -61,7 +61,17 @@ TEST(ElasticIndentation, MatchesSneddonClosedForm)
       const double error = r.force / reference - 1;
       std::cout << "[ elastic ] h/delta = " << r.depth / c.indenter.delta << "  P = " << r.force
                 << " mN, closed form " << reference << " mN, error " << 100 * error << " %\n";
-      EXPECT_LT(std::abs(error), 0.05) << "at depth " << r.depth;
+      // Tolerances: at h = 0.1 delta nodal contact with ~4 elements across a_c over-estimates
+      // the force by a few per cent (measured +2.8 % with 4.7 elements); at h = delta the
+      // finite-strain solution sits above the small-strain closed form (radial-displacement
+      // excess, REFERENCES.md), so 0 to +12 % is allowed there.
+      if (step == 1)
+        EXPECT_LT(std::abs(error), 0.05) << "at depth " << r.depth;
+      else
+        {
+          EXPECT_GT(error, 0.0) << "at depth " << r.depth;
+          EXPECT_LT(error, 0.12) << "at depth " << r.depth;
+        }
     }
 }
 

@@ -1,0 +1,48 @@
+// MPI consistency: the load-penetration curve computed on all ranks of MPI_COMM_WORLD equals
+// the one computed by a single process (MPI_COMM_SELF). Runs under `mpirun -np 2` (CTest
+// Mpi.TwoRanks); with one rank it still checks that two identical runs agree.
+#include "io/Case.h"
+#include "solver/IndentationProblem.h"
+
+#include <gtest/gtest.h>
+
+using namespace indentsim;
+
+namespace
+{
+  io::Case small_j2_case()
+  {
+    io::Case c;
+    c.material.model = "j2";
+    c.indenter.delta = 0.5;
+    c.specimen.size = {60., 60., 30.};
+    c.specimen.refined_region = {16., 16., 4.};
+    c.specimen.contact_elements = 16;
+    c.specimen.symmetry = "full";
+    c.loading.max_depth = 1.0;
+    c.loading.steps = 4;
+    c.loading.unload = false;
+    return c;
+  }
+} // namespace
+
+// One rank and several ranks give the same curve to 1e-8 relative.
+TEST(Mpi, OneVersusManyRanksGiveTheSameCurve)
+{
+  const io::Case c = small_j2_case();
+  solver::IndentationProblem parallel(c, MPI_COMM_WORLD, false);
+  parallel.setup();
+  parallel.run("");
+  solver::IndentationProblem serial(c, MPI_COMM_SELF, false);
+  serial.setup();
+  serial.run("");
+  ASSERT_EQ(parallel.records().size(), serial.records().size());
+  for (std::size_t i = 1; i < serial.records().size(); ++i)
+    {
+      const auto &p = parallel.records()[i], &s = serial.records()[i];
+      EXPECT_GT(s.force, 0);
+      EXPECT_NEAR(p.force, s.force, 1e-8 * s.force) << "step " << i;
+      EXPECT_NEAR(p.depth, s.depth, 1e-12) << "step " << i;
+      EXPECT_NEAR(p.force, p.bottom_reaction, 1e-6 * p.force) << "step " << i;
+    }
+}

@@ -69,7 +69,9 @@ namespace indentsim::contact
       }
   }
 
-  bool NodeToSurfaceContact::evaluate(const PETScWrappers::MPI::Vector &u, const double depth)
+  bool NodeToSurfaceContact::evaluate(const PETScWrappers::MPI::Vector &u,
+                                      const double                      depth,
+                                      const bool                        predictor)
   {
     search_failed_ = false;
     depth_ = depth;
@@ -82,11 +84,14 @@ namespace indentsim::contact
           {
             search_failed_ = true;
             node.pressure = 0;
+            node.active = false;
             continue;
           }
         node.gap = projection.gap;
         node.normal = projection.normal;
-        node.pressure = std::max(0., node.lambda - penalty_ * node.gap);
+        const double augmented = node.lambda - penalty_ * node.gap;
+        node.active = predictor ? node.lambda_converged > 0 : augmented > 0;
+        node.pressure = node.active ? augmented : 0.0;
       }
     return !search_failed_;
   }
@@ -100,7 +105,7 @@ namespace indentsim::contact
     std::vector<types::global_dof_index> dofs(3);
     for (const ContactNode &node : nodes_)
       {
-        if (node.pressure <= 0)
+        if (!node.active)
           continue;
         const double force = node.pressure * node.area; // [mN]
         for (unsigned int d = 0; d < 3; ++d)

@@ -42,6 +42,7 @@ namespace indentsim::contact
     // State at the last evaluation.
     double       gap = 0;      // [um]
     double       pressure = 0; // augmented pressure p [GPa]
+    bool         active = false;
     Tensor<1, 3> normal;
     Point<3>     x;            // current position [um]
   };
@@ -71,8 +72,12 @@ namespace indentsim::contact
                MPI_Comm                                 communicator);
 
     // Evaluates gaps and augmented pressures for displacement `u` (ghosted) at indenter depth.
+    // With `predictor`, the active set is that of the last converged increment and the pressure
+    // of its nodes is not clipped at zero: the first Newton iteration of an increment then moves
+    // the contact zone with the indenter (loading and unloading alike) instead of releasing it.
     // Returns false if a closest-point projection failed on this rank.
-    bool evaluate(const dealii::PETScWrappers::MPI::Vector &u, double depth);
+    bool evaluate(const dealii::PETScWrappers::MPI::Vector &u, double depth,
+                  bool predictor = false);
 
     // Adds residual -p A n and tangent for the active nodes through `constraints`.
     void assemble(const dealii::AffineConstraints<double>   &constraints,

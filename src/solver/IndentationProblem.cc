@@ -142,7 +142,7 @@ namespace indentsim::solver
 
     const double penalty = case_.contact.penalty > 0 ?
                              case_.contact.penalty :
-                             1000. * material_->reference_modulus() /
+                             30. * material_->reference_modulus() /
                                mesh_info_.contact_element_size;
     contact_ = std::make_unique<contact::NodeToSurfaceContact>(*indenter_, penalty);
     contact_->setup(dof_handler_,
@@ -264,7 +264,8 @@ namespace indentsim::solver
         const double min_alpha = 1. / 16;
         for (unsigned int it = 0; it <= solver_parameters.max_newton_iterations; ++it)
           {
-            const bool searched = contact_->evaluate(solution_, depth);
+            const bool predictor = (pass == 0 && it == 0);
+            const bool searched = contact_->evaluate(solution_, depth, predictor);
             const bool search_failed =
               Utilities::MPI::max(static_cast<unsigned int>(!searched), communicator_) > 0;
             const AssemblyResult assembly =
@@ -297,15 +298,16 @@ namespace indentsim::solver
               }
             record.bottom_reaction = assembly.bottom_reaction;
 
-            if (pass == 0 && it == 0)
-              reference = std::max(norm, solver_parameters.absolute_tolerance);
+            // Reference for the relative test: the largest residual of the first pass.
+            if (pass == 0)
+              reference = std::max({reference, norm, solver_parameters.absolute_tolerance});
             pcout_ << "      pass " << pass << " it " << std::setw(2) << it << "  |R| = "
                    << std::scientific << std::setprecision(3) << norm << " mN"
                    << std::defaultfloat << std::endl;
             if (!std::isfinite(norm) || norm > 1e10 * reference)
               return IncrementStatus::newton_diverged;
-            if (norm <= std::max(solver_parameters.residual_tolerance * reference,
-                                 solver_parameters.absolute_tolerance))
+            if (!predictor && norm <= std::max(solver_parameters.residual_tolerance * reference,
+                                               solver_parameters.absolute_tolerance))
               {
                 converged = true;
                 break;
@@ -323,7 +325,8 @@ namespace indentsim::solver
             u_owned = u_start;
             u_owned += du;
             solution_ = u_owned;
-            previous_norm = norm;
+            // The predictor's residual belongs to another active set: no line search after it.
+            previous_norm = predictor ? std::numeric_limits<double>::infinity() : norm;
             alpha = 1;
             ++record.newton_iterations;
           }

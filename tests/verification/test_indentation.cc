@@ -44,35 +44,54 @@ namespace
   }
 } // namespace
 
-// Elastic indentation matches the closed-form half-space solution in the Hertz regime
-// (h = 0.1 delta) and at h = delta within the discretisation error of nodal contact on this mesh.
-TEST(ElasticIndentation, MatchesSneddonClosedForm)
+namespace
 {
-  const io::Case c = elastic_case();
-  solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
-  problem.setup();
-  problem.run("");
-  const auto &records = problem.records();
-  ASSERT_EQ(records.size(), 11u);
-  for (const unsigned int step : {1u, 10u})
-    {
-      const auto  &r = records[step];
-      const double reference = sneddon_force(c, r.depth);
-      const double error = r.force / reference - 1;
-      std::cout << "[ elastic ] h/delta = " << r.depth / c.indenter.delta << "  P = " << r.force
-                << " mN, closed form " << reference << " mN, error " << 100 * error << " %\n";
-      // Tolerances: at h = 0.1 delta nodal contact with ~4 elements across a_c over-estimates
-      // the force by a few per cent (measured +2.8 % with 4.7 elements); at h = delta the
-      // finite-strain solution sits above the small-strain closed form (radial-displacement
-      // excess, REFERENCES.md), so 0 to +12 % is allowed there.
-      if (step == 1)
-        EXPECT_LT(std::abs(error), 0.05) << "at depth " << r.depth;
-      else
-        {
-          EXPECT_GT(error, 0.0) << "at depth " << r.depth;
-          EXPECT_LT(error, 0.12) << "at depth " << r.depth;
-        }
-    }
+  // Runs the elastic case and returns the relative error of the force against the closed form
+  // at the final depth (increments may be cut back, so the last record is used).
+  double elastic_force_error(const io::Case &c)
+  {
+    solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problem.setup();
+    problem.run("");
+    const auto &r = problem.records().back();
+    EXPECT_NEAR(r.depth, c.loading.max_depth, 1e-12);
+    const double reference = sneddon_force(c, r.depth);
+    const double error = r.force / reference - 1;
+    std::cout << "[ elastic ] h/delta = " << r.depth / c.indenter.delta << ", " << problem.n_dofs()
+              << " DOFs, contact element " << problem.mesh_info().contact_element_size
+              << " um:  P = " << r.force << " mN, closed form " << reference << " mN, error "
+              << 100 * error << " %" << std::endl;
+    return error;
+  }
+} // namespace
+
+// Hertz regime (h = 0.1 delta): the force matches the closed form within 5 %; nodal contact
+// with 4.7 elements across the contact radius (a_c = 0.78 um, h = 0.167 um) over-estimates it by
+// about 3 % (the error halves with each halving of the element size, so 5 % leaves margin
+// for this mesh only).
+TEST(ElasticIndentation, HertzRegimeMatchesClosedForm)
+{
+  io::Case c = elastic_case();
+  c.specimen.refined_region = {4., 4., 2.};
+  c.specimen.contact_elements = 24;
+  c.loading.max_depth = 0.1;
+  c.loading.steps = 1;
+  EXPECT_LT(std::abs(elastic_force_error(c)), 0.05);
+}
+
+// At h = delta (a_c = 2.8 um, 11 elements across it) the finite-strain solution lies above the
+// small-strain closed form by the radial-displacement excess of blunt cones (REFERENCES.md:
+// 0 to +10 % for sharp cones); 0 to +12 % is accepted.
+TEST(ElasticIndentation, AtTipRadiusScaleMatchesClosedForm)
+{
+  io::Case c = elastic_case();
+  c.specimen.refined_region = {10., 10., 3.};
+  c.specimen.contact_elements = 40;
+  c.loading.max_depth = 1.0;
+  c.loading.steps = 5;
+  const double error = elastic_force_error(c);
+  EXPECT_GT(error, 0.0);
+  EXPECT_LT(error, 0.12);
 }
 
 // The indenter force equals the support reaction at every converged step, and the largest

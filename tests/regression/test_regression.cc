@@ -1,0 +1,77 @@
+// Regression: a small J2 indentation (load and unload) against a gold CSV. Tolerance 1e-6
+// relative on the force (the Newton tolerance is 1e-8 relative; the solver is deterministic, so
+// a change beyond 1e-6 means the physics or the algorithm changed). Regenerate the gold file
+// after an intended change with INDENTSIM_REGENERATE_GOLD=1 and explain the change in the commit.
+#include "io/Case.h"
+#include "solver/IndentationProblem.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+using namespace indentsim;
+
+namespace
+{
+  const std::string gold_file = std::string(INDENTSIM_TEST_DATA_DIR) + "/regression/gold/small_j2.csv";
+
+  io::Case small_j2_case()
+  {
+    io::Case c;
+    c.material.model = "j2";
+    c.indenter.delta = 0.5;
+    c.specimen.size = {60., 60., 30.};
+    c.specimen.refined_region = {16., 16., 4.};
+    c.specimen.contact_elements = 16;
+    c.specimen.symmetry = "quarter";
+    c.loading.max_depth = 1.0;
+    c.loading.steps = 8;
+    c.loading.unload = true;
+    c.loading.unload_steps = 40; // 0.025 um unloading increments
+    return c;
+  }
+} // namespace
+
+// The small J2 load-unload curve (depth, force, active nodes) reproduces the gold file.
+TEST(Regression, SmallJ2IndentationMatchesGold)
+{
+  const io::Case c = small_j2_case();
+  solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problem.setup();
+  problem.run("");
+  const auto &records = problem.records();
+
+  if (std::getenv("INDENTSIM_REGENERATE_GOLD"))
+    {
+      std::ofstream out(gold_file);
+      out << "# small J2 indentation (tests/regression/test_regression.cc); units um, mN\n"
+          << "depth_um,force_mN,n_active_nodes\n";
+      out.precision(12);
+      for (const auto &r : records)
+        out << r.depth << ',' << r.force << ',' << r.n_active_nodes << '\n';
+      GTEST_SKIP() << "gold file regenerated: " << gold_file;
+    }
+
+  std::ifstream in(gold_file);
+  ASSERT_TRUE(in) << "missing gold file " << gold_file;
+  std::string line;
+  std::size_t i = 0;
+  while (std::getline(in, line))
+    {
+      if (line.empty() || line[0] == '#' || line[0] == 'd')
+        continue;
+      ASSERT_LT(i, records.size()) << "the run has fewer steps than the gold file";
+      std::istringstream row(line);
+      double             depth, force;
+      unsigned int       n_active;
+      char               comma;
+      row >> depth >> comma >> force >> comma >> n_active;
+      EXPECT_NEAR(records[i].depth, depth, 1e-9) << "row " << i;
+      EXPECT_NEAR(records[i].force, force, 1e-6 * std::max(1.0, std::abs(force))) << "row " << i;
+      EXPECT_EQ(records[i].n_active_nodes, n_active) << "row " << i;
+      ++i;
+    }
+  EXPECT_EQ(i, records.size()) << "the run and the gold file differ in length";
+}

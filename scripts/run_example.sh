@@ -11,4 +11,5 @@ bash scripts/build.sh
 case_file="${1:-examples/paper_j2_n12.yaml}"
 shift || true
 # The default example is regenerated on every call of this script.
+export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}"
 exec ./build/indentsim run "$case_file" --overwrite "$@"

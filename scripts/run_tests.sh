@@ -6,6 +6,8 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 bash scripts/build.sh
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# One BLAS thread per process: the MPI tests already use both cores.
+export OMP_NUM_THREADS=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
 cd build
 ctest --output-on-failure --timeout 1200 -j "${INDENTSIM_TEST_JOBS:-2}"

@@ -18,7 +18,7 @@ namespace
     c.specimen.size = {60., 60., 30.};
     c.specimen.refined_region = {16., 16., 4.};
     c.specimen.contact_elements = 16;
-    c.specimen.symmetry = "full";
+    c.specimen.symmetry = "quarter";
     c.loading.max_depth = 1.0;
     c.loading.steps = 4;
     c.loading.unload = false;

@@ -71,8 +71,9 @@ namespace indentsim::contact
 
   bool NodeToSurfaceContact::evaluate(const PETScWrappers::MPI::Vector &u,
                                       const double                      depth,
-                                      const bool                        predictor)
+                                      const ActiveSet                   mode)
   {
+    n_changes_ = 0;
     search_failed_ = false;
     depth_ = depth;
     for (ContactNode &node : nodes_)
@@ -90,7 +91,12 @@ namespace indentsim::contact
         node.gap = projection.gap;
         node.normal = projection.normal;
         const double augmented = node.lambda - penalty_ * node.gap;
-        node.active = predictor ? node.lambda_converged > 0 : augmented > 0;
+        const bool was_active = node.active;
+        if (mode == ActiveSet::predictor)
+          node.active = node.lambda_converged > 0;
+        else if (mode == ActiveSet::free)
+          node.active = augmented > 0;
+        n_changes_ += (node.active != was_active);
         node.pressure = node.active ? augmented : 0.0;
       }
     return !search_failed_;
@@ -138,6 +144,11 @@ namespace indentsim::contact
         else
           constraints.distribute_local_to_global(local_residual, dofs, residual);
       }
+  }
+
+  unsigned int NodeToSurfaceContact::n_status_changes() const
+  {
+    return Utilities::MPI::sum(n_changes_, communicator_);
   }
 
   double NodeToSurfaceContact::augment()

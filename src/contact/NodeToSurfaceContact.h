@@ -72,12 +72,23 @@ namespace indentsim::contact
                MPI_Comm                                 communicator);
 
     // Evaluates gaps and augmented pressures for displacement `u` (ghosted) at indenter depth.
-    // With `predictor`, the active set is that of the last converged increment and the pressure
+    // In `predictor` mode, the active set is that of the last converged increment and the pressure
     // of its nodes is not clipped at zero: the first Newton iteration of an increment then moves
     // the contact zone with the indenter (loading and unloading alike) instead of releasing it.
     // Returns false if a closest-point projection failed on this rank.
+    // With `frozen`, the active set of the previous evaluation is kept (pressures unclipped):
+    // the Newton driver freezes it when the semi-smooth iteration cycles between active sets.
+    enum class ActiveSet
+    {
+      free,      // active where the augmented pressure is positive
+      predictor, // active where the last converged increment was active
+      frozen     // as in the previous evaluation
+    };
     bool evaluate(const dealii::PETScWrappers::MPI::Vector &u, double depth,
-                  bool predictor = false);
+                  ActiveSet mode = ActiveSet::free);
+
+    // Number of nodes (global) whose status differs between the last two evaluations.
+    unsigned int n_status_changes() const;
 
     // Adds residual -p A n and tangent for the active nodes through `constraints`.
     void assemble(const dealii::AffineConstraints<double>   &constraints,
@@ -103,5 +114,6 @@ namespace indentsim::contact
     MPI_Comm                         communicator_ = MPI_COMM_SELF;
     bool                             search_failed_ = false;
     double                           depth_ = 0; // indenter depth of the last evaluate() [um]
+    unsigned int                     n_changes_ = 0; // local status changes of the last evaluate()
   };
 } // namespace indentsim::contact

@@ -262,10 +262,15 @@ namespace indentsim::solver
         double       previous_norm = std::numeric_limits<double>::infinity();
         double       alpha = 1;
         const double min_alpha = 1. / 16;
+        bool         frozen = false;
         for (unsigned int it = 0; it <= solver_parameters.max_newton_iterations; ++it)
           {
             const bool predictor = (pass == 0 && it == 0);
-            const bool searched = contact_->evaluate(solution_, depth, predictor);
+            using ActiveSet = contact::NodeToSurfaceContact::ActiveSet;
+            const bool searched = contact_->evaluate(
+              solution_,
+              depth,
+              predictor ? ActiveSet::predictor : (frozen ? ActiveSet::frozen : ActiveSet::free));
             const bool search_failed =
               Utilities::MPI::max(static_cast<unsigned int>(!searched), communicator_) > 0;
             const AssemblyResult assembly =
@@ -281,6 +286,14 @@ namespace indentsim::solver
                 const double phi0 = previous_norm * previous_norm,
                              phi1 = std::isfinite(norm) ? norm * norm : 1e300;
                 alpha = std::clamp(alpha * phi0 / (phi0 + phi1), min_alpha, alpha / 2);
+                if (alpha <= min_alpha && !frozen)
+                  {
+                    // The semi-smooth iteration cycles between active sets: freeze the set of
+                    // the damped iterate, converge with it, then check it (below).
+                    frozen = true;
+                    pcout_ << "      pass " << pass << " it " << std::setw(2) << it
+                           << "  active set frozen" << std::endl;
+                  }
                 u_owned = u_start;
                 u_owned.add(alpha, du);
                 solution_ = u_owned;
@@ -309,8 +322,24 @@ namespace indentsim::solver
             if (!predictor && norm <= std::max(solver_parameters.residual_tolerance * reference,
                                                solver_parameters.absolute_tolerance))
               {
-                converged = true;
-                break;
+                if (!frozen)
+                  {
+                    converged = true;
+                    break;
+                  }
+                // Converged with a frozen active set: accept it if it is consistent (no node
+                // changes status when the set is free), else iterate on with the free set.
+                contact_->evaluate(solution_, depth, ActiveSet::free);
+                frozen = false;
+                if (contact_->n_status_changes() == 0)
+                  {
+                    converged = true;
+                    break;
+                  }
+                pcout_ << "      pass " << pass << " it " << std::setw(2) << it
+                       << "  frozen active set inconsistent; released" << std::endl;
+                previous_norm = std::numeric_limits<double>::infinity();
+                continue;
               }
             if (it == solver_parameters.max_newton_iterations)
               break;

@@ -114,3 +114,33 @@ TEST(ElasticIndentation, EquilibriumAndExactContact)
       EXPECT_LT(r.max_penetration, c.contact.penetration_tolerance) << "step " << r.step;
     }
 }
+
+// Symmetry: the quarter model (symmetry planes x = 0, y = 0) and the full model give the same
+// load-penetration curve for this axisymmetric isotropic problem (J2, plastic). Tolerance 1e-3:
+// the two models may take different cut-backs, and the increment path changes the plastic
+// solution slightly (measured 3e-5 here).
+TEST(Symmetry, QuarterModelEqualsFullModel)
+{
+  io::Case c;
+  c.material.model = "j2";
+  c.indenter.delta = 0.5;
+  c.specimen.size = {60., 60., 30.};
+  c.specimen.refined_region = {16., 16., 4.};
+  c.specimen.contact_elements = 16;
+  c.loading.max_depth = 1.0;
+  c.loading.steps = 8;
+  c.loading.unload = false;
+  c.specimen.symmetry = "quarter";
+  solver::IndentationProblem quarter(c, MPI_COMM_WORLD, false);
+  quarter.setup();
+  quarter.run("");
+  c.specimen.symmetry = "full";
+  solver::IndentationProblem full(c, MPI_COMM_WORLD, false);
+  full.setup();
+  full.run("");
+  const auto &q = quarter.records().back(), &f = full.records().back();
+  ASSERT_NEAR(q.depth, 1.0, 1e-12);
+  ASSERT_NEAR(f.depth, 1.0, 1e-12);
+  EXPECT_GT(q.force, 0);
+  EXPECT_NEAR(q.force, f.force, 1e-3 * f.force);
+}

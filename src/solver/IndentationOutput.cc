@@ -23,43 +23,9 @@ namespace indentsim::solver
                                                Vector<float>              &plastic_strain,
                                                std::vector<Vector<float>> &cauchy)
   {
-    const QGauss<3> quadrature(2);
-    const QGauss<3> centre(1);
-    FEValues<3>     fe_values(fe_, quadrature, update_gradients | update_JxW_values);
-    FEValues<3>     fe_centre(fe_, centre, update_gradients);
-    const FEValuesExtractors::Vector displacement(0);
-    const unsigned int n_dofs_cell = fe_.n_dofs_per_cell();
-    ElementScratch     scratch(n_dofs_cell, n_q_points_);
-    Vector<double>     u_local(n_dofs_cell), r_local(n_dofs_cell);
-    std::vector<Tensor<2, 3>> sigma(n_q_points_);
-    std::vector<double>       scratch_state(std::size_t(n_q_points_) * n_state_);
-
-    for (const auto &cell : dof_handler_.active_cell_iterators())
-      {
-        if (!cell->is_locally_owned())
-          continue;
-        fe_values.reinit(cell);
-        fe_centre.reinit(cell);
-        for (unsigned int q = 0; q < n_q_points_; ++q)
-          {
-            scratch.JxW[q] = fe_values.JxW(q);
-            for (unsigned int a = 0; a < n_dofs_cell; ++a)
-              scratch.G[q][a] = fe_values[displacement].gradient(a, q);
-          }
-        for (unsigned int a = 0; a < n_dofs_cell; ++a)
-          scratch.G0[a] = fe_centre[displacement].gradient(a, 0);
-        cell->get_dof_values(solution_, u_local);
-        const std::size_t offset = std::size_t(cell->active_cell_index()) * n_q_points_ * n_state_;
-        element_residual_and_tangent(
-          *material_,
-          use_f_bar_,
-          u_local,
-          std::span<const double>(state_old_).subspan(offset, scratch_state.size()),
-          scratch_state,
-          scratch,
-          r_local,
-          nullptr,
-          &sigma);
+    for_each_cell_stress([&](const auto                      &cell,
+                             const std::vector<Tensor<2, 3>> &sigma,
+                             const std::span<const double>    state) {
         const unsigned int index = cell->active_cell_index();
         Tensor<2, 3>       mean;
         double             mises = 0, eps_p = 0;
@@ -68,9 +34,9 @@ namespace indentsim::solver
             mean += sigma[q] / n_q_points_;
             const Tensor<2, 3> s = sigma[q] - trace(sigma[q]) / 3. * unit_symmetric_tensor<3>();
             mises += std::sqrt(1.5 * scalar_product(s, s)) / n_q_points_;
-            eps_p += material_->equivalent_plastic_strain(std::span<const double>(scratch_state).subspan(
-                       q * n_state_, n_state_)) /
-                     n_q_points_;
+            eps_p +=
+              material_->equivalent_plastic_strain(state.subspan(q * n_state_, n_state_)) /
+              n_q_points_;
           }
         von_mises[index] = mises;
         plastic_strain[index] = eps_p;
@@ -78,10 +44,10 @@ namespace indentsim::solver
         for (unsigned int i = 0; i < 3; ++i)
           for (unsigned int j = i; j < 3; ++j)
             cauchy[k++][index] = mean[i][j];
-      }
+    });
   }
 
-  void IndentationProblem::write_vtu(const unsigned int index, const double depth)
+  void IndentationProblem::write_vtu(const unsigned int index)
   {
     const unsigned int n_cells_local = triangulation_.n_active_cells();
     Vector<float>      von_mises(n_cells_local), plastic_strain(n_cells_local),
@@ -142,7 +108,8 @@ namespace indentsim::solver
     data_out.build_patches(deformed, 1);
     const std::string pvtu = data_out.write_vtu_with_pvtu_record(
       output_directory_ + "/", "specimen", index, communicator_, 4, 8);
-    vtu_records_.emplace_back(depth, pvtu);
+    // PVD time = output index: depth is not monotonic over load and unload.
+    vtu_records_.emplace_back(index, pvtu);
     if (Utilities::MPI::this_mpi_process(communicator_) == 0)
       {
         std::ofstream pvd(output_directory_ + "/specimen.pvd");

@@ -163,15 +163,9 @@ namespace indentsim::solver
   IndentationProblem::AssemblyResult IndentationProblem::assemble(const bool with_matrix)
   {
     AssemblyResult result;
-    const QGauss<3> quadrature(2);
-    const QGauss<3> centre(1);
-    FEValues<3>     fe_values(fe_, quadrature, update_gradients | update_JxW_values);
-    FEValues<3>     fe_centre(fe_, centre, update_gradients);
-    const FEValuesExtractors::Vector displacement(0);
-
+    CellWorkspace  workspace(fe_, n_q_points_);
     const unsigned int n_dofs_cell = fe_.n_dofs_per_cell();
-    ElementScratch     scratch(n_dofs_cell, n_q_points_);
-    Vector<double>     u_local(n_dofs_cell), r_local(n_dofs_cell);
+    Vector<double>    &r_local = workspace.r_local;
     FullMatrix<double> k_local(n_dofs_cell, n_dofs_cell);
     std::vector<types::global_dof_index> dofs(n_dofs_cell);
 
@@ -184,29 +178,15 @@ namespace indentsim::solver
       {
         if (!cell->is_locally_owned())
           continue;
-        fe_values.reinit(cell);
-        fe_centre.reinit(cell);
-        for (unsigned int q = 0; q < n_q_points_; ++q)
-          {
-            scratch.JxW[q] = fe_values.JxW(q);
-            for (unsigned int a = 0; a < n_dofs_cell; ++a)
-              scratch.G[q][a] = fe_values[displacement].gradient(a, q);
-          }
-        for (unsigned int a = 0; a < n_dofs_cell; ++a)
-          scratch.G0[a] = fe_centre[displacement].gradient(a, 0);
-        cell->get_dof_values(solution_, u_local);
-
-        const std::size_t offset = std::size_t(cell->active_cell_index()) * n_q_points_ * n_state_;
-        const std::size_t length = std::size_t(n_q_points_) * n_state_;
-        const auto status = element_residual_and_tangent(
-          *material_,
-          use_f_bar_,
-          u_local,
-          std::span<const double>(state_old_).subspan(offset, length),
-          std::span<double>(state_new_).subspan(offset, length),
-          scratch,
-          r_local,
-          with_matrix ? &k_local : nullptr);
+        workspace.reinit(cell, solution_);
+        const auto status = element_residual_and_tangent(*material_,
+                                                         use_f_bar_,
+                                                         workspace.u_local,
+                                                         cell_state(state_old_, cell),
+                                                         cell_state(state_new_, cell),
+                                                         workspace.scratch,
+                                                         r_local,
+                                                         with_matrix ? &k_local : nullptr);
         if (status != materials::UpdateStatus::success)
           {
             result.status = status;
@@ -432,47 +412,80 @@ namespace indentsim::solver
 
   double IndentationProblem::max_stress_error(const Tensor<2, 3> &expected)
   {
-    const QGauss<3> quadrature(2);
-    const QGauss<3> centre(1);
-    FEValues<3>     fe_values(fe_, quadrature, update_gradients | update_JxW_values);
-    FEValues<3>     fe_centre(fe_, centre, update_gradients);
+    double error = 0;
+    for_each_cell_stress([&](const auto &, const std::vector<Tensor<2, 3>> &cauchy, const auto) {
+      for (const auto &sigma : cauchy)
+        error = std::max(error, (sigma - expected).norm());
+    });
+    return Utilities::MPI::max(error, communicator_);
+  }
+
+  IndentationProblem::CellWorkspace::CellWorkspace(const FESystem<3> &fe,
+                                                   const unsigned int n_q_points)
+    : fe_values(fe, QGauss<3>(2), update_gradients | update_JxW_values)
+    , fe_centre(fe, QGauss<3>(1), update_gradients)
+    , scratch(fe.n_dofs_per_cell(), n_q_points)
+    , u_local(fe.n_dofs_per_cell())
+    , r_local(fe.n_dofs_per_cell())
+  {}
+
+  void IndentationProblem::CellWorkspace::reinit(
+    const DoFHandler<3>::active_cell_iterator &cell,
+    const PETScWrappers::MPI::Vector          &solution)
+  {
     const FEValuesExtractors::Vector displacement(0);
-    const unsigned int n_dofs_cell = fe_.n_dofs_per_cell();
-    ElementScratch     scratch(n_dofs_cell, n_q_points_);
-    Vector<double>     u_local(n_dofs_cell), r_local(n_dofs_cell);
+    fe_values.reinit(cell);
+    fe_centre.reinit(cell);
+    for (unsigned int q = 0; q < scratch.n_q_points; ++q)
+      {
+        scratch.JxW[q] = fe_values.JxW(q);
+        for (unsigned int a = 0; a < scratch.n_dofs; ++a)
+          scratch.G[q][a] = fe_values[displacement].gradient(a, q);
+      }
+    for (unsigned int a = 0; a < scratch.n_dofs; ++a)
+      scratch.G0[a] = fe_centre[displacement].gradient(a, 0);
+    cell->get_dof_values(solution, u_local);
+  }
+
+  std::span<const double>
+  IndentationProblem::cell_state(const std::vector<double>                 &states,
+                                 const DoFHandler<3>::active_cell_iterator &cell) const
+  {
+    const std::size_t length = std::size_t(n_q_points_) * n_state_;
+    return std::span<const double>(states).subspan(cell->active_cell_index() * length, length);
+  }
+
+  std::span<double> IndentationProblem::cell_state(std::vector<double>                       &states,
+                                                   const DoFHandler<3>::active_cell_iterator &cell) const
+  {
+    const std::size_t length = std::size_t(n_q_points_) * n_state_;
+    return std::span<double>(states).subspan(cell->active_cell_index() * length, length);
+  }
+
+  void IndentationProblem::for_each_cell_stress(
+    const std::function<void(const DoFHandler<3>::active_cell_iterator &,
+                             const std::vector<Tensor<2, 3>> &,
+                             std::span<const double>)> &visit)
+  {
+    CellWorkspace             workspace(fe_, n_q_points_);
     std::vector<Tensor<2, 3>> cauchy(n_q_points_);
-    std::vector<double>       scratch_state(std::size_t(n_q_points_) * n_state_);
-    double                    error = 0;
+    std::vector<double>       state(std::size_t(n_q_points_) * n_state_);
     for (const auto &cell : dof_handler_.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
           continue;
-        fe_values.reinit(cell);
-        fe_centre.reinit(cell);
-        for (unsigned int q = 0; q < n_q_points_; ++q)
-          {
-            scratch.JxW[q] = fe_values.JxW(q);
-            for (unsigned int a = 0; a < n_dofs_cell; ++a)
-              scratch.G[q][a] = fe_values[displacement].gradient(a, q);
-          }
-        for (unsigned int a = 0; a < n_dofs_cell; ++a)
-          scratch.G0[a] = fe_centre[displacement].gradient(a, 0);
-        cell->get_dof_values(solution_, u_local);
-        const std::size_t offset = std::size_t(cell->active_cell_index()) * n_q_points_ * n_state_;
-        element_residual_and_tangent(
-          *material_,
-          use_f_bar_,
-          u_local,
-          std::span<const double>(state_old_).subspan(offset, scratch_state.size()),
-          scratch_state,
-          scratch,
-          r_local,
-          nullptr,
-          &cauchy);
-        for (const auto &sigma : cauchy)
-          error = std::max(error, (sigma - expected).norm());
+        workspace.reinit(cell, solution_);
+        element_residual_and_tangent(*material_,
+                                     use_f_bar_,
+                                     workspace.u_local,
+                                     cell_state(state_old_, cell),
+                                     state,
+                                     workspace.scratch,
+                                     workspace.r_local,
+                                     nullptr,
+                                     &cauchy);
+        visit(cell, cauchy, state);
       }
-    return Utilities::MPI::max(error, communicator_);
   }
 } // namespace indentsim::solver
 
@@ -541,7 +554,7 @@ namespace indentsim::solver
     double       max_force = 0;
 
     if (!output_directory_.empty())
-      write_vtu(vtu_index++, 0.0);
+      write_vtu(vtu_index++);
 
     while (true)
       {
@@ -590,7 +603,7 @@ namespace indentsim::solver
           (at_max && !loading.unload);
         if (!output_directory_.empty() &&
             (at_max || finished || (case_.output.vtu_every > 0 && step % case_.output.vtu_every == 0)))
-          write_vtu(vtu_index++, depth);
+          write_vtu(vtu_index++);
         accept_increment();
 
         // Progress: one line per step, with an ETA from the mean step time of this run.

@@ -13,17 +13,21 @@
 #include "io/Case.h"
 #include "materials/MaterialModel.h"
 #include "mesh/IndentationMesh.h"
+#include "solver/FiniteStrainElement.h"
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
 
 #include <fstream>
+#include <functional>
+#include <span>
 #include <memory>
 #include <string>
 #include <vector>
@@ -104,7 +108,30 @@ namespace indentsim::solver
       double                  bottom_reaction = 0; // z reaction on the bottom face [mN]
     };
     AssemblyResult assemble(bool with_matrix);
-    void           write_vtu(unsigned int index, double depth);
+
+    // FEValues at the Gauss points and at the centre of a cell, turned into the element
+    // kernel's inputs (dF/du_a, weights, element displacements).
+    struct CellWorkspace
+    {
+      CellWorkspace(const dealii::FESystem<3> &fe, unsigned int n_q_points);
+      void reinit(const dealii::DoFHandler<3>::active_cell_iterator &cell,
+                  const dealii::PETScWrappers::MPI::Vector           &solution);
+      dealii::FEValues<3>    fe_values, fe_centre;
+      ElementScratch         scratch;
+      dealii::Vector<double> u_local, r_local;
+    };
+    std::span<const double> cell_state(const std::vector<double>                        &states,
+                                       const dealii::DoFHandler<3>::active_cell_iterator &cell) const;
+    std::span<double>       cell_state(std::vector<double>                              &states,
+                                       const dealii::DoFHandler<3>::active_cell_iterator &cell) const;
+
+    // Evaluates every locally owned cell at the current displacement from the converged state
+    // (no tangent) and passes the Cauchy stress and the updated state of its quadrature points.
+    void for_each_cell_stress(
+      const std::function<void(const dealii::DoFHandler<3>::active_cell_iterator &,
+                               const std::vector<dealii::Tensor<2, 3>> &,
+                               std::span<const double>)> &visit);
+    void           write_vtu(unsigned int index);
     void           compute_cell_fields(dealii::Vector<float> &von_mises,
                                        dealii::Vector<float> &plastic_strain,
                                        std::vector<dealii::Vector<float>> &cauchy);
@@ -135,7 +162,7 @@ namespace indentsim::solver
     std::vector<double> state_old_, state_new_;
 
     std::vector<StepRecord>                          records_;
-    std::vector<std::pair<double, std::string>>      vtu_records_; // (step, pvtu file)
+    std::vector<std::pair<double, std::string>>      vtu_records_; // (output index, pvtu file)
     std::string                                      output_directory_;
     dealii::Timer                                    wall_timer_;
   };

@@ -2,6 +2,7 @@
 // relative on the force (the Newton tolerance is 1e-8 relative; the solver is deterministic, so
 // a change beyond 1e-6 means the physics or the algorithm changed). Regenerate the gold file
 // after an intended change with INDENTSIM_REGENERATE_GOLD=1 and explain the change in the commit.
+#include "../test_cases.h"
 #include "io/Case.h"
 #include "solver/IndentationProblem.h"
 
@@ -17,17 +18,9 @@ namespace
 {
   const std::string gold_file = std::string(INDENTSIM_TEST_DATA_DIR) + "/regression/gold/small_j2.csv";
 
-  io::Case small_j2_case()
+  io::Case small_j2_load_unload_case()
   {
-    io::Case c;
-    c.material.model = "j2";
-    c.indenter.delta = 0.5;
-    c.specimen.size = {60., 60., 30.};
-    c.specimen.refined_region = {16., 16., 4.};
-    c.specimen.contact_elements = 16;
-    c.specimen.symmetry = "quarter";
-    c.loading.max_depth = 1.0;
-    c.loading.steps = 8;
+    io::Case c = test_cases::small_j2_case();
     c.loading.unload = true;
     c.loading.unload_steps = 40; // 0.025 um unloading increments
     return c;
@@ -37,7 +30,7 @@ namespace
 // The small J2 load-unload curve (depth, force, active nodes) reproduces the gold file.
 TEST(Regression, SmallJ2IndentationMatchesGold)
 {
-  const io::Case c = small_j2_case();
+  const io::Case c = small_j2_load_unload_case();
   solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run("");

@@ -2,6 +2,7 @@
 // against Sneddon's closed form (REFERENCES.md), equilibrium of contact force and support
 // reaction, and the exactness of the augmented-Lagrangian contact. Units: um, mN, GPa.
 #include "indenter/SneddonReference.h"
+#include "../test_cases.h"
 #include "io/Case.h"
 #include "solver/IndentationProblem.h"
 
@@ -121,16 +122,7 @@ TEST(ElasticIndentation, EquilibriumAndExactContact)
 // solution slightly (measured 3e-5 here).
 TEST(Symmetry, QuarterModelEqualsFullModel)
 {
-  io::Case c;
-  c.material.model = "j2";
-  c.indenter.delta = 0.5;
-  c.specimen.size = {60., 60., 30.};
-  c.specimen.refined_region = {16., 16., 4.};
-  c.specimen.contact_elements = 16;
-  c.loading.max_depth = 1.0;
-  c.loading.steps = 8;
-  c.loading.unload = false;
-  c.specimen.symmetry = "quarter";
+  io::Case c = test_cases::small_j2_case("quarter");
   solver::IndentationProblem quarter(c, MPI_COMM_WORLD, false);
   quarter.setup();
   quarter.run("");

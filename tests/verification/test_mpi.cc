@@ -1,6 +1,7 @@
 // MPI consistency: the load-penetration curve computed on all ranks of MPI_COMM_WORLD equals
 // the one computed by a single process (MPI_COMM_SELF). Runs under `mpirun -np 2` (CTest
 // Mpi.TwoRanks); with one rank it still checks that two identical runs agree.
+#include "../test_cases.h"
 #include "io/Case.h"
 #include "solver/IndentationProblem.h"
 
@@ -8,28 +9,12 @@
 
 using namespace indentsim;
 
-namespace
-{
-  io::Case small_j2_case()
-  {
-    io::Case c;
-    c.material.model = "j2";
-    c.indenter.delta = 0.5;
-    c.specimen.size = {60., 60., 30.};
-    c.specimen.refined_region = {16., 16., 4.};
-    c.specimen.contact_elements = 16;
-    c.specimen.symmetry = "quarter";
-    c.loading.max_depth = 1.0;
-    c.loading.steps = 4;
-    c.loading.unload = false;
-    return c;
-  }
-} // namespace
 
 // One rank and several ranks give the same curve to 1e-8 relative.
 TEST(Mpi, OneVersusManyRanksGiveTheSameCurve)
 {
-  const io::Case c = small_j2_case();
+  io::Case c = test_cases::small_j2_case();
+  c.loading.steps = 4;
   solver::IndentationProblem parallel(c, MPI_COMM_WORLD, false);
   parallel.setup();
   parallel.run("");

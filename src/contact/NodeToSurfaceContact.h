@@ -24,7 +24,6 @@
 #include <deal.II/lac/petsc_vector.h>
 
 #include <array>
-#include <functional>
 #include <vector>
 
 namespace indentsim::contact

@@ -211,8 +211,8 @@ namespace indentsim::solver
       matrix_.compress(VectorOperation::add);
     residual_.compress(VectorOperation::add);
 
-    // Bottom-face nodes are shared by at most... every bottom node's reaction is the sum of
-    // the contributions of its cells, so summing over cells gives the total reaction.
+    // A bottom node's reaction is the sum of its cells' internal forces, so the sum over the
+    // locally owned cells, summed over ranks, is the total reaction.
     result.bottom_reaction = Utilities::MPI::sum(local_reaction, communicator_);
     const unsigned int failed = Utilities::MPI::max(
       static_cast<unsigned int>(result.status != materials::UpdateStatus::success), communicator_);

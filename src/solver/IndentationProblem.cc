@@ -612,9 +612,9 @@ namespace indentsim::solver
           unloading ? depth * 0.25 : (loading.max_depth - depth) + (loading.unload ? 0.25 * loading.max_depth : 0);
         const double eta = depth > 0 ? elapsed / (step) * remaining_depth / nominal_increment : 0;
         pcout_ << "step " << std::setw(3) << step << (unloading ? " unload" : " load  ")
-               << "  depth " << std::fixed << std::setprecision(4) << depth << " um  force "
-               << std::setprecision(3) << record.force << " mN  (bottom reaction "
-               << record.bottom_reaction << ")  active " << record.n_active_nodes
+               << "  depth " << std::setprecision(6) << depth << " um  force "
+               << record.force << " mN  (bottom reaction " << record.bottom_reaction
+               << ")  active " << record.n_active_nodes
                << "  Newton " << record.newton_iterations << "  aug " << record.augmentations
                << "  cut " << cutbacks << "  pen " << std::scientific << std::setprecision(1)
                << record.max_penetration << std::defaultfloat << "  wall "

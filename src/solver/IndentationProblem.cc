@@ -78,22 +78,24 @@ namespace indentsim::solver
   {
     return dof_handler_.n_dofs();
   }
-  unsigned int IndentationProblem::n_constrained_dofs() const
+  unsigned int IndentationProblem::count_owned_constraints(
+    const AffineConstraints<double> &constraints) const
   {
     unsigned int local = 0;
-    for (const auto &line : constraints_all_.get_lines())
+    for (const auto &line : constraints.get_lines())
       if (locally_owned_.is_element(line.index))
         ++local;
     return Utilities::MPI::sum(local, communicator_);
   }
 
+  unsigned int IndentationProblem::n_constrained_dofs() const
+  {
+    return count_owned_constraints(constraints_all_);
+  }
+
   unsigned int IndentationProblem::n_hanging_node_constraints() const
   {
-    unsigned int local = 0;
-    for (const auto &line : constraints_hanging_.get_lines())
-      if (locally_owned_.is_element(line.index))
-        ++local;
-    return Utilities::MPI::sum(local, communicator_);
+    return count_owned_constraints(constraints_hanging_);
   }
 
   void IndentationProblem::setup()

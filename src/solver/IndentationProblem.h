@@ -108,6 +108,8 @@ namespace indentsim::solver
       double                  bottom_reaction = 0; // z reaction on the bottom face [mN]
     };
     AssemblyResult assemble(bool with_matrix);
+    // Number of constrained dofs owned by this rank, summed over ranks.
+    unsigned int count_owned_constraints(const dealii::AffineConstraints<double> &constraints) const;
 
     // FEValues at the Gauss points and at the centre of a cell, turned into the element
     // kernel's inputs (dF/du_a, weights, element displacements).

@@ -7,14 +7,39 @@
 
 namespace indentsim::io
 {
+  // Crystal orientation (material.orientation). Bunge convention, passive: the rotation matrix
+  // g = R_z(phi2) R_x(Phi) R_z(phi1) maps sample components to crystal components,
+  // v_crystal = g v_sample. Alternatively the crystal direction [hkl] along the sample z axis
+  // (the indented plane's normal) and the crystal direction [uvw] along the sample x axis.
+  struct OrientationParameters
+  {
+    std::string           kind = "euler_bunge_deg";       // euler_bunge_deg | surface_normal
+    std::array<double, 3> euler_bunge_deg = {{0., 0., 0.}}; // (phi1, Phi, phi2) [deg]
+    std::array<double, 3> surface_normal = {{0., 0., 1.}};  // Miller indices [hkl] of the plane
+    std::array<double, 3> reference_direction = {{1., 0., 0.}}; // [uvw] along sample x
+
+    bool operator==(const OrientationParameters &) const = default;
+  };
+
   struct MaterialParameters
   {
-    std::string model = "j2";            // neo_hookean | j2
+    std::string model = "j2";            // neo_hookean | j2 | crystal
     double      young_modulus = 69.0;    // E [GPa]
     double      poisson_ratio = 0.26;    // nu [-], -1 < nu < 0.5
     double      yield_stress = 0.305;    // sigma_y0 [GPa]
     double      hardening_modulus = 0.5; // H [GPa], linear isotropic hardening
     std::string yield_stress_measure = "cauchy"; // cauchy | kirchhoff: which stress enters eq. 4
+
+    // Crystal plasticity (model: crystal), the paper's section 2.2 and Table 2.
+    std::string lattice = "fcc";             // fcc: {111}<110>, 12 slip systems
+    double      C11 = 106.7, C12 = 60.4, C44 = 28.3; // cubic elastic constants [GPa]
+    double      tau0 = 0.12;   // initial critical resolved shear stress [GPa]
+    double      tau1 = 0.02;   // Voce back-extrapolated increment [GPa]
+    double      theta0 = 0.1;  // initial hardening rate [GPa]
+    double      theta1 = 0.006; // asymptotic hardening rate [GPa]
+    double      q = 1.4;       // latent hardening ratio [-]
+    double      yield_exponent_n = 10; // n of the regularized Schmid law (exponent 2n), eq. 14
+    OrientationParameters orientation;
 
     bool operator==(const MaterialParameters &) const = default;
   };
@@ -35,6 +60,10 @@ namespace indentsim::io
     unsigned int          contact_elements = 12; // N: N x N faces across the refined top face
     std::string           symmetry = "full";     // full | quarter
     bool                  f_bar = true;          // F-bar element (default on for plasticity)
+    // Tensile test (test: tensile): a cube of elements_per_side^3 elements of 1 um edge.
+    unsigned int          elements_per_side = 3;
+    std::string           grains = "single"; // single | per_element (random orientation each)
+    unsigned int          seed = 1;          // seed of the random orientations (per_element)
 
     bool operator==(const SpecimenParameters &) const = default;
   };
@@ -46,6 +75,7 @@ namespace indentsim::io
     bool         unload = true;    // then back until the indenter force vanishes
     unsigned int unload_steps = 0; // 0: same increment size as loading (computed)
     unsigned int max_cutbacks = 8; // successive halvings of an increment before giving up
+    double       max_strain = 0.2; // tensile test: final logarithmic strain along z [-]
 
     bool operator==(const LoadingParameters &) const = default;
   };
@@ -80,7 +110,8 @@ namespace indentsim::io
   struct Case
   {
     std::string        source_file; // the YAML file this case was read from
-    std::string        test = "indentation";
+    std::string        test = "indentation"; // indentation | tensile
+    bool               compare_j2 = false;  // tensile: also run the J2 model (material.young_modulus...)
     MaterialParameters material;
     IndenterParameters indenter;
     SpecimenParameters specimen;

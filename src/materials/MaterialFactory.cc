@@ -1,6 +1,7 @@
 #include <materials/J2Plasticity.h>
 #include <materials/MaterialFactory.h>
 #include <materials/NeoHookean.h>
+#include <materials/Orientation.h>
 
 #include <stdexcept>
 
@@ -31,5 +32,16 @@ namespace indentsim::materials
 
     throw std::invalid_argument("material.model = \"" + parameters.model +
                                 "\" is not supported; allowed: neo_hookean, j2");
+  }
+
+  dealii::Tensor<2, 3> create_orientation(const io::OrientationParameters &orientation)
+  {
+    if (orientation.kind == "euler_bunge_deg")
+      return bunge_rotation(orientation.euler_bunge_deg);
+    if (orientation.kind == "surface_normal")
+      return rotation_from_surface_normal(orientation.surface_normal,
+                                          orientation.reference_direction);
+    throw std::invalid_argument("material.orientation: kind \"" + orientation.kind +
+                                "\" is not supported; allowed: euler_bunge_deg, surface_normal");
   }
 } // namespace indentsim::materials

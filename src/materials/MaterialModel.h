@@ -43,6 +43,17 @@ namespace indentsim::materials
     // Writes the state of virgin material into `state` (size n_state_variables()).
     virtual void initial_state(std::span<double> state) const = 0;
 
+    // The same for a material point whose crystal lattice has the orientation g (Bunge, passive:
+    // v_crystal = g v_sample; see materials/Orientation.h). Anisotropic models store it in the
+    // state, so polycrystals need nothing but a per-point initial state; isotropic models ignore
+    // it.
+    virtual void oriented_initial_state(std::span<double>   state,
+                                        const Tensor<2, 3> &orientation) const
+    {
+      (void)orientation;
+      initial_state(state);
+    }
+
     // Stress and consistent tangent for deformation gradient F at the end of the increment,
     // starting from the converged state of the previous increment. `state_new` receives the
     // updated internal state. Inputs are never modified. When `compute_tangent` is false the

@@ -138,8 +138,11 @@ namespace indentsim::solver
     n_state_ = material_->n_state_variables();
     const std::size_t n_states = std::size_t(triangulation_.n_active_cells()) * n_q_points_;
     state_old_.assign(n_states * n_state_, 0.0);
+    // A single crystal: one lattice orientation everywhere (isotropic models ignore it).
+    const dealii::Tensor<2, 3> orientation = materials::create_orientation(case_.material.orientation);
     for (std::size_t i = 0; i < n_states; ++i)
-      material_->initial_state(std::span<double>(state_old_).subspan(i * n_state_, n_state_));
+      material_->oriented_initial_state(std::span<double>(state_old_).subspan(i * n_state_, n_state_),
+                                        orientation);
     state_new_ = state_old_;
 
     const double penalty = case_.contact.penalty > 0 ?

@@ -1,3 +1,4 @@
+#include <materials/CrystalPlasticity.h>
 #include <materials/J2Plasticity.h>
 #include <materials/MaterialFactory.h>
 #include <materials/NeoHookean.h>
@@ -30,8 +31,16 @@ namespace indentsim::materials
                                               measure);
       }
 
+    if (parameters.model == "crystal")
+      return std::make_unique<CrystalPlasticity>(
+        slip_systems(parameters.lattice),
+        CubicElasticity{parameters.C11, parameters.C12, parameters.C44},
+        ExtendedVoceHardening{
+          parameters.tau0, parameters.tau1, parameters.theta0, parameters.theta1, parameters.q},
+        parameters.yield_exponent_n);
+
     throw std::invalid_argument("material.model = \"" + parameters.model +
-                                "\" is not supported; allowed: neo_hookean, j2");
+                                "\" is not supported; allowed: neo_hookean, j2, crystal");
   }
 
   dealii::Tensor<2, 3> create_orientation(const io::OrientationParameters &orientation)

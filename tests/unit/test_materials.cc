@@ -11,6 +11,8 @@
 #include <materials/NeoHookean.h>
 #include <materials/TensorFunctions.h>
 
+#include "material_test_utilities.h"
+
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
@@ -29,6 +31,7 @@
 namespace
 {
   using namespace indentsim::materials;
+  using namespace indentsim::testing;
   using dealii::SymmetricTensor;
   using dealii::Tensor;
 
@@ -37,95 +40,6 @@ namespace
   constexpr double poisson_ratio = 0.26;
   constexpr double yield_stress = 0.305;
   constexpr double hardening_modulus = 0.5;
-
-  void report(const std::string &what, const double value)
-  {
-    std::cout << "[ measured ] " << what << " = " << value << std::endl;
-  }
-
-  Tensor<2, 3> identity()
-  {
-    return dealii::unit_symmetric_tensor<3>();
-  }
-
-  // A rotation from a random unit quaternion (orthogonal to round-off, unlike Gram-Schmidt).
-  Tensor<2, 3> random_rotation(std::mt19937 &generator)
-  {
-    std::normal_distribution<double> normal(0.0, 1.0);
-    double                           q[4], norm = 0.0;
-    for (double &component : q)
-      {
-        component = normal(generator);
-        norm += component * component;
-      }
-    norm = std::sqrt(norm);
-    const double a = q[0] / norm, b = q[1] / norm, c = q[2] / norm, d = q[3] / norm;
-    Tensor<2, 3> Q;
-    Q[0][0] = a * a + b * b - c * c - d * d;
-    Q[0][1] = 2 * (b * c - a * d);
-    Q[0][2] = 2 * (b * d + a * c);
-    Q[1][0] = 2 * (b * c + a * d);
-    Q[1][1] = a * a - b * b + c * c - d * d;
-    Q[1][2] = 2 * (c * d - a * b);
-    Q[2][0] = 2 * (b * d - a * c);
-    Q[2][1] = 2 * (c * d + a * b);
-    Q[2][2] = a * a - b * b - c * c + d * d;
-    return Q;
-  }
-
-  // F = I + amplitude * (uniform random in [-1, 1]), redrawn until det F > 0.2.
-  Tensor<2, 3> random_deformation(std::mt19937 &generator, const double amplitude)
-  {
-    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-    while (true)
-      {
-        Tensor<2, 3> F = identity();
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int j = 0; j < 3; ++j)
-            F[i][j] += amplitude * uniform(generator);
-        if (dealii::determinant(F) > 0.2)
-          return F;
-      }
-  }
-
-  Tensor<2, 3> diagonal(const double a, const double b, const double c)
-  {
-    Tensor<2, 3> F;
-    F[0][0] = a;
-    F[1][1] = b;
-    F[2][2] = c;
-    return F;
-  }
-
-  // Central finite differences of P(F) with the old state held fixed (each perturbed update
-  // re-runs the whole return mapping from state_old), compared with the model's dP/dF:
-  // returns |dP/dF_FD - dP/dF| / |dP/dF| (Frobenius norms).
-  double tangent_error(const MaterialModel       &model,
-                       const Tensor<2, 3>        &F,
-                       const std::vector<double> &state_old,
-                       const double               step = 1e-6)
-  {
-    MaterialPointResponse response;
-    std::vector<double>   state_new(state_old.size());
-    EXPECT_EQ(model.update(F, state_old, response, state_new, true), UpdateStatus::success);
-
-    Tensor<4, 3> finite_difference;
-    for (unsigned int k = 0; k < 3; ++k)
-      for (unsigned int L = 0; L < 3; ++L)
-        {
-          Tensor<2, 3> F_plus = F, F_minus = F;
-          F_plus[k][L] += step;
-          F_minus[k][L] -= step;
-          MaterialPointResponse plus, minus;
-          std::vector<double>   scratch(state_old.size());
-          EXPECT_EQ(model.update(F_plus, state_old, plus, scratch, false), UpdateStatus::success);
-          EXPECT_EQ(model.update(F_minus, state_old, minus, scratch, false), UpdateStatus::success);
-          for (unsigned int i = 0; i < 3; ++i)
-            for (unsigned int J = 0; J < 3; ++J)
-              finite_difference[i][J][k][L] = (plus.P[i][J] - minus.P[i][J]) / (2.0 * step);
-        }
-    return (finite_difference - response.dP_dF).norm() / response.dP_dF.norm();
-  }
 
   std::vector<double> virgin_state(const MaterialModel &model)
   {

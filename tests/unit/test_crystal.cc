@@ -1,0 +1,465 @@
+// Unit tests of the crystal-plasticity model at a single material point (paper section 2.2,
+// eqs 10-15, Table 2) and of its building blocks: FCC slip systems, orientations, directional
+// Young's moduli and initial yield stresses of REFERENCES.md, objectivity, the consistent
+// tangent against finite differences, and step-size independence. Units: GPa.
+#include <io/Case.h>
+#include <materials/CrystalPlasticity.h>
+#include <materials/MaterialFactory.h>
+#include <materials/Orientation.h>
+#include <materials/SlipSystems.h>
+
+#include "material_test_utilities.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace
+{
+  using namespace indentsim::materials;
+  using namespace indentsim::testing;
+  using dealii::Tensor;
+
+  // The paper's Table 2 (aluminium), n = 10.
+  CrystalPlasticity table2_model(const CubicElasticity &elasticity = CubicElasticity())
+  {
+    return CrystalPlasticity(fcc_slip_systems(), elasticity, ExtendedVoceHardening(), 10.0);
+  }
+
+  std::vector<double> oriented_state(const MaterialModel &model, const Tensor<2, 3> &g)
+  {
+    std::vector<double> state(model.n_state_variables());
+    model.oriented_initial_state(state, g);
+    return state;
+  }
+
+  // Homogeneous uniaxial Cauchy stress along the sample z axis at a material point: F is upper
+  // triangular (which fixes the rotation), F_zz = stretch is prescribed and F_xx, F_xy, F_xz,
+  // F_yy, F_yz are solved from sigma_xx = sigma_yy = sigma_xy = sigma_xz = sigma_yz = 0 by
+  // Newton's method with a finite-difference Jacobian (independent of the model's tangent).
+  struct UniaxialDriver
+  {
+    const MaterialModel &model;
+    std::vector<double>  state;
+    Tensor<2, 3>         F = identity();
+
+    // Returns sigma_zz [GPa] after loading to `stretch` from the current state in one
+    // increment; the state is updated.
+    double load_to(const double stretch, UpdateStatus *status_out = nullptr)
+    {
+      static constexpr unsigned int unknown_i[5] = {0, 0, 0, 1, 1};
+      static constexpr unsigned int unknown_j[5] = {0, 1, 2, 1, 2};
+      static constexpr unsigned int equation_i[5] = {0, 1, 0, 0, 1};
+      static constexpr unsigned int equation_j[5] = {0, 1, 1, 2, 2};
+      F[2][2] = stretch;
+      std::vector<double> state_new(state.size());
+      const auto          residual = [&](const Tensor<2, 3> &F_trial, std::array<double, 5> &r,
+                                double &sigma_zz) {
+        MaterialPointResponse response;
+        const UpdateStatus    status = model.update(F_trial, state, response, state_new, false);
+        const double          J = dealii::determinant(F_trial);
+        for (unsigned int e = 0; e < 5; ++e)
+          r[e] = response.tau[equation_i[e]][equation_j[e]] / J;
+        sigma_zz = response.tau[2][2] / J;
+        return status;
+      };
+      double                sigma_zz = 0;
+      std::array<double, 5> r;
+      for (unsigned int iteration = 0; iteration < 40; ++iteration)
+        {
+          const UpdateStatus status = residual(F, r, sigma_zz);
+          if (status_out)
+            *status_out = status;
+          if (status != UpdateStatus::success)
+            return std::nan("");
+          double norm = 0;
+          for (const double a : r)
+            norm = std::max(norm, std::abs(a));
+          if (norm < 1e-13)
+            break;
+          double jacobian[5][6];
+          for (unsigned int u = 0; u < 5; ++u)
+            {
+              const double          h = 1e-7;
+              Tensor<2, 3>          F_plus = F, F_minus = F;
+              std::array<double, 5> r_plus, r_minus;
+              double                dummy;
+              F_plus[unknown_i[u]][unknown_j[u]] += h;
+              F_minus[unknown_i[u]][unknown_j[u]] -= h;
+              residual(F_plus, r_plus, dummy);
+              residual(F_minus, r_minus, dummy);
+              for (unsigned int e = 0; e < 5; ++e)
+                jacobian[e][u] = (r_plus[e] - r_minus[e]) / (2 * h);
+            }
+          for (unsigned int e = 0; e < 5; ++e)
+            jacobian[e][5] = -r[e];
+          // Gaussian elimination with partial pivoting.
+          for (unsigned int k = 0; k < 5; ++k)
+            {
+              unsigned int pivot = k;
+              for (unsigned int i = k + 1; i < 5; ++i)
+                if (std::abs(jacobian[i][k]) > std::abs(jacobian[pivot][k]))
+                  pivot = i;
+              for (unsigned int j = 0; j < 6; ++j)
+                std::swap(jacobian[k][j], jacobian[pivot][j]);
+              for (unsigned int i = k + 1; i < 5; ++i)
+                {
+                  const double factor = jacobian[i][k] / jacobian[k][k];
+                  for (unsigned int j = k; j < 6; ++j)
+                    jacobian[i][j] -= factor * jacobian[k][j];
+                }
+            }
+          double step[5];
+          for (int k = 4; k >= 0; --k)
+            {
+              double sum = jacobian[k][5];
+              for (unsigned int j = k + 1; j < 5; ++j)
+                sum -= jacobian[k][j] * step[j];
+              step[k] = sum / jacobian[k][k];
+            }
+          for (unsigned int u = 0; u < 5; ++u)
+            F[unknown_i[u]][unknown_j[u]] += step[u];
+        }
+      residual(F, r, sigma_zz);
+      state.assign(state_new.begin(), state_new.end());
+      return sigma_zz;
+    }
+  };
+
+  // g putting the crystal direction `axis` along the sample z (tensile) axis.
+  Tensor<2, 3> axis_along_z(const std::array<double, 3> &axis)
+  {
+    // any crystal direction perpendicular to `axis` along sample x
+    const std::array<double, 3> reference =
+      (axis[0] == 0 && axis[1] == 0) ? std::array<double, 3>{{1, 0, 0}} :
+                                       std::array<double, 3>{{-axis[1], axis[0], 0}};
+    return rotation_from_surface_normal(axis, reference);
+  }
+
+  // ---------------------------------------------------------------------------------------
+
+  // FCC has 12 distinct {111}<110> systems with unit, orthogonal m and n.
+  TEST(CrystalSlipSystems, FccHasTwelveOrthonormalSystems)
+  {
+    const SlipSystems systems = fcc_slip_systems();
+    ASSERT_EQ(systems.size(), 12u);
+    for (unsigned int r = 0; r < 12; ++r)
+      {
+        EXPECT_NEAR(systems.direction[r].norm(), 1.0, 1e-15);
+        EXPECT_NEAR(systems.normal[r].norm(), 1.0, 1e-15);
+        EXPECT_NEAR(systems.direction[r] * systems.normal[r], 0.0, 1e-15);
+        for (unsigned int s = 0; s < r; ++s)
+          EXPECT_GT((systems.schmid_tensor(r) - systems.schmid_tensor(s)).norm(), 0.1);
+      }
+    EXPECT_THROW(slip_systems("bcc"), std::invalid_argument);
+  }
+
+  // Bunge angles: (0,0,0) is the identity, a rotation of phi1 about z is passive, angles
+  // round-trip, and surface_normal/reference_direction puts the named directions on z and x.
+  TEST(CrystalOrientation, BungeAndSurfaceNormalConventions)
+  {
+    EXPECT_LT((bunge_rotation({{0, 0, 0}}) - identity()).norm(), 1e-15);
+    // Passive: with phi1 = 90 deg the sample x axis is the crystal direction g e_x = [0 -1 0].
+    const Tensor<2, 3> g = bunge_rotation({{90, 0, 0}});
+    Tensor<1, 3>       e_x;
+    e_x[0] = 1;
+    EXPECT_NEAR((g * e_x)[1], -1.0, 1e-15);
+    for (const std::array<double, 3> angles :
+         {std::array<double, 3>{{10, 20, 30}}, {{200, 95, 310}}, {{359, 179, 1}}})
+      {
+        const auto back = bunge_angles(bunge_rotation(angles));
+        for (unsigned int i = 0; i < 3; ++i)
+          EXPECT_NEAR(back[i], angles[i], 1e-9);
+      }
+    const Tensor<2, 3> g111 = rotation_from_surface_normal({{1, 1, 1}}, {{1, -1, 0}});
+    Tensor<1, 3>       e_z;
+    e_z[2] = 1;
+    const Tensor<1, 3> z_in_crystal = g111 * e_z, x_in_crystal = g111 * e_x;
+    for (unsigned int i = 0; i < 3; ++i)
+      EXPECT_NEAR(z_in_crystal[i], 1 / std::sqrt(3.0), 1e-15);
+    EXPECT_NEAR(x_in_crystal[0], 1 / std::sqrt(2.0), 1e-15);
+    EXPECT_NEAR(x_in_crystal[1], -1 / std::sqrt(2.0), 1e-15);
+    EXPECT_NEAR(dealii::determinant(g111), 1.0, 1e-15);
+    EXPECT_THROW(rotation_from_surface_normal({{1, 1, 1}}, {{1, 0, 0}}), std::invalid_argument);
+    EXPECT_THROW(rotation_from_surface_normal({{0, 0, 0}}, {{1, 0, 0}}), std::invalid_argument);
+    // Quarter-model symmetry: (001) and (011) have the mirror planes x = 0, y = 0; (111) not.
+    Tensor<1, 3> e_y;
+    e_y[1] = 1;
+    const Tensor<2, 3> g011 = rotation_from_surface_normal({{0, 1, 1}}, {{1, 0, 0}});
+    EXPECT_TRUE(is_cubic_mirror_plane(g011, e_x) && is_cubic_mirror_plane(g011, e_y));
+    EXPECT_FALSE(is_cubic_mirror_plane(g111, e_x) && is_cubic_mirror_plane(g111, e_y));
+  }
+
+  // Random orientations are rotations, reproducible from the seed, and uniform on SO(3): the
+  // mean of g vanishes and the mean of cos(rotation angle) = (tr g - 1)/2 is -1/2 ... here we
+  // use E[g_ij] = 0 and E[g_ij^2] = 1/3 for the Haar measure.
+  TEST(CrystalOrientation, RandomOrientationsAreUniformAndReproducible)
+  {
+    const unsigned int n = 20000;
+    const auto         sample = random_orientations(n, 7);
+    const auto         again = random_orientations(n, 7);
+    const auto         other = random_orientations(3, 8);
+    Tensor<2, 3>       mean, mean_square;
+    for (unsigned int k = 0; k < n; ++k)
+      {
+        EXPECT_LT((sample[k] * dealii::transpose(sample[k]) - identity()).norm(), 1e-13);
+        EXPECT_NEAR(dealii::determinant(sample[k]), 1.0, 1e-13);
+        EXPECT_EQ(sample[k], again[k]);
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              mean[i][j] += sample[k][i][j] / n;
+              mean_square[i][j] += sample[k][i][j] * sample[k][i][j] / n;
+            }
+      }
+    EXPECT_NE(sample[0], other[0]);
+    // Standard error of a mean of n variables of variance 1/3: 0.004; allow 4 sigma.
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        {
+          EXPECT_NEAR(mean[i][j], 0.0, 0.017);
+          EXPECT_NEAR(mean_square[i][j], 1.0 / 3.0, 0.01);
+        }
+  }
+
+  // Hardening law: tau_c(0) = tau0, tau_c' = h with h(0) = theta0 and h(inf) = theta1.
+  TEST(CrystalHardening, ExtendedVoceLaw)
+  {
+    const ExtendedVoceHardening law;
+    EXPECT_DOUBLE_EQ(law.critical_shear(0.0), law.tau0);
+    EXPECT_NEAR(law.hardening_rate(0.0), law.theta0, 1e-15);
+    EXPECT_NEAR(law.hardening_rate(100.0), law.theta1, 1e-12);
+    for (const double Gamma : {0.0, 0.01, 0.1, 1.0})
+      {
+        const double h = 1e-6;
+        EXPECT_NEAR((law.critical_shear(Gamma + h) - law.critical_shear(Gamma - std::min(h, Gamma))) /
+                      (h + std::min(h, Gamma)),
+                    law.hardening_rate(Gamma),
+                    1e-6);
+      }
+  }
+
+  // Directional Young's moduli with Thomas's constants (REFERENCES.md): the rotation of the
+  // cubic stiffness with the orientation.
+  TEST(CrystalElasticity, DirectionalYoungsModuliMatchThomas1968)
+  {
+    const CrystalPlasticity model = table2_model({106.75, 60.41, 28.34});
+    const std::array<std::pair<std::array<double, 3>, double>, 3> cases = {
+      {{{{1, 0, 0}}, 63.09}, {{{1, 1, 0}}, 72.03}, {{{1, 1, 1}}, 75.60}}};
+    for (const auto &[axis, expected] : cases)
+      {
+        UniaxialDriver driver{model, oriented_state(model, axis_along_z(axis))};
+        const double   strain = 1e-7;
+        const double   sigma = driver.load_to(1.0 + strain);
+        const double   modulus = sigma / std::log(1.0 + strain);
+        report("E along [" + std::to_string(int(axis[0])) + std::to_string(int(axis[1])) +
+                 std::to_string(int(axis[2])) + "] [GPa]",
+               modulus);
+        EXPECT_NEAR(modulus / expected, 1.0, 1e-3);
+      }
+  }
+
+  // Initial yield stress in uniaxial tension along [001], [011], [111] against the regularized
+  // Schmid law of REFERENCES.md (sigma_y / tau0 = 2.20760, 2.28545, 3.35938 for n = 10). The
+  // strain at which slip starts is found by bisection. That closed form is a small-strain
+  // result: the model resolves the Mandel stress on the lattice, which differs from the Cauchy
+  // stress by O(elastic strain) (the factor J and the stretch of m and n). So (a) in the
+  // small-strain limit (stiffness x 1000, elastic strain at yield ~4e-6) the Cauchy yield stress
+  // must match to 1e-5, and (b) with Table 2's constants (elastic strain at yield ~0.4 %) to
+  // 0.3 % (the measured deviations are -0.11 % to -0.17 %, printed).
+  TEST(CrystalPlasticityModel, InitialYieldStressMatchesRegularizedSchmidLaw)
+  {
+    const std::array<std::pair<std::array<double, 3>, double>, 3> cases = {
+      {{{{0, 0, 1}}, 2.20760}, {{{0, 1, 1}}, 2.28545}, {{{1, 1, 1}}, 3.35938}}};
+    for (const double stiffness_factor : {1000.0, 1.0})
+      {
+        const CubicElasticity   table2;
+        const CrystalPlasticity model = table2_model(
+          {table2.C11 * stiffness_factor, table2.C12 * stiffness_factor, table2.C44 * stiffness_factor});
+        for (const auto &[axis, ratio] : cases)
+          {
+            const auto state0 = oriented_state(model, axis_along_z(axis));
+            double     elastic = 1.0, plastic = 1.0 + 0.02 / stiffness_factor;
+            for (unsigned int k = 0; k < 60; ++k)
+              {
+                const double   middle = 0.5 * (elastic + plastic);
+                UniaxialDriver driver{model, state0};
+                driver.load_to(middle);
+                (model.equivalent_plastic_strain(driver.state) > 0 ? plastic : elastic) = middle;
+              }
+            UniaxialDriver driver{model, state0};
+            const double   sigma_y = driver.load_to(elastic);
+            const double   deviation = sigma_y / (0.12 * ratio) - 1.0;
+            report("stiffness x " + std::to_string(int(stiffness_factor)) + ": sigma_y / tau0 along [" +
+                     std::to_string(int(axis[0])) + std::to_string(int(axis[1])) +
+                     std::to_string(int(axis[2])) + "], relative deviation",
+                   deviation);
+            EXPECT_LT(std::abs(deviation), stiffness_factor > 1 ? 1e-5 : 3e-3);
+          }
+      }
+  }
+
+  // Monotonic uniaxial tension along [001] (8 symmetric active systems, no lattice rotation):
+  // the exponential map and the secant Voce update are exact, so 1 and 50 increments to 5 %
+  // strain give the same stress; along a general axis the difference shrinks with the step.
+  TEST(CrystalPlasticityModel, MonotonicPathIsStepSizeIndependent)
+  {
+    const CrystalPlasticity model = table2_model();
+    const double            final_stretch = std::exp(0.05);
+    const auto              stress_after = [&](const Tensor<2, 3> &g, const unsigned int n_steps) {
+      UniaxialDriver driver{model, oriented_state(model, g)};
+      double         sigma = 0;
+      for (unsigned int step = 1; step <= n_steps; ++step)
+        sigma = driver.load_to(std::exp(0.05 * step / n_steps));
+      EXPECT_NEAR(driver.F[2][2], final_stretch, 1e-15);
+      return sigma;
+    };
+    const Tensor<2, 3> g001 = identity();
+    const double       one_step = stress_after(g001, 1), fifty_steps = stress_after(g001, 50);
+    report("[001] sigma at 5 % strain, 1 step [GPa]", one_step);
+    report("[001] sigma at 5 % strain, 50 steps [GPa]", fifty_steps);
+    EXPECT_NEAR(one_step / fifty_steps, 1.0, 1e-9);
+    EXPECT_GT(one_step, 2.2076 * 0.12); // hardened beyond the initial yield stress
+
+    const Tensor<2, 3> g = bunge_rotation({{20, 35, 10}});
+    const double       s10 = stress_after(g, 10), s20 = stress_after(g, 20),
+                 s40 = stress_after(g, 40);
+    report("general axis, 10/20/40 steps: s10 - s40 [GPa]", s10 - s40);
+    report("general axis, 10/20/40 steps: s20 - s40 [GPa]", s20 - s40);
+    EXPECT_LT(std::abs(s20 - s40), std::abs(s10 - s40));
+    EXPECT_LT(std::abs(s20 - s40) / s40, 2e-3);
+  }
+
+  // The consistent tangent equals central finite differences of P(F) at elastic and plastic
+  // states, for random orientations and deformations that activate several systems.
+  TEST(CrystalPlasticityModel, TangentMatchesFiniteDifferences)
+  {
+    const CrystalPlasticity model = table2_model();
+    std::mt19937            generator(3);
+    for (unsigned int sample = 0; sample < 6; ++sample)
+      {
+        const Tensor<2, 3> g = random_rotation(generator);
+        auto               state = oriented_state(model, g);
+        // Elastic: a small random deformation.
+        const Tensor<2, 3> F_elastic = random_deformation(generator, 5e-4);
+        const double       error_elastic = tangent_error(model, F_elastic, state, 1e-7);
+        EXPECT_LT(error_elastic, 1e-6) << "elastic sample " << sample;
+        // Plastic: a random deformation of a few per cent, reached in 4 increments, then one
+        // more increment checked.
+        const Tensor<2, 3>    F_target = random_deformation(generator, 0.03);
+        MaterialPointResponse response;
+        for (unsigned int step = 1; step <= 4; ++step)
+          {
+            const Tensor<2, 3>  F = identity() + (F_target - identity()) * (step / 5.0);
+            std::vector<double> state_new(state.size());
+            ASSERT_EQ(model.update(F, state, response, state_new, false), UpdateStatus::success);
+            state = state_new;
+          }
+        ASSERT_GT(model.equivalent_plastic_strain(state), 0.0);
+        const double error_plastic = tangent_error(model, F_target, state, 1e-7);
+        if (sample == 0)
+          {
+            report("elastic tangent FD error", error_elastic);
+            report("plastic tangent FD error", error_plastic);
+          }
+        EXPECT_LT(error_plastic, 1e-5) << "plastic sample " << sample;
+      }
+  }
+
+  // Objectivity: a superposed rigid rotation Q F rotates P (Q P) and the Kirchhoff stress
+  // (Q tau Q^T) and leaves the internal state unchanged.
+  TEST(CrystalPlasticityModel, SuperposedRotationChangesNothingElse)
+  {
+    const CrystalPlasticity model = table2_model();
+    std::mt19937            generator(11);
+    for (unsigned int sample = 0; sample < 5; ++sample)
+      {
+        const auto         state = oriented_state(model, random_rotation(generator));
+        const Tensor<2, 3> F = random_deformation(generator, 0.02);
+        const Tensor<2, 3> Q = random_rotation(generator);
+        MaterialPointResponse plain, rotated;
+        std::vector<double>   state_plain(state.size()), state_rotated(state.size());
+        ASSERT_EQ(model.update(F, state, plain, state_plain), UpdateStatus::success);
+        ASSERT_EQ(model.update(Q * F, state, rotated, state_rotated), UpdateStatus::success);
+        EXPECT_GT(model.equivalent_plastic_strain(state_plain), 0.0);
+        EXPECT_LT((rotated.P - Q * plain.P).norm(), 1e-12 * plain.P.norm());
+        EXPECT_LT((rotated.tau - Q * plain.tau * dealii::transpose(Q)).norm(),
+                  1e-12 * plain.tau.norm());
+        for (unsigned int k = 0; k < state.size(); ++k)
+          EXPECT_NEAR(state_rotated[k], state_plain[k], 1e-12 * (1 + std::abs(state_plain[k])));
+      }
+  }
+
+  // The yield condition holds after a plastic update (Phi = 1, eq. 14), the plastic flow is
+  // isochoric (det F_p = 1), and unloading to the stress-free configuration keeps the state.
+  TEST(CrystalPlasticityModel, ReturnIsOnYieldSurfaceAndIsochoric)
+  {
+    const CrystalPlasticity model = table2_model();
+    std::mt19937            generator(5);
+    for (unsigned int sample = 0; sample < 5; ++sample)
+      {
+        const auto            state = oriented_state(model, random_rotation(generator));
+        const Tensor<2, 3>    F = random_deformation(generator, 0.05);
+        MaterialPointResponse response;
+        std::vector<double>   state_new(state.size());
+        ASSERT_EQ(model.update(F, state, response, state_new), UpdateStatus::success);
+        std::vector<double> tau_c(12);
+        for (unsigned int r = 0; r < 12; ++r)
+          tau_c[r] = model.critical_shear(state_new, r);
+        EXPECT_NEAR(model.yield_function_value(model.resolved_shear_stresses(F, state_new), tau_c),
+                    1.0,
+                    1e-10);
+        EXPECT_NEAR(dealii::determinant(CrystalPlasticity::plastic_deformation(state_new)), 1.0, 1e-12);
+        // Unloading to the stress-free configuration F = F_p (F_e = I) is elastic: zero stress,
+        // the state is kept.
+        std::vector<double> state_unloaded(state.size());
+        ASSERT_EQ(model.update(CrystalPlasticity::plastic_deformation(state_new),
+                               state_new,
+                               response,
+                               state_unloaded),
+                  UpdateStatus::success);
+        EXPECT_LT(response.P.norm(), 1e-12);
+        EXPECT_EQ(state_unloaded, state_new);
+      }
+  }
+
+  // A numerical failure is a status, never garbage: a huge increment either converges to a
+  // finite stress on the yield surface or reports local_newton_failed; det F <= 0 is reported.
+  TEST(CrystalPlasticityModel, FailuresAreReportedNotReturnedAsGarbage)
+  {
+    const CrystalPlasticity model = table2_model();
+    const auto              state = oriented_state(model, bunge_rotation({{10, 50, 80}}));
+    MaterialPointResponse   response;
+    std::vector<double>     state_new(state.size());
+    for (const double stretch : {1.5, 3.0, 10.0})
+      {
+        const UpdateStatus status =
+          model.update(diagonal(1 / std::sqrt(stretch), 1 / std::sqrt(stretch), stretch),
+                       state,
+                       response,
+                       state_new);
+        EXPECT_TRUE(status == UpdateStatus::success || status == UpdateStatus::local_newton_failed);
+        if (status == UpdateStatus::success)
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
+              EXPECT_TRUE(std::isfinite(response.P[i][j]));
+      }
+    EXPECT_EQ(model.update(diagonal(-1, 1, 1), state, response, state_new),
+              UpdateStatus::invalid_deformation);
+  }
+
+  // The factory builds the crystal model from case-file parameters.
+  TEST(CrystalPlasticityModel, FactoryBuildsCrystalModel)
+  {
+    indentsim::io::MaterialParameters parameters;
+    parameters.model = "crystal";
+    const auto model = create_material(parameters);
+    EXPECT_EQ(model->n_state_variables(), 22u);
+    EXPECT_NEAR(model->reference_modulus(), (106.7 - 60.4 + 3 * 28.3) / 5, 1e-12);
+    parameters.lattice = "hcp";
+    EXPECT_THROW(create_material(parameters), std::invalid_argument);
+  }
+} // namespace

@@ -1,0 +1,65 @@
+// Cost of one material-point update [us], elastic and plastic, with and without the tangent,
+// for the J2 model of Table 1 and the crystal model of Table 2 (issue 5's "profile the material
+// update"). Run on demand: build/bench_material_point. Not a test: timings are machine facts.
+#include <materials/CrystalPlasticity.h>
+#include <materials/J2Plasticity.h>
+#include <materials/Orientation.h>
+
+#include <deal.II/base/tensor.h>
+
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+using namespace indentsim::materials;
+
+namespace
+{
+  double time_update(const MaterialModel       &model,
+                     const dealii::Tensor<2, 3> &F,
+                     const std::vector<double>  &state,
+                     const bool                  tangent,
+                     double                     &plastic_strain)
+  {
+    MaterialPointResponse response;
+    std::vector<double>   state_new(state.size());
+    const unsigned int    n = 2000;
+    const auto            start = std::chrono::steady_clock::now();
+    for (unsigned int k = 0; k < n; ++k)
+      model.update(F, state, response, state_new, tangent);
+    const auto stop = std::chrono::steady_clock::now();
+    plastic_strain = model.equivalent_plastic_strain(state_new);
+    return std::chrono::duration<double, std::micro>(stop - start).count() / n;
+  }
+} // namespace
+
+int main()
+{
+  const J2Plasticity      j2(69.0, 0.26, 0.305, 0.5);
+  const CrystalPlasticity crystal(fcc_slip_systems(), CubicElasticity(), ExtendedVoceHardening(), 10.0);
+  std::printf("model    regime   tangent  time_us  plastic_strain\n");
+  for (const MaterialModel *model : {static_cast<const MaterialModel *>(&j2),
+                                     static_cast<const MaterialModel *>(&crystal)})
+    {
+      std::vector<double> state(model->n_state_variables());
+      model->oriented_initial_state(state, bunge_rotation({{20., 35., 10.}}));
+      for (const double strain : {1e-3, 2e-2})
+        {
+          dealii::Tensor<2, 3> F;
+          F[0][0] = F[1][1] = 1.0 - 0.5 * strain;
+          F[2][2] = 1.0 + strain;
+          F[0][2] = 0.3 * strain;
+          for (const bool tangent : {false, true})
+            {
+              double     plastic_strain = 0;
+              const auto time = time_update(*model, F, state, tangent, plastic_strain);
+              std::printf("%-8s %-8s %-8s %8.2f  %.3g\n",
+                          model == &j2 ? "j2" : "crystal",
+                          strain < 1e-2 ? "elastic" : "plastic",
+                          tangent ? "yes" : "no",
+                          time,
+                          plastic_strain);
+            }
+        }
+    }
+}

@@ -6,6 +6,7 @@
 #include "io/CaseFile.h"
 #include "io/CommandLine.h"
 #include "solver/IndentationProblem.h"
+#include "solver/TensileProblem.h"
 
 #include <deal.II/base/mpi.h>
 
@@ -30,6 +31,64 @@ namespace
                 << "/load_penetration.png could not be written (command: " << command << ")\n";
   }
 
+  // Writes the PNG plot of the tensile curve(s): the case's model and, if present, J2.
+  void plot_stress_strain(const std::string &directory, const std::string &model, bool with_j2)
+  {
+    const std::string script = std::string(INDENTSIM_SOURCE_DIR) + "/python/plot_stress_strain.py";
+    std::string command = "python3 \"" + script + "\" \"" + directory + "/" +
+                          io::output_files::stress_strain_csv + "\" --label \"" + model + "\"";
+    if (with_j2)
+      command += " \"" + directory + "/" + io::output_files::stress_strain_j2_csv +
+                 "\" --label \"j2\"";
+    command += " -o \"" + directory + "/" + io::output_files::stress_strain_png + "\"";
+    if (std::system(command.c_str()) != 0)
+      std::cerr << "warning: the plot " << directory << "/" << io::output_files::stress_strain_png
+                << " could not be written (command: " << command << ")\n";
+  }
+
+  void run_indentation(const io::Case &the_case, const MPI_Comm communicator, const bool root)
+  {
+    solver::IndentationProblem problem(the_case, communicator);
+    problem.setup();
+    problem.run(the_case.output.directory);
+    if (root)
+      {
+        plot_load_penetration(the_case.output.directory);
+        std::cout << "Results in " << the_case.output.directory
+                  << ": load_penetration.csv (um, mN), load_penetration.png, specimen.pvd "
+                     "(ParaView), resolved_case.yaml, run.log\n";
+      }
+  }
+
+  void run_tensile(const io::Case &the_case, const MPI_Comm communicator, const bool root)
+  {
+    const std::string &directory = the_case.output.directory;
+    {
+      solver::TensileProblem problem(the_case, communicator);
+      problem.setup();
+      problem.run(directory, io::output_files::stress_strain_csv, true);
+    }
+    if (the_case.compare_j2)
+      {
+        // The same cube and loading with the isotropic model of material.young_modulus,
+        // poisson_ratio, yield_stress and hardening_modulus.
+        io::Case j2_case = the_case;
+        j2_case.material.model = "j2";
+        solver::TensileProblem problem(j2_case, communicator);
+        problem.setup();
+        problem.run(directory, io::output_files::stress_strain_j2_csv, false);
+      }
+    if (root)
+      {
+        plot_stress_strain(directory, the_case.material.model, the_case.compare_j2);
+        std::cout << "Results in " << directory
+                  << ": stress_strain.csv (log strain, true stress in GPa, force in mN)"
+                  << (the_case.compare_j2 ? ", stress_strain_j2.csv" : "")
+                  << ", stress_strain.png, specimen_NNNN.pvtu (ParaView, final state), "
+                     "resolved_case.yaml, run.log\n";
+      }
+  }
+
   int run(const io::CommandLineOptions &options, const MPI_Comm communicator)
   {
     const bool root = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
@@ -38,6 +97,9 @@ namespace
     io::Case the_case = io::read_case_file(options.case_file);
     if (options.output_directory)
       the_case.output.directory = *options.output_directory;
+    if (options.compare_j2)
+      the_case.compare_j2 = true;
+    io::validate_case(the_case); // the command line may have changed it
 
     if (options.command == io::Command::check)
       {
@@ -61,16 +123,10 @@ namespace
     if (!error.empty())
       throw io::CaseFileError(error);
 
-    solver::IndentationProblem problem(the_case, communicator);
-    problem.setup();
-    problem.run(the_case.output.directory);
-    if (root)
-      {
-        plot_load_penetration(the_case.output.directory);
-        std::cout << "Results in " << the_case.output.directory
-                  << ": load_penetration.csv (um, mN), load_penetration.png, specimen.pvd "
-                     "(ParaView), resolved_case.yaml, run.log\n";
-      }
+    if (the_case.test == "tensile")
+      run_tensile(the_case, communicator, root);
+    else
+      run_indentation(the_case, communicator, root);
     return 0;
   }
 } // namespace

@@ -1,6 +1,8 @@
 // YAML case files: parse -> fill defaults -> validate, and the resolved case written next to
 // every run's results. See CaseFile.h for the rules (required keys, defaults, messages).
 #include <io/CaseFile.h>
+#include <materials/MaterialFactory.h>
+#include <materials/Orientation.h>
 
 #include <yaml-cpp/yaml.h>
 
@@ -10,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -25,23 +28,36 @@ namespace indentsim::io
     // ------------------------------------------------------------------------------------------
     // The schema: allowed keys per section and allowed values of the enumerations.
 
-    const std::vector<std::string> top_level_keys = {
-      "test", "material", "indenter", "specimen", "loading", "contact", "solver", "output"};
+    const std::vector<std::string> top_level_keys = {"test",     "compare_j2", "material",
+                                                     "indenter", "specimen",   "loading",
+                                                     "contact",  "solver",     "output"};
 
+    // Sections and the maps nested in them ("material.elastic"), each with its allowed keys.
     const std::map<std::string, std::vector<std::string>> section_keys = {
       {"material",
        {"model", "young_modulus", "poisson_ratio", "yield_stress", "hardening_modulus",
-        "yield_stress_measure"}},
+        "yield_stress_measure", "lattice", "elastic", "hardening", "yield_exponent_n",
+        "orientation"}},
+      {"material.elastic", {"C11", "C12", "C44"}},
+      {"material.hardening", {"tau0", "tau1", "theta0", "theta1", "q"}},
+      {"material.orientation", {"euler_bunge_deg", "surface_normal", "reference_direction"}},
       {"indenter", {"shape", "a", "delta"}},
-      {"specimen", {"size", "refined_region", "contact_elements", "symmetry", "f_bar"}},
-      {"loading", {"max_depth", "steps", "unload", "unload_steps", "max_cutbacks"}},
+      {"specimen",
+       {"size", "refined_region", "contact_elements", "symmetry", "f_bar", "elements_per_side",
+        "grains", "seed"}},
+      {"loading", {"max_depth", "steps", "unload", "unload_steps", "max_cutbacks", "max_strain"}},
       {"contact",
        {"friction_coefficient", "penalty", "penetration_tolerance", "max_augmentations"}},
       {"solver", {"residual_tolerance", "absolute_tolerance", "max_newton_iterations"}},
       {"output", {"directory", "vtu_every"}}};
 
     const std::vector<std::string> allowed_tests = {"indentation", "tensile"};
-    const std::vector<std::string> allowed_models = {"neo_hookean", "j2"};
+    const std::vector<std::string> allowed_models = {"neo_hookean", "j2", "crystal"};
+    const std::vector<std::string> allowed_lattices = {"fcc"};
+    const std::vector<std::string> planned_lattices = {"bcc", "hcp"}; // recognised, not yet
+    const std::vector<std::string> allowed_grains = {"single", "per_element"};
+    const std::vector<std::string> allowed_orientation_kinds = {"euler_bunge_deg",
+                                                                "surface_normal"};
     const std::vector<std::string> allowed_shapes = {"rounded_cone"};
     const std::vector<std::string> allowed_symmetries = {"full", "quarter"};
     const std::vector<std::string> allowed_yield_measures = {"cauchy", "kirchhoff"};
@@ -49,6 +65,14 @@ namespace indentsim::io
     // Successive halvings of a load increment beyond this leave increments of 1e-9 of the
     // original: more would only hide a model problem.
     constexpr unsigned int max_allowed_cutbacks = 30;
+
+    // n <= 50 keeps (tau / tau_c)^(2n) of eq. 14 finite for every ratio tau / tau_c < 1000 that a
+    // trial state may reach ((10^3)^100 = 10^300 < 1.8e308); the paper uses n = 10.
+    constexpr double max_yield_exponent = 50;
+
+    // The tensile cube has elements_per_side^3 cells; beyond this it would not fit in memory
+    // (and n^3 would overflow the orientation count).
+    constexpr unsigned int max_elements_per_side = 200;
 
     // ------------------------------------------------------------------------------------------
     // Formatting helpers.
@@ -178,8 +202,8 @@ namespace indentsim::io
 
         if (!read_string(root, "", "test", "the kind of test", result.test))
           fail(-1,
-               "missing required key 'test' (allowed: " + join(allowed_tests, ", ") +
-                 "; only indentation is implemented yet)");
+               "missing required key 'test' (allowed: " + join(allowed_tests, ", ") + ")");
+        read_bool(root, "", "compare_j2", result.compare_j2);
 
         {
           const YAML::Node map = section(root, "material");
@@ -194,6 +218,25 @@ namespace indentsim::io
                       material.hardening_modulus);
           read_string(map, "material", "yield_stress_measure", "a stress measure",
                       material.yield_stress_measure);
+
+          // Crystal plasticity (model: crystal); read for every model, used by crystal only.
+          read_string(map, "material", "lattice", "a lattice", material.lattice);
+          const YAML::Node elastic = subsection(map, "material", "elastic");
+          read_double(elastic, "material.elastic", "C11", "C11 in GPa", material.C11);
+          read_double(elastic, "material.elastic", "C12", "C12 in GPa", material.C12);
+          read_double(elastic, "material.elastic", "C44", "C44 in GPa", material.C44);
+          const YAML::Node hardening = subsection(map, "material", "hardening");
+          read_double(hardening, "material.hardening", "tau0", "tau0 in GPa", material.tau0);
+          read_double(hardening, "material.hardening", "tau1", "tau1 in GPa", material.tau1);
+          read_double(hardening, "material.hardening", "theta0", "theta0 in GPa",
+                      material.theta0);
+          read_double(hardening, "material.hardening", "theta1", "theta1 in GPa",
+                      material.theta1);
+          read_double(hardening, "material.hardening", "q", "the latent hardening ratio q",
+                      material.q);
+          read_double(map, "material", "yield_exponent_n", "the exponent n of eq. 14",
+                      material.yield_exponent_n);
+          read_orientation(map, material.orientation);
         }
         {
           const YAML::Node map = section(root, "indenter");
@@ -212,7 +255,11 @@ namespace indentsim::io
           // F-bar by default for plasticity (isochoric flow locks plain hexahedra), plain
           // displacement element by default for hyperelasticity.
           if (!read_bool(map, "specimen", "f_bar", specimen.f_bar))
-            specimen.f_bar = (result.material.model == "j2");
+            specimen.f_bar =
+              (result.material.model == "j2" || result.material.model == "crystal");
+          read_unsigned(map, "specimen", "elements_per_side", specimen.elements_per_side);
+          read_string(map, "specimen", "grains", "a grain layout", specimen.grains);
+          read_unsigned(map, "specimen", "seed", specimen.seed);
         }
         {
           const YAML::Node map = section(root, "loading");
@@ -222,6 +269,7 @@ namespace indentsim::io
           read_bool(map, "loading", "unload", loading.unload);
           read_unsigned(map, "loading", "unload_steps", loading.unload_steps);
           read_unsigned(map, "loading", "max_cutbacks", loading.max_cutbacks);
+          read_double(map, "loading", "max_strain", "a logarithmic strain", loading.max_strain);
         }
         {
           const YAML::Node map = section(root, "contact");
@@ -333,6 +381,68 @@ namespace indentsim::io
                  ": expected a mapping of keys (allowed: " + join(section_keys.at(name)) + ")");
         check_keys(node, name, section_keys.at(name));
         return node;
+      }
+
+      // A map nested in a section (e.g. material.elastic), read like a section.
+      YAML::Node subsection(const YAML::Node  &parent,
+                            const std::string &parent_name,
+                            const std::string &key)
+      {
+        const YAML::Node node = value_node(parent, parent_name, key);
+        const std::string path = key_path(parent_name, key);
+        if (!node.IsDefined() || node.IsNull())
+          return YAML::Node(YAML::NodeType::Undefined);
+        if (!node.IsMap())
+          fail(line_of(node),
+               path + " = " + node_text(node) + ": expected a mapping of keys (allowed: " +
+                 join(section_keys.at(path)) + ")");
+        check_keys(node, path, section_keys.at(path));
+        return node;
+      }
+
+      // material.orientation: exactly one of euler_bunge_deg or surface_normal (which needs
+      // reference_direction: the in-plane direction is never guessed). Absent: the default
+      // Euler angles (0, 0, 0).
+      void read_orientation(const YAML::Node &material_map, OrientationParameters &orientation)
+      {
+        const std::string path = "material.orientation";
+        const YAML::Node  node = subsection(material_map, "material", "orientation");
+        if (!node.IsDefined())
+          return;
+        const bool has_euler = node["euler_bunge_deg"].IsDefined();
+        const bool has_normal = node["surface_normal"].IsDefined();
+        const bool has_reference = node["reference_direction"].IsDefined();
+        const std::string shown = path + " = " + node_text(node) + ": ";
+        const std::string either =
+          "give exactly one of euler_bunge_deg: [phi1, Phi, phi2] (degrees) or "
+          "surface_normal: [h, k, l] together with reference_direction: [u, v, w]";
+        if (has_euler && (has_normal || has_reference))
+          fail(line_of(node), shown + "both Euler angles and a surface normal given; " + either);
+        if (!has_euler && !has_normal && !has_reference)
+          fail(line_of(node), shown + "no orientation given; " + either);
+        if (has_normal && !has_reference)
+          fail(line_of(node),
+               shown + "surface_normal needs reference_direction, the crystal direction [u, v, "
+                       "w] along the sample x axis (perpendicular to the normal, e.g. [1, -1, "
+                       "0] for [1, 1, 1]); it is not guessed");
+        if (has_reference && !has_normal)
+          fail(line_of(node),
+               shown + "reference_direction is only used with surface_normal; " + either);
+
+        if (has_euler)
+          {
+            orientation.kind = "euler_bunge_deg";
+            read_triple(node, path, "euler_bunge_deg", orientation.euler_bunge_deg,
+                        "[phi1, Phi, phi2] in degrees", "degrees");
+          }
+        else
+          {
+            orientation.kind = "surface_normal";
+            read_triple(node, path, "surface_normal", orientation.surface_normal,
+                        "[h, k, l], a crystal direction", "a Miller index");
+            read_triple(node, path, "reference_direction", orientation.reference_direction,
+                        "[u, v, w], a crystal direction", "a Miller index");
+          }
       }
 
       // The value node of `key`, or an undefined node if the key is absent.
@@ -459,13 +569,15 @@ namespace indentsim::io
       void read_triple(const YAML::Node       &map,
                        const std::string      &section_name,
                        const std::string      &key,
-                       std::array<double, 3>  &values)
+                       std::array<double, 3>  &values,
+                       const std::string      &description = "[x, y, z] in um",
+                       const std::string      &unit = "um")
       {
         const YAML::Node node = value_node(map, section_name, key);
         if (!node.IsDefined())
           return;
         const std::string path = key_path(section_name, key);
-        const std::string expected = "expected a list of 3 numbers [x, y, z] in um";
+        const std::string expected = "expected a list of 3 numbers " + description;
         if (!node.IsSequence())
           fail(line_of(node), path + " = " + node_text(node) + ": " + expected);
         if (node.size() != 3)
@@ -473,7 +585,7 @@ namespace indentsim::io
                path + " = " + node_text(node) + ": " + expected + ", got " +
                  std::to_string(node.size()) + " entries");
         for (std::size_t i = 0; i < 3; ++i)
-          values[i] = parse_double(node[i], path + "[" + std::to_string(i) + "]", "um");
+          values[i] = parse_double(node[i], path + "[" + std::to_string(i) + "]", unit);
       }
     };
 
@@ -499,9 +611,11 @@ namespace indentsim::io
         const auto &o = checked.output;
 
         check_choice("test", checked.test, allowed_tests);
-        if (checked.test == "tensile")
-          reject("test", checked.test,
-                 "the tensile test is not implemented yet; only 'indentation' is allowed");
+        const bool tensile = (checked.test == "tensile");
+        if (checked.compare_j2 && !tensile)
+          reject("compare_j2", format_bool(checked.compare_j2),
+                 "only the tensile test can repeat the run with J2 (test: tensile); the "
+                 "indentation test compares models through separate case files");
 
         check_choice("material.model", m.model, allowed_models);
         if (!(m.young_modulus > 0.))
@@ -519,6 +633,7 @@ namespace indentsim::io
                  "the hardening modulus H must be >= 0 GPa (0: perfect plasticity)");
         check_choice("material.yield_stress_measure", m.yield_stress_measure,
                      allowed_yield_measures);
+        validate_crystal_parameters();
 
         check_choice("indenter.shape", ind.shape, allowed_shapes);
         if (!(ind.a > 0.))
@@ -552,6 +667,17 @@ namespace indentsim::io
                  "symmetry: quarter the modelled N/2 x N/2 faces must be even as well; a "
                  "multiple of 4 satisfies both");
         check_choice("specimen.symmetry", s.symmetry, allowed_symmetries);
+        if (m.model == "crystal" && !tensile && s.symmetry == "quarter")
+          check_quarter_symmetry_of_the_lattice();
+        if (s.elements_per_side < 1 || s.elements_per_side > max_elements_per_side)
+          reject("specimen.elements_per_side", std::to_string(s.elements_per_side),
+                 "the tensile cube has n x n x n elements of 1 um; n must satisfy 1 <= n <= " +
+                   std::to_string(max_elements_per_side));
+        check_choice("specimen.grains", s.grains, allowed_grains);
+        if (s.grains == "per_element" && !tensile)
+          reject("specimen.grains", s.grains,
+                 "a random orientation per element is only implemented for test: tensile; the "
+                 "indentation test models a single crystal (use grains: single)");
 
         if (!(l.max_depth > 0.))
           reject("loading.max_depth", format_number(l.max_depth), "must be > 0 um");
@@ -565,6 +691,9 @@ namespace indentsim::io
         if (l.max_cutbacks > max_allowed_cutbacks)
           reject("loading.max_cutbacks", std::to_string(l.max_cutbacks),
                  "must be <= " + std::to_string(max_allowed_cutbacks));
+        if (!(l.max_strain > 0. && l.max_strain <= 1.))
+          reject("loading.max_strain", format_number(l.max_strain),
+                 "the final logarithmic strain of the tensile test must satisfy 0 < strain <= 1");
 
         if (!(c.friction_coefficient >= 0.))
           reject("contact.friction_coefficient", format_number(c.friction_coefficient),
@@ -597,6 +726,122 @@ namespace indentsim::io
     private:
       const Case      &checked;
       const OriginMap *value_origins;
+
+      // The first of `paths` that the case file gave explicitly, else the first: a check on a
+      // pair of values then points at the line the user wrote.
+      std::string given_or_first(std::initializer_list<std::string> paths) const
+      {
+        if (value_origins != nullptr)
+          for (const auto &path : paths)
+            if (value_origins->count(path) > 0)
+              return path;
+        return *paths.begin();
+      }
+
+      // Keys of the crystal model. They are checked for every model (the resolved case always
+      // holds them), but only model: crystal uses them.
+      void validate_crystal_parameters() const
+      {
+        const auto &m = checked.material;
+        if (std::find(planned_lattices.begin(), planned_lattices.end(), m.lattice) !=
+            planned_lattices.end())
+          reject("material.lattice", "'" + m.lattice + "'",
+                 "only fcc ({111}<110>, 12 slip systems) is implemented; bcc and hcp are not "
+                 "yet");
+        check_choice("material.lattice", m.lattice, allowed_lattices);
+
+        // Cubic stiffness positive definite: eigenvalues C11 + 2 C12 (dilatation), C11 - C12
+        // (tetragonal shear) and C44 (shear).
+        const std::string constants = "(C11 = " + format_number(m.C11) +
+                                      ", C12 = " + format_number(m.C12) +
+                                      ", C44 = " + format_number(m.C44) + " GPa)";
+        if (!(m.C44 > 0.))
+          reject("material.elastic.C44", format_number(m.C44),
+                 "the cubic stiffness must be positive definite: C44 > 0 GPa " + constants);
+        if (!(m.C11 - m.C12 > 0.))
+          {
+            const std::string path =
+              given_or_first({"material.elastic.C12", "material.elastic.C11"});
+            reject(path, format_number(path == "material.elastic.C11" ? m.C11 : m.C12),
+                   "the cubic stiffness must be positive definite: C11 - C12 > 0 " + constants);
+          }
+        if (!(m.C11 + 2. * m.C12 > 0.))
+          {
+            const std::string path =
+              given_or_first({"material.elastic.C12", "material.elastic.C11"});
+            reject(path, format_number(path == "material.elastic.C11" ? m.C11 : m.C12),
+                   "the cubic stiffness must be positive definite: C11 + 2 C12 > 0 (a positive "
+                   "bulk modulus) " + constants);
+          }
+
+        if (!(m.tau0 > 0.))
+          reject("material.hardening.tau0", format_number(m.tau0),
+                 "the initial critical resolved shear stress tau0 must be > 0 GPa");
+        if (!(m.tau1 >= 0.))
+          reject("material.hardening.tau1", format_number(m.tau1), "must be >= 0 GPa");
+        if (!(m.theta0 >= 0.))
+          reject("material.hardening.theta0", format_number(m.theta0), "must be >= 0 GPa");
+        if (!(m.theta1 >= 0.))
+          reject("material.hardening.theta1", format_number(m.theta1), "must be >= 0 GPa");
+        if (m.theta0 > 0. && !(m.tau1 > 0.))
+          reject(given_or_first({"material.hardening.tau1", "material.hardening.theta0"}),
+                 "tau1 = " + format_number(m.tau1) + ", theta0 = " + format_number(m.theta0),
+                 "tau1 must be > 0 when theta0 > 0: the Voce law tau_c = tau0 + (tau1 + theta1 "
+                 "Gamma)(1 - exp(-theta0 Gamma / tau1)) divides by tau1 (for linear hardening "
+                 "set theta0 = 0 and use theta1)");
+        if (!(m.q >= 0.))
+          reject("material.hardening.q", format_number(m.q),
+                 "the latent hardening ratio q must be >= 0 (1: isotropic hardening)");
+        if (!(m.yield_exponent_n >= 1. && m.yield_exponent_n <= max_yield_exponent))
+          reject("material.yield_exponent_n", format_number(m.yield_exponent_n),
+                 "n (exponent 2n in eq. 14) must satisfy 1 <= n <= " +
+                   format_number(max_yield_exponent) +
+                   " (a real number; larger n makes (tau/tau_c)^(2n) overflow)");
+
+        const auto &o = m.orientation;
+        check_choice("material.orientation.kind", o.kind, allowed_orientation_kinds);
+        try
+          {
+            materials::create_orientation(o);
+          }
+        catch (const std::invalid_argument &error)
+          {
+            const std::string what = error.what();
+            if (o.kind == "euler_bunge_deg")
+              reject("material.orientation.euler_bunge_deg", format_triple(o.euler_bunge_deg),
+                     what);
+            else if (what.rfind("reference_direction", 0) == 0)
+              reject("material.orientation.reference_direction",
+                     format_triple(o.reference_direction), what);
+            else
+              reject("material.orientation.surface_normal", format_triple(o.surface_normal),
+                     what);
+          }
+      }
+
+      // The quarter model imposes u_x = 0 on x = 0 and u_y = 0 on y = 0; for a crystal that is
+      // exact only if both planes are mirror planes of the lattice (m-3m point group).
+      void check_quarter_symmetry_of_the_lattice() const
+      {
+        const auto &o = checked.material.orientation;
+        const dealii::Tensor<2, 3> g = materials::create_orientation(o);
+        const dealii::Tensor<1, 3> e_x({1., 0., 0.}), e_y({0., 1., 0.});
+        const bool x_mirror = materials::is_cubic_mirror_plane(g, e_x);
+        const bool y_mirror = materials::is_cubic_mirror_plane(g, e_y);
+        if (x_mirror && y_mirror)
+          return;
+        const std::string orientation =
+          o.kind == "surface_normal" ?
+            "material.orientation: surface_normal " + format_triple(o.surface_normal) +
+              ", reference_direction " + format_triple(o.reference_direction) :
+            "material.orientation: euler_bunge_deg " + format_triple(o.euler_bunge_deg);
+        reject("specimen.symmetry", checked.specimen.symmetry,
+               "the quarter model needs the sample planes x = 0 and y = 0 to be mirror planes "
+               "of the cubic lattice, but for " + orientation + " the plane " +
+                 (x_mirror ? "y = 0" : (y_mirror ? "x = 0" : "x = 0 (and y = 0)")) +
+                 " is not one (e.g. a (111) surface has no two perpendicular mirror planes); "
+                 "use symmetry: full");
+      }
 
       [[noreturn]] void reject(const std::string &path,
                                const std::string &value,
@@ -734,10 +979,12 @@ namespace indentsim::io
         << "# Units: lengths um, forces mN, stresses and moduli GPa (1 GPa*um^2 = 1 mN).\n";
     if (!c.source_file.empty())
       out << "# Read from: " << c.source_file << '\n';
-    line("test: " + c.test, "indentation (tensile: not implemented yet)");
+    line("test: " + c.test, "indentation | tensile");
+    line("compare_j2: " + format_bool(c.compare_j2),
+         "tensile: also run J2 (young_modulus...) on the same mesh");
 
     out << "material:\n";
-    line("  model: " + c.material.model, "neo_hookean | j2");
+    line("  model: " + c.material.model, "neo_hookean | j2 | crystal");
     line("  young_modulus: " + format_number(c.material.young_modulus), "E [GPa]");
     line("  poisson_ratio: " + format_number(c.material.poisson_ratio), "nu [-], -1 < nu < 0.5");
     line("  yield_stress: " + format_number(c.material.yield_stress), "sigma_y0 [GPa] (j2)");
@@ -745,6 +992,31 @@ namespace indentsim::io
          "H [GPa], linear isotropic hardening (j2)");
     line("  yield_stress_measure: " + c.material.yield_stress_measure,
          "cauchy | kirchhoff: stress in the Mises yield function (j2)");
+    line("  lattice: " + c.material.lattice, "fcc: {111}<110> slip (crystal)");
+    line("  elastic:", "cubic constants, lattice frame (crystal)");
+    line("    C11: " + format_number(c.material.C11), "[GPa]");
+    line("    C12: " + format_number(c.material.C12), "[GPa]");
+    line("    C44: " + format_number(c.material.C44), "[GPa]");
+    line("  hardening:", "extended Voce law (crystal)");
+    line("    tau0: " + format_number(c.material.tau0), "initial critical shear [GPa]");
+    line("    tau1: " + format_number(c.material.tau1), "[GPa]");
+    line("    theta0: " + format_number(c.material.theta0), "initial hardening rate [GPa]");
+    line("    theta1: " + format_number(c.material.theta1), "asymptotic hardening rate [GPa]");
+    line("    q: " + format_number(c.material.q), "latent hardening ratio [-]");
+    line("  yield_exponent_n: " + format_number(c.material.yield_exponent_n),
+         "n, exponent 2n of eq. 14 (crystal)");
+    line("  orientation:", "Bunge, passive: v_crystal = g v_sample (crystal)");
+    const auto &orientation = c.material.orientation;
+    if (orientation.kind == "surface_normal")
+      {
+        line("    surface_normal: " + format_triple(orientation.surface_normal),
+             "crystal direction [hkl] along sample z");
+        line("    reference_direction: " + format_triple(orientation.reference_direction),
+             "crystal direction [uvw] along sample x");
+      }
+    else
+      line("    euler_bunge_deg: " + format_triple(orientation.euler_bunge_deg),
+           "(phi1, Phi, phi2) [deg]");
 
     out << "indenter:\n";
     line("  shape: " + c.indenter.shape,
@@ -760,15 +1032,22 @@ namespace indentsim::io
          "N: N x N faces across the refined top face");
     line("  symmetry: " + c.specimen.symmetry, "full | quarter (x >= 0, y >= 0)");
     line("  f_bar: " + format_bool(c.specimen.f_bar), "F-bar element");
+    line("  elements_per_side: " + std::to_string(c.specimen.elements_per_side),
+         "tensile: cube of n^3 elements of 1 um");
+    line("  grains: " + c.specimen.grains, "single | per_element (tensile)");
+    line("  seed: " + std::to_string(c.specimen.seed), "random orientations (per_element)");
 
     out << "loading:\n";
     line("  max_depth: " + format_number(c.loading.max_depth), "[um]");
-    line("  steps: " + std::to_string(c.loading.steps), "increments from 0 to max_depth");
+    line("  steps: " + std::to_string(c.loading.steps),
+         "increments to max_depth (tensile: max_strain)");
     line("  unload: " + format_bool(c.loading.unload), "then back until the force vanishes");
     line("  unload_steps: " + std::to_string(c.loading.unload_steps),
          "0: same increment size as loading");
     line("  max_cutbacks: " + std::to_string(c.loading.max_cutbacks),
          "successive halvings of an increment");
+    line("  max_strain: " + format_number(c.loading.max_strain),
+         "tensile: final logarithmic strain along z [-]");
 
     out << "contact:\n";
     line("  friction_coefficient: " + format_number(c.contact.friction_coefficient),

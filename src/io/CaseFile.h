@@ -2,8 +2,12 @@
 //
 // A case file is YAML in um, mN, GPa. Only two keys are required: `test` and `material.model`;
 // every other key has the default listed in Case.h (and in the README). `specimen.f_bar`, when
-// absent, defaults to true for `j2` and false for `neo_hookean`. A relative `output.directory`
-// is relative to the current working directory (not to the case file).
+// absent, defaults to true for `j2` and `crystal` and false for `neo_hookean`. A relative
+// `output.directory` is relative to the current working directory (not to the case file).
+// The crystal keys (material.lattice, .elastic, .hardening, .yield_exponent_n, .orientation)
+// are read and checked for every model but used only by `crystal`; `material.orientation` is
+// either `euler_bunge_deg` or `surface_normal` + `reference_direction`, and the resolved case
+// writes the form that was given.
 //
 // Bad input never reaches the solver: every problem raises one CaseFileError whose message names
 // the file, the key path (e.g. `material.poisson_ratio`), the offending value and what is allowed.
@@ -48,14 +52,28 @@ namespace indentsim::io
   {
     inline constexpr const char *load_penetration_csv = "load_penetration.csv";
     inline constexpr const char *load_penetration_png = "load_penetration.png";
+    inline constexpr const char *stress_strain_csv    = "stress_strain.csv";    // tensile
+    inline constexpr const char *stress_strain_j2_csv = "stress_strain_j2.csv"; // compare_j2
+    inline constexpr const char *stress_strain_png    = "stress_strain.png";
     inline constexpr const char *resolved_case        = "resolved_case.yaml";
     inline constexpr const char *log                  = "run.log";
+    // Pile-up of the top surface (solver/PileUp.h) at maximum depth and after unloading.
+    inline constexpr const char *pileup_json          = "pileup.json";
+    inline constexpr const char *pileup_max_depth_csv = "pileup_max_depth.csv";
+    inline constexpr const char *pileup_unloaded_csv  = "pileup_unloaded.csv";
+    inline constexpr const char *pileup_profiles_csv  = "pileup_profiles.csv";
+    inline constexpr const char *pileup_max_depth_png = "pileup_max_depth.png";
+    inline constexpr const char *pileup_unloaded_png  = "pileup_unloaded.png";
+    inline constexpr const char *pileup_profiles_png  = "pileup_profiles.png";
     // ParaView series: specimen.pvd, specimen_<step>.pvtu, specimen_<step>.<rank>.vtu.
     inline constexpr const char *paraview_basename = "specimen";
 
     // Exact names that mark an earlier run and are removed by --overwrite.
-    inline constexpr std::array<const char *, 4> known_names = {
-      {load_penetration_csv, load_penetration_png, resolved_case, log}};
+    inline constexpr std::array<const char *, 14> known_names = {
+      {load_penetration_csv, load_penetration_png, stress_strain_csv, stress_strain_j2_csv,
+       stress_strain_png, resolved_case, log, pileup_json, pileup_max_depth_csv,
+       pileup_unloaded_csv, pileup_profiles_csv, pileup_max_depth_png, pileup_unloaded_png,
+       pileup_profiles_png}};
     // Files named paraview_basename* with these extensions are ours as well.
     inline constexpr std::array<const char *, 3> paraview_extensions = {
       {".pvd", ".vtu", ".pvtu"}};

@@ -20,8 +20,8 @@ namespace indentsim::io
   std::string usage_text()
   {
     return "Usage:\n"
-           "  indentsim run CASE.yaml [--output DIR] [--overwrite]\n"
-           "  indentsim check CASE.yaml [--output DIR]\n"
+           "  indentsim run CASE.yaml [--output DIR] [--overwrite] [--compare-j2]\n"
+           "  indentsim check CASE.yaml [--output DIR] [--compare-j2]\n"
            "  indentsim --help\n"
            "  indentsim --version\n";
   }
@@ -29,14 +29,16 @@ namespace indentsim::io
   std::string help_text()
   {
     return "indentsim: finite-element simulation of instrumented indentation\n"
-           "(finite-strain solid, rigid analytic indenter, frictionless contact).\n\n" +
+           "(finite-strain solid, rigid analytic indenter, frictionless contact) and of the\n"
+           "uniaxial tensile test used to calibrate the material (test: tensile).\n\n" +
            usage_text() +
            "\n"
            "Commands:\n"
            "  run CASE.yaml     Validate the case file, then compute. Writes into the output\n"
            "                    directory: load_penetration.csv, load_penetration.png,\n"
            "                    resolved_case.yaml (every default filled in), ParaView files\n"
-           "                    (PVD + VTU/PVTU) and a log.\n"
+           "                    (PVD + VTU/PVTU) and a log; for test: tensile\n"
+           "                    stress_strain.csv, stress_strain.png instead of the first two.\n"
            "  check CASE.yaml   Validate the case file and print the resolved case; no\n"
            "                    computation, nothing is written.\n"
            "\n"
@@ -46,6 +48,10 @@ namespace indentsim::io
            "  --overwrite       Replace the results of an earlier run in the output directory\n"
            "                    (without it, such a directory is refused; only indentsim's own\n"
            "                    output files are removed).\n"
+           "  --compare-j2      Tensile test: also run J2 plasticity (material.young_modulus,\n"
+           "                    poisson_ratio, yield_stress, hardening_modulus) on the same\n"
+           "                    mesh and loading; writes stress_strain_j2.csv (sets the case\n"
+           "                    key compare_j2: true).\n"
            "  -h, --help        Show this help.\n"
            "  --version         Show the version.\n"
            "\n"
@@ -119,8 +125,11 @@ namespace indentsim::io
               bad_usage("--overwrite is only meaningful with 'run' ('check' writes nothing)");
             options.overwrite = true;
           }
+        else if (argument == "--compare-j2")
+          options.compare_j2 = true;
         else if (!argument.empty() && argument[0] == '-')
-          bad_usage("unknown option '" + argument + "'; allowed: --output DIR, --overwrite");
+          bad_usage("unknown option '" + argument +
+                    "'; allowed: --output DIR, --overwrite, --compare-j2");
         else if (options.case_file.empty())
           options.case_file = argument;
         else

@@ -1,6 +1,6 @@
 // The command line of the indentsim executable:
-//   indentsim run CASE.yaml [--output DIR] [--overwrite]
-//   indentsim check CASE.yaml [--output DIR]
+//   indentsim run CASE.yaml [--output DIR] [--overwrite] [--compare-j2]
+//   indentsim check CASE.yaml [--output DIR] [--compare-j2]
 //   indentsim --help | --version
 #pragma once
 
@@ -32,6 +32,7 @@ namespace indentsim::io
     std::string                case_file;         // run, check
     std::optional<std::string> output_directory;  // --output DIR: replaces output.directory
     bool                       overwrite = false; // --overwrite: replace an earlier run's results
+    bool                       compare_j2 = false; // --compare-j2: sets the case's compare_j2
   };
 
   // `arguments` excludes the program name. Throws CommandLineError.

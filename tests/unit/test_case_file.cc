@@ -63,6 +63,24 @@ namespace
       EXPECT_NE(message.find(part), std::string::npos) << "missing '" << part << "'";
   }
 
+  // Asserts that validate_case rejects `c` with a message containing every part.
+  void expect_rejected_case(const Case &c, std::initializer_list<std::string> parts)
+  {
+    std::string message;
+    try
+      {
+        validate_case(c);
+      }
+    catch (const CaseFileError &error)
+      {
+        message = error.what();
+      }
+    SCOPED_TRACE("message: " + message);
+    ASSERT_FALSE(message.empty()) << "no CaseFileError thrown";
+    for (const auto &part : parts)
+      EXPECT_NE(message.find(part), std::string::npos) << "missing '" << part << "'";
+  }
+
   // minimal_case plus one more section.
   std::string with(const std::string &extra) { return minimal_case + extra; }
 } // namespace
@@ -116,7 +134,8 @@ TEST(CaseFile, MinimalCaseGetsAllDefaults)
   EXPECT_TRUE(c == expected);
 }
 
-// The F-bar default follows the material: on for j2, off for neo_hookean, and an explicit value wins.
+// The F-bar default follows the material: on for j2 and crystal, off for neo_hookean, and an
+// explicit value wins.
 TEST(CaseFile, FBarDefaultDependsOnModel)
 {
   EXPECT_TRUE(parse_case_yaml(minimal_case, "a.yaml").specimen.f_bar);
@@ -127,6 +146,8 @@ TEST(CaseFile, FBarDefaultDependsOnModel)
                               "specimen:\n  f_bar: true\n",
                               "a.yaml")
                 .specimen.f_bar);
+  EXPECT_TRUE(parse_case_yaml("test: indentation\nmaterial:\n  model: crystal\n", "a.yaml")
+                .specimen.f_bar);
 }
 
 // Writing the resolved case and reading it back gives an identical case for every key.
@@ -135,7 +156,12 @@ TEST(CaseFile, ResolvedCaseRoundTrips)
   // Every value differs from its default, so a key the writer forgot cannot go unnoticed.
   Case c;
   c.test = "indentation";
-  c.material = {"neo_hookean", 70.5, 0.3, 0.25, 0.75, "kirchhoff"};
+  c.material.model = "neo_hookean";
+  c.material.young_modulus = 70.5;
+  c.material.poisson_ratio = 0.3;
+  c.material.yield_stress = 0.25;
+  c.material.hardening_modulus = 0.75;
+  c.material.yield_stress_measure = "kirchhoff";
   c.indenter = {"rounded_cone", 1.9, 0.0123};
   c.specimen = {{{300., 310., 150.}}, {{100., 90., 25.}}, 16, "quarter", false};
   c.loading = {5.5, 33, false, 7, 5};
@@ -143,6 +169,24 @@ TEST(CaseFile, ResolvedCaseRoundTrips)
   c.solver = {1e-9, 2.5e-11, 31};
   c.output = {"out dir: #1/\"quoted\"", 3};
   c.source_file = "whatever.yaml";
+  // The crystal and tensile keys (a tensile case, so that compare_j2 and per_element are valid).
+  c.test = "tensile";
+  c.compare_j2 = true;
+  c.material.lattice = "fcc";
+  c.material.C11 = 108.2;
+  c.material.C12 = 61.3;
+  c.material.C44 = 28.5;
+  c.material.tau0 = 0.13;
+  c.material.tau1 = 0.03;
+  c.material.theta0 = 0.2;
+  c.material.theta1 = 0.007;
+  c.material.q = 1.2;
+  c.material.yield_exponent_n = 12.5;
+  c.material.orientation.euler_bunge_deg = {{10., 20.5, 30.}};
+  c.specimen.elements_per_side = 4;
+  c.specimen.grains = "per_element";
+  c.specimen.seed = 42;
+  c.loading.max_strain = 0.15;
   validate_case(c);
   ASSERT_FALSE(c.material == Case().material);
 
@@ -162,6 +206,261 @@ TEST(CaseFile, ResolvedCaseRoundTrips)
   Case awkward_back = parse_case_yaml(resolved_case_yaml(awkward), "");
   awkward_back.source_file = awkward.source_file;
   EXPECT_TRUE(awkward_back == awkward);
+
+  // An orientation given as surface normal and reference direction is written in that form.
+  Case normal;
+  normal.material.model = "crystal";
+  normal.material.orientation.kind = "surface_normal";
+  normal.material.orientation.surface_normal = {{1., 1., 1.}};
+  normal.material.orientation.reference_direction = {{1., -1., 0.}};
+  validate_case(normal);
+  const std::string text = resolved_case_yaml(normal);
+  EXPECT_NE(text.find("surface_normal: [1, 1, 1]"), std::string::npos) << text;
+  EXPECT_NE(text.find("reference_direction: [1, -1, 0]"), std::string::npos) << text;
+  EXPECT_EQ(text.find("euler_bunge_deg"), std::string::npos) << text;
+  Case normal_back = parse_case_yaml(text, "");
+  normal_back.source_file = normal.source_file;
+  EXPECT_TRUE(normal_back == normal)
+    << text << "\nread back as\n"
+    << resolved_case_yaml(normal_back);
+}
+
+// Every crystal-plasticity and tensile-test key of the case file reaches the Case.
+TEST(CaseFile, CrystalAndTensileKeysAreParsed)
+{
+  const Case c = parse_case_yaml("test: tensile\n"
+                                 "compare_j2: true\n"
+                                 "material:\n"
+                                 "  model: crystal\n"
+                                 "  lattice: fcc\n"
+                                 "  elastic: {C11: 107.5, C12: 61.5, C44: 29.5}\n"
+                                 "  hardening: {tau0: 0.11, tau1: 0.025, theta0: 0.15, "
+                                 "theta1: 0.004, q: 1.1}\n"
+                                 "  yield_exponent_n: 7.5\n"
+                                 "  orientation: {euler_bunge_deg: [15, 35.5, 45]}\n"
+                                 "specimen:\n"
+                                 "  elements_per_side: 5\n"
+                                 "  grains: per_element\n"
+                                 "  seed: 7\n"
+                                 "loading:\n"
+                                 "  max_strain: 0.25\n"
+                                 "  steps: 50\n",
+                                 "tensile.yaml");
+  EXPECT_EQ(c.test, "tensile");
+  EXPECT_TRUE(c.compare_j2);
+  EXPECT_EQ(c.material.model, "crystal");
+  EXPECT_EQ(c.material.lattice, "fcc");
+  EXPECT_DOUBLE_EQ(c.material.C11, 107.5);
+  EXPECT_DOUBLE_EQ(c.material.C12, 61.5);
+  EXPECT_DOUBLE_EQ(c.material.C44, 29.5);
+  EXPECT_DOUBLE_EQ(c.material.tau0, 0.11);
+  EXPECT_DOUBLE_EQ(c.material.tau1, 0.025);
+  EXPECT_DOUBLE_EQ(c.material.theta0, 0.15);
+  EXPECT_DOUBLE_EQ(c.material.theta1, 0.004);
+  EXPECT_DOUBLE_EQ(c.material.q, 1.1);
+  EXPECT_DOUBLE_EQ(c.material.yield_exponent_n, 7.5);
+  EXPECT_EQ(c.material.orientation.kind, "euler_bunge_deg");
+  EXPECT_EQ(c.material.orientation.euler_bunge_deg, (std::array<double, 3>{{15., 35.5, 45.}}));
+  EXPECT_EQ(c.specimen.elements_per_side, 5u);
+  EXPECT_EQ(c.specimen.grains, "per_element");
+  EXPECT_EQ(c.specimen.seed, 7u);
+  EXPECT_DOUBLE_EQ(c.loading.max_strain, 0.25);
+  EXPECT_EQ(c.loading.steps, 50u);
+  EXPECT_TRUE(c.specimen.f_bar) << "F-bar is the default for crystal plasticity";
+
+  const Case n = parse_case_yaml("test: indentation\nmaterial:\n  model: crystal\n"
+                                 "  orientation:\n    surface_normal: [1, 1, 0]\n"
+                                 "    reference_direction: [0, 0, 1]\n",
+                                 "normal.yaml");
+  EXPECT_EQ(n.material.orientation.kind, "surface_normal");
+  EXPECT_EQ(n.material.orientation.surface_normal, (std::array<double, 3>{{1., 1., 0.}}));
+  EXPECT_EQ(n.material.orientation.reference_direction, (std::array<double, 3>{{0., 0., 1.}}));
+
+  // Without any crystal key the crystal model takes the paper's Table 2 and the (001) plane.
+  const Case d = parse_case_yaml("test: tensile\nmaterial:\n  model: crystal\n", "d.yaml");
+  EXPECT_DOUBLE_EQ(d.material.C11, 106.7);
+  EXPECT_DOUBLE_EQ(d.material.C12, 60.4);
+  EXPECT_DOUBLE_EQ(d.material.C44, 28.3);
+  EXPECT_DOUBLE_EQ(d.material.tau0, 0.12);
+  EXPECT_DOUBLE_EQ(d.material.tau1, 0.02);
+  EXPECT_DOUBLE_EQ(d.material.theta0, 0.1);
+  EXPECT_DOUBLE_EQ(d.material.theta1, 0.006);
+  EXPECT_DOUBLE_EQ(d.material.q, 1.4);
+  EXPECT_DOUBLE_EQ(d.material.yield_exponent_n, 10.);
+  EXPECT_EQ(d.material.orientation.kind, "euler_bunge_deg");
+  EXPECT_EQ(d.material.orientation.euler_bunge_deg, (std::array<double, 3>{{0., 0., 0.}}));
+  EXPECT_EQ(d.specimen.grains, "single");
+  EXPECT_FALSE(d.compare_j2);
+}
+
+// Crystal parameters outside their admissible range are rejected with key path, value and rule.
+TEST(CaseFile, CrystalRangesAreChecked)
+{
+  const std::string crystal = "test: indentation\nmaterial:\n  model: crystal\n";
+  const auto crystal_with = [&](const std::string &extra) { return crystal + extra; };
+  expect_rejected(crystal_with("  lattice: bcc\n"),
+                  {"material.lattice = 'bcc'", "only fcc", "bcc and hcp are not yet", ":4:"});
+  expect_rejected(crystal_with("  lattice: hcp\n"), {"material.lattice = 'hcp'", "not yet"});
+  expect_rejected(crystal_with("  lattice: fc\n"),
+                  {"material.lattice = 'fc'", "allowed: fcc", "did you mean 'fcc'"});
+  expect_rejected(crystal_with("  elastic: {C44: 0}\n"),
+                  {"material.elastic.C44 = 0", "positive definite", "C44 > 0"});
+  expect_rejected(crystal_with("  elastic: {C12: 110}\n"),
+                  {"material.elastic.C12 = 110", "C11 - C12 > 0", "C11 = 106.7"});
+  expect_rejected(crystal_with("  elastic: {C11: 50}\n"),
+                  {"material.elastic.C11 = 50", "C11 - C12 > 0", "C12 = 60.4"});
+  expect_rejected(crystal_with("  elastic: {C11: 10, C12: -6}\n"),
+                  {"material.elastic.C12 = -6", "C11 + 2 C12 > 0"});
+  expect_rejected(crystal_with("  hardening: {tau0: 0}\n"),
+                  {"material.hardening.tau0 = 0", "> 0 GPa"});
+  expect_rejected(crystal_with("  hardening: {tau1: -0.01}\n"),
+                  {"material.hardening.tau1 = -0.01", ">= 0"});
+  expect_rejected(crystal_with("  hardening: {theta0: -1}\n"),
+                  {"material.hardening.theta0 = -1", ">= 0"});
+  expect_rejected(crystal_with("  hardening: {theta1: -1}\n"),
+                  {"material.hardening.theta1 = -1", ">= 0"});
+  expect_rejected(crystal_with("  hardening: {q: -0.5}\n"),
+                  {"material.hardening.q = -0.5", ">= 0"});
+  expect_rejected(crystal_with("  hardening: {tau1: 0}\n"),
+                  {"material.hardening.tau1", "tau1 = 0, theta0 = 0.1", "divides by tau1"});
+  EXPECT_EQ(error_of(crystal_with("  hardening: {tau1: 0, theta0: 0}\n")), "")
+    << "linear hardening (theta0 = 0) needs no tau1";
+  expect_rejected(crystal_with("  yield_exponent_n: 0.5\n"),
+                  {"material.yield_exponent_n = 0.5", "1 <= n <= 50"});
+  expect_rejected(crystal_with("  yield_exponent_n: 60\n"),
+                  {"material.yield_exponent_n = 60", "1 <= n <= 50", "overflow"});
+  EXPECT_EQ(error_of(crystal_with("  yield_exponent_n: 2.5\n")), "") << "n may be real";
+  expect_rejected(crystal_with("  elastic: {C11: stiff}\n"),
+                  {"material.elastic.C11", "stiff", "expected a number"});
+  expect_rejected(crystal_with("  elastic: 106.7\n"),
+                  {"material.elastic = 106.7", "expected a mapping", "C11, C12, C44"});
+  expect_rejected(crystal_with("  elastic: {C13: 50}\n"),
+                  {"unknown key 'material.elastic.C13'", "did you mean 'material.elastic.C11'"});
+  expect_rejected(crystal_with("  tau0: 0.1\n"),
+                  {"unknown key 'material.tau0'", "did you mean 'material.hardening.tau0'"});
+}
+
+// The orientation takes exactly one form, validated like every other key.
+TEST(CaseFile, OrientationIsChecked)
+{
+  const std::string crystal = "test: indentation\nmaterial:\n  model: crystal\n";
+  const auto crystal_with = [&](const std::string &extra) { return crystal + extra; };
+  expect_rejected(crystal_with("  orientation: {surface_normal: [1, 1, 1]}\n"),
+                  {"material.orientation", "[1, 1, 1]", "needs reference_direction",
+                   "not guessed", ":4:"});
+  expect_rejected(crystal_with("  orientation: {reference_direction: [1, 0, 0]}\n"),
+                  {"material.orientation", "[1, 0, 0]", "only used with surface_normal"});
+  expect_rejected(crystal_with("  orientation: {euler_bunge_deg: [0, 0, 0], "
+                               "surface_normal: [0, 0, 1], reference_direction: [1, 0, 0]}\n"),
+                  {"material.orientation", "both", "exactly one"});
+  expect_rejected(crystal_with("  orientation: {}\n"),
+                  {"material.orientation", "no orientation given", "euler_bunge_deg"});
+  expect_rejected(crystal_with("  orientation: {surface_normal: [1, 1, 1], "
+                               "reference_direction: [1, 0, 0]}\n"),
+                  {"material.orientation.reference_direction = [1, 0, 0]", "not perpendicular",
+                   ":4:"});
+  expect_rejected(crystal_with("  orientation: {surface_normal: [0, 0, 0], "
+                               "reference_direction: [1, 0, 0]}\n"),
+                  {"material.orientation.surface_normal = [0, 0, 0]", "non-zero"});
+  expect_rejected(crystal_with("  orientation: {surface_normal: [0, 0, 1], "
+                               "reference_direction: [0, 0, 0]}\n"),
+                  {"material.orientation.reference_direction = [0, 0, 0]", "non-zero"});
+  expect_rejected(crystal_with("  orientation: {euler_bunge_deg: [0, 90]}\n"),
+                  {"material.orientation.euler_bunge_deg", "[0, 90]", "3 numbers", "degrees"});
+  expect_rejected(crystal_with("  orientation: {euler_bunge_deg: [0, ninety, 0]}\n"),
+                  {"material.orientation.euler_bunge_deg[1]", "ninety", "expected a number"});
+  expect_rejected(crystal_with("  orientation: {miller: [1, 1, 1]}\n"),
+                  {"unknown key 'material.orientation.miller'", "surface_normal"});
+  expect_rejected(crystal_with("  orientation: [0, 0, 0]\n"),
+                  {"material.orientation = [0, 0, 0]", "expected a mapping"});
+
+  Case c;
+  c.material.orientation.kind = "miller";
+  expect_rejected_case(c, {"material.orientation.kind = 'miller'", "euler_bunge_deg"});
+}
+
+// The quarter model of a crystal is exact only if x = 0 and y = 0 are lattice mirror planes.
+TEST(CaseFile, QuarterSymmetryNeedsCubicMirrorPlanes)
+{
+  const std::string quarter_crystal = "test: indentation\nspecimen:\n  symmetry: quarter\n"
+                                      "material:\n  model: crystal\n";
+  expect_rejected(quarter_crystal + "  orientation: {surface_normal: [1, 1, 1], "
+                                    "reference_direction: [1, -1, 0]}\n",
+                  {"specimen.symmetry = quarter", "mirror planes", "[1, 1, 1]", "y = 0",
+                   "(111)", "use symmetry: full"});
+  expect_rejected(quarter_crystal + "  orientation: {euler_bunge_deg: [10, 0, 0]}\n",
+                  {"specimen.symmetry = quarter", "euler_bunge_deg [10, 0, 0]",
+                   "symmetry: full"});
+  EXPECT_EQ(error_of(quarter_crystal + "  orientation: {euler_bunge_deg: [0, 0, 0]}\n"), "")
+    << "(001) with <100> along x: x = 0 and y = 0 are {100} mirror planes";
+  EXPECT_EQ(error_of(quarter_crystal + "  orientation: {euler_bunge_deg: [45, 0, 0]}\n"), "")
+    << "(001) with <110> along x: {110} mirror planes";
+  EXPECT_EQ(error_of(quarter_crystal + "  orientation: {surface_normal: [0, 1, 1], "
+                                       "reference_direction: [1, 0, 0]}\n"),
+            "")
+    << "(011) with [100] along x: (100) and (01-1) are mirror planes";
+  EXPECT_EQ(error_of(quarter_crystal + "  orientation: {surface_normal: [0, 0, 1], "
+                                       "reference_direction: [1, 0, 0]}\n"),
+            "");
+  // The full model and isotropic models accept any orientation.
+  EXPECT_EQ(error_of("test: indentation\nmaterial:\n  model: crystal\n  orientation: "
+                     "{surface_normal: [1, 1, 1], reference_direction: [1, -1, 0]}\n"),
+            "");
+  EXPECT_EQ(error_of("test: indentation\nspecimen:\n  symmetry: quarter\nmaterial:\n"
+                     "  model: j2\n  orientation: {surface_normal: [1, 1, 1], "
+                     "reference_direction: [1, -1, 0]}\n"),
+            "");
+}
+
+// Tensile-test keys outside their range, or given for the indentation test, are rejected.
+TEST(CaseFile, TensileRangesAreChecked)
+{
+  const std::string tensile = "test: tensile\nmaterial:\n  model: crystal\n";
+  EXPECT_EQ(error_of(tensile), "");
+  expect_rejected(tensile + "specimen:\n  elements_per_side: 0\n",
+                  {"specimen.elements_per_side = 0", "1 <= n"});
+  expect_rejected(tensile + "specimen:\n  elements_per_side: 201\n",
+                  {"specimen.elements_per_side = 201", "n <= 200"});
+  expect_rejected(tensile + "specimen:\n  grains: random\n",
+                  {"specimen.grains = 'random'", "single | per_element"});
+  expect_rejected(tensile + "specimen:\n  seed: -1\n", {"specimen.seed", "-1", "negative"});
+  expect_rejected(tensile + "loading:\n  max_strain: 0\n",
+                  {"loading.max_strain = 0", "0 < strain <= 1"});
+  expect_rejected(tensile + "loading:\n  max_strain: 1.5\n",
+                  {"loading.max_strain = 1.5", "0 < strain <= 1"});
+  expect_rejected(tensile + "compare_j2: yes please\n",
+                  {"compare_j2", "yes please", "true or false"});
+  expect_rejected(with("compare_j2: true\n"),
+                  {"compare_j2 = true", "only the tensile test"});
+  expect_rejected(with("specimen:\n  grains: per_element\n"),
+                  {"specimen.grains = per_element", "only implemented for test: tensile"});
+  expect_rejected(with("elements_per_side: 3\n"),
+                  {"unknown key 'elements_per_side'", "did you mean 'specimen.elements_per_side'"});
+  // The tensile cube ignores specimen.symmetry, so the mirror-plane check does not apply.
+  EXPECT_EQ(error_of(tensile + "  orientation: {surface_normal: [1, 1, 1], "
+                               "reference_direction: [1, -1, 0]}\n"
+                               "specimen:\n  symmetry: quarter\n  grains: per_element\n"),
+            "");
+}
+
+// The tensile example is a valid case with the paper's Table 2 and 27 grains.
+TEST(CaseFile, TensileExampleIsValid)
+{
+  const Case c =
+    read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/tensile_27_grains.yaml");
+  EXPECT_EQ(c.test, "tensile");
+  EXPECT_TRUE(c.compare_j2);
+  EXPECT_EQ(c.material.model, "crystal");
+  EXPECT_DOUBLE_EQ(c.material.C11, 106.7);
+  EXPECT_DOUBLE_EQ(c.material.tau0, 0.12);
+  EXPECT_DOUBLE_EQ(c.material.q, 1.4);
+  EXPECT_DOUBLE_EQ(c.material.yield_exponent_n, 10.);
+  EXPECT_EQ(c.specimen.elements_per_side, 3u);
+  EXPECT_EQ(c.specimen.grains, "per_element");
+  EXPECT_EQ(c.specimen.seed, 1u);
+  EXPECT_DOUBLE_EQ(c.loading.max_strain, 0.2);
+  EXPECT_EQ(c.loading.steps, 100u);
+  EXPECT_EQ(c.output.directory, "results/tensile_27_grains");
 }
 
 // The resolved case documents units next to the values it writes.
@@ -328,7 +627,7 @@ TEST(CaseFile, LoadingContactSolverRangesAreChecked)
   expect_rejected(with("output:\n  directory: \"\"\n"), {"output.directory"});
 }
 
-// Unknown enumeration values list the allowed values; the reserved tensile test is refused.
+// Unknown enumeration values list the allowed values.
 TEST(CaseFile, UnknownChoicesListAllowedValues)
 {
   expect_rejected("test: indentation\nmaterial:\n  model: elastic\n",
@@ -343,8 +642,10 @@ TEST(CaseFile, UnknownChoicesListAllowedValues)
                   {"test = 'compression'", "indentation | tensile"});
   expect_rejected(with("  yield_stress_measure: mises\n"),
                   {"material.yield_stress_measure = 'mises'", "cauchy | kirchhoff"});
-  expect_rejected("test: tensile\nmaterial:\n  model: j2\n",
-                  {"test = tensile", "not implemented yet"});
+  expect_rejected("test: indentation\nmaterial:\n  model: cristal\n",
+                  {"material.model = 'cristal'", "neo_hookean | j2 | crystal",
+                   "did you mean 'crystal'"});
+  EXPECT_EQ(error_of("test: tensile\nmaterial:\n  model: j2\n"), "");
 }
 
 // validate_case applies the same checks to a case changed in code (e.g. by --output).
@@ -402,6 +703,9 @@ TEST(OutputDirectory, RefusesEarlierResultsWithoutOverwrite)
   const fs::path other = scratch_directory("refuse_resolved");
   write_text(other / "resolved_case.yaml", "test: indentation\n");
   EXPECT_THROW(prepare_output_directory(other.string(), false), CaseFileError);
+  const fs::path tensile = scratch_directory("refuse_tensile");
+  write_text(tensile / "stress_strain_j2.csv", "step,log_strain\n");
+  EXPECT_THROW(prepare_output_directory(tensile.string(), false), CaseFileError);
   const fs::path paraview = scratch_directory("refuse_paraview");
   write_text(paraview / "specimen.pvd", "<VTKFile/>");
   EXPECT_THROW(prepare_output_directory(paraview.string(), false), CaseFileError);
@@ -413,7 +717,8 @@ TEST(OutputDirectory, OverwriteRemovesOnlyOwnFiles)
   const fs::path dir = scratch_directory("overwrite");
   for (const char *name : {"load_penetration.csv", "load_penetration.png", "resolved_case.yaml",
                            "run.log", "specimen.pvd", "specimen_0003.pvtu",
-                           "specimen_0003.0.vtu"})
+                           "specimen_0003.0.vtu", "stress_strain.csv", "stress_strain_j2.csv",
+                           "stress_strain.png"})
     write_text(dir / name, "old");
   for (const char *name : {"notes.txt", "my_mesh.vtu", "load_penetration_paper.csv"})
     write_text(dir / name, "keep");
@@ -423,7 +728,8 @@ TEST(OutputDirectory, OverwriteRemovesOnlyOwnFiles)
   prepare_output_directory(dir.string(), true);
   for (const char *name : {"load_penetration.csv", "load_penetration.png", "resolved_case.yaml",
                            "run.log", "specimen.pvd", "specimen_0003.pvtu",
-                           "specimen_0003.0.vtu"})
+                           "specimen_0003.0.vtu", "stress_strain.csv", "stress_strain_j2.csv",
+                           "stress_strain.png"})
     EXPECT_FALSE(fs::exists(dir / name)) << name;
   for (const char *name : {"notes.txt", "my_mesh.vtu", "load_penetration_paper.csv"})
     EXPECT_TRUE(fs::exists(dir / name)) << name;
@@ -492,6 +798,11 @@ TEST(CommandLine, ParsesTheDocumentedForms)
   EXPECT_EQ(options.command, Command::check);
   EXPECT_EQ(options.case_file, "case.yaml");
 
+  options = parse_command_line({"run", "tensile.yaml", "--compare-j2"});
+  EXPECT_TRUE(options.compare_j2);
+  EXPECT_FALSE(parse_command_line({"run", "tensile.yaml"}).compare_j2);
+  EXPECT_TRUE(parse_command_line({"check", "--compare-j2", "tensile.yaml"}).compare_j2);
+
   const char *argv[] = {"indentsim", "--version"};
   EXPECT_EQ(parse_command_line(2, argv).command, Command::version);
   EXPECT_EQ(parse_command_line({"--help"}).command, Command::help);
@@ -532,8 +843,8 @@ TEST(CommandLine, HelpListsCommandsOptionsAndUnits)
 {
   const std::string help = help_text();
   for (const std::string fragment :
-       {"run CASE.yaml", "check CASE.yaml", "--output DIR", "--overwrite", "--help", "--version",
-        "um", "mN", "GPa"})
+       {"run CASE.yaml", "check CASE.yaml", "--output DIR", "--overwrite", "--compare-j2",
+        "--help", "--version", "um", "mN", "GPa", "stress_strain.csv"})
     EXPECT_NE(help.find(fragment), std::string::npos) << fragment;
   EXPECT_NE(version_text().find("indentsim"), std::string::npos);
 }

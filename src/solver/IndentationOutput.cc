@@ -1,8 +1,10 @@
 // ParaView output of IndentationProblem: deformed mesh (Eulerian mapping), displacement,
 // cell-averaged Cauchy stress, von Mises stress, equivalent plastic strain and nodal contact
-// pressure. Units: um, GPa.
+// pressure; the pile-up files of the top surface. Units: um, GPa.
+#include "io/CaseFile.h"
 #include "solver/FiniteStrainElement.h"
 #include "solver/IndentationProblem.h"
+#include "solver/PileUp.h"
 
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -13,7 +15,10 @@
 #include <deal.II/fe/mapping_q_eulerian.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <cstdlib>
 #include <fstream>
+#include <iomanip>
+#include <iostream>
 
 namespace indentsim::solver
 {
@@ -116,5 +121,82 @@ namespace indentsim::solver
         DataOutBase::write_pvd_record(pvd, vtu_records_);
       }
     scalar_dofs.clear();
+  }
+
+  std::vector<pileup::SurfaceQuad> IndentationProblem::gather_top_surface() const
+  {
+    // Per face: 4 corners in cyclic order x (X, Y, u_x, u_y, u_z). deal.II numbers a face's
+    // vertices lexicographically, 0 (0,0), 1 (1,0), 2 (0,1), 3 (1,1): cyclic is 0, 1, 3, 2.
+    constexpr unsigned int n_values = 5, cyclic[4] = {0, 1, 3, 2};
+    std::vector<double>    local;
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary() && face->boundary_id() == mesh::boundary::top)
+            for (const unsigned int v : cyclic)
+              {
+                local.push_back(face->vertex(v)[0]);
+                local.push_back(face->vertex(v)[1]);
+                for (unsigned int d = 0; d < 3; ++d)
+                  local.push_back(solution_(face->vertex_dof_index(v, d)));
+              }
+    const std::vector<std::vector<double>> gathered =
+      Utilities::MPI::gather(communicator_, local, 0);
+
+    std::vector<pileup::SurfaceQuad> surface;
+    for (const std::vector<double> &values : gathered)
+      for (std::size_t i = 0; i + 4 * n_values <= values.size(); i += 4 * n_values)
+        {
+          pileup::SurfaceQuad quad;
+          for (unsigned int v = 0; v < 4; ++v)
+            {
+              const double *corner = &values[i + v * n_values];
+              quad[v] = {corner[0], corner[1], corner[2], corner[3], corner[4]};
+            }
+          surface.push_back(quad);
+        }
+    return mesh_info_.quarter ? pileup::mirror_quarter(surface) : surface;
+  }
+
+  void IndentationProblem::write_pileup(const std::vector<SurfaceSnapshot> &snapshots,
+                                        const double                        contact_radius)
+  {
+    namespace files = io::output_files;
+    pileup_results_.clear();
+    for (const SurfaceSnapshot &snapshot : snapshots)
+      {
+        pileup::PileUpParameters parameters;
+        parameters.depth = snapshot.depth;
+        parameters.contact_radius = contact_radius;
+        pileup_results_.push_back(pileup::analyse(snapshot.surface, snapshot.stage, parameters));
+        const pileup::PileUpResult &result = pileup_results_.back();
+        std::ofstream grid(output_directory_ + "/" +
+                           (snapshot.stage == "max_depth" ? files::pileup_max_depth_csv :
+                                                            files::pileup_unloaded_csv));
+        pileup::write_grid_csv(grid, result.grid);
+        pcout_ << std::defaultfloat << std::setprecision(4) << "Pile-up (" << result.stage
+               << ", depth " << result.depth << " um): max height " << result.max_pileup
+               << " um at r = " << result.max_pileup_radius << " um, azimuth "
+               << result.max_pileup_azimuth_deg << " deg; analysis radius "
+               << result.analysis_radius << " um, dominant fold "
+               << result.spectrum.dominant_fold << std::endl;
+      }
+    if (pileup_results_.empty())
+      return;
+    // The unloaded stage (the residual impression, what experiments measure) is the top level;
+    // without unloading, the maximum-depth stage.
+    std::ofstream json(output_directory_ + "/" + files::pileup_json);
+    pileup::write_json(json, pileup_results_, pileup_results_.back());
+    std::ofstream profiles(output_directory_ + "/" + files::pileup_profiles_csv);
+    pileup::write_profiles_csv(profiles, pileup_results_);
+    json.close();
+    profiles.close();
+
+    // The maps and profiles as PNG files; a missing Python or matplotlib leaves a warning only.
+    const std::string script = std::string(INDENTSIM_SOURCE_DIR) + "/python/plot_pileup.py";
+    const std::string command = "python3 \"" + script + "\" \"" + output_directory_ + "\"";
+    if (std::system(command.c_str()) != 0)
+      std::cerr << "warning: the pile-up plots in " << output_directory_
+                << " could not be written (command: " << command << ")\n";
   }
 } // namespace indentsim::solver

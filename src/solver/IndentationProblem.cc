@@ -528,6 +528,8 @@ namespace indentsim::solver
   {
     output_directory_ = output_directory;
     const bool    root = Utilities::MPI::this_mpi_process(communicator_) == 0;
+    // Collective (an MPI sum): every rank counts, rank 0 writes it.
+    const unsigned int n_constrained = n_constrained_dofs();
     std::ofstream csv, log;
     if (root && !output_directory_.empty())
       {
@@ -536,7 +538,7 @@ namespace indentsim::solver
         write_csv_header(csv);
         log << "# indentsim " << INDENTSIM_VERSION << " run log. Units: um, mN, GPa, s.\n"
             << "# cells " << n_cells() << ", DOFs " << n_dofs() << ", constrained DOFs "
-            << n_constrained_dofs() << ", MPI ranks "
+            << n_constrained << ", MPI ranks "
             << Utilities::MPI::n_mpi_processes(communicator_) << '\n'
             << "# step depth_um force_mN newton_iterations augmentations cutbacks "
                "max_penetration_um wall_time_s\n";
@@ -557,6 +559,10 @@ namespace indentsim::solver
     bool         unloading = false;
     unsigned int step = 0, total_newton = 0, vtu_index = 0, easy_steps = 0;
     double       max_force = 0;
+    // Top-surface snapshots for the pile-up analysis (rank 0), at maximum depth and at the end.
+    std::vector<SurfaceSnapshot> pileup_snapshots;
+    double                       contact_radius_at_max = 0;
+    pileup_results_.clear();
 
     if (!output_directory_.empty())
       write_vtu(vtu_index++);
@@ -609,6 +615,13 @@ namespace indentsim::solver
         if (!output_directory_.empty() &&
             (at_max || finished || (case_.output.vtu_every > 0 && step % case_.output.vtu_every == 0)))
           write_vtu(vtu_index++);
+        if (!output_directory_.empty() && (at_max || (finished && unloading)))
+          {
+            pileup_snapshots.push_back(
+              {at_max ? "max_depth" : "unloaded", depth, gather_top_surface()});
+            if (at_max)
+              contact_radius_at_max = record.contact_radius;
+          }
         accept_increment();
 
         // Progress: one line per step, with an ETA from the mean step time of this run.
@@ -653,5 +666,7 @@ namespace indentsim::solver
     if (log.is_open())
       log << "# finished: " << step << " steps, " << total_newton << " Newton iterations, "
           << wall_timer_.wall_time() << " s\n";
+    if (root && !output_directory_.empty())
+      write_pileup(pileup_snapshots, contact_radius_at_max);
   }
 } // namespace indentsim::solver

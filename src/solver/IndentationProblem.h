@@ -14,6 +14,7 @@
 #include "materials/MaterialModel.h"
 #include "mesh/IndentationMesh.h"
 #include "solver/FiniteStrainElement.h"
+#include "solver/PileUp.h"
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
@@ -83,6 +84,9 @@ namespace indentsim::solver
     void reject_increment();
 
     const std::vector<StepRecord> &records() const { return records_; }
+    // The pile-up analysis of the last run(): stages max_depth and (after unloading) unloaded.
+    // Filled on rank 0 when run() was given an output directory, empty otherwise.
+    const std::vector<pileup::PileUpResult> &pileup_results() const { return pileup_results_; }
 
     unsigned int n_cells() const;
     unsigned int n_dofs() const;
@@ -134,6 +138,20 @@ namespace indentsim::solver
                                const std::vector<dealii::Tensor<2, 3>> &,
                                std::span<const double>)> &visit);
     void           write_vtu(unsigned int index);
+    // The top-face quads (corners with reference X, Y and displacement) of all ranks, gathered
+    // on rank 0 (empty elsewhere) and mirrored into the full surface for the quarter model.
+    // Collective.
+    std::vector<pileup::SurfaceQuad> gather_top_surface() const;
+    struct SurfaceSnapshot
+    {
+      std::string                      stage; // "max_depth" | "unloaded"
+      double                           depth = 0; // [um]
+      std::vector<pileup::SurfaceQuad> surface;
+    };
+    // Rank 0: analyses the snapshots (a_c: contact radius at maximum depth), writes pileup.json
+    // and the pile-up CSV files, then plots them with python/plot_pileup.py (a failing plot is
+    // a warning).
+    void write_pileup(const std::vector<SurfaceSnapshot> &snapshots, double contact_radius);
     void           compute_cell_fields(dealii::Vector<float> &von_mises,
                                        dealii::Vector<float> &plastic_strain,
                                        std::vector<dealii::Vector<float>> &cauchy);
@@ -164,6 +182,7 @@ namespace indentsim::solver
     std::vector<double> state_old_, state_new_;
 
     std::vector<StepRecord>                          records_;
+    std::vector<pileup::PileUpResult>                pileup_results_;
     std::vector<std::pair<double, std::string>>      vtu_records_; // (output index, pvtu file)
     std::string                                      output_directory_;
     dealii::Timer                                    wall_timer_;

@@ -56,7 +56,8 @@ namespace
         plot_load_penetration(the_case.output.directory);
         std::cout << "Results in " << the_case.output.directory
                   << ": load_penetration.csv (um, mN), load_penetration.png, specimen.pvd "
-                     "(ParaView), resolved_case.yaml, run.log\n";
+                     "(ParaView), pileup.json, pileup_*.csv/png (heights in um), "
+                     "resolved_case.yaml, run.log\n";
       }
   }
 

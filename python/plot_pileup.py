@@ -27,20 +27,9 @@ import math
 import os
 import sys
 
-try:
-    import matplotlib
-except ImportError:
-    # scripts/install_dependencies.sh installs Debian's python3-matplotlib for /usr/bin/python3;
-    # another python3 first on PATH (pyenv, conda, venv) may lack it: retry with the system one.
-    system_python = "/usr/bin/python3"
-    if os.environ.get("INDENTSIM_PLOT_REEXEC") != "1" and os.path.exists(system_python) \
-            and os.path.realpath(sys.executable) != os.path.realpath(system_python):
-        os.environ["INDENTSIM_PLOT_REEXEC"] = "1"
-        os.execv(system_python, [system_python] + sys.argv)
-    sys.exit("plot_pileup.py: matplotlib is not installed for this Python "
-             f"({sys.executable}); run scripts/install_dependencies.sh")
+from indentsim_plotting import ensure_matplotlib  # noqa: E402
 
-matplotlib.use("Agg")  # files only, never a display
+ensure_matplotlib("plot_pileup.py")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.colors import TwoSlopeNorm  # noqa: E402
 import numpy as np  # noqa: E402

@@ -94,3 +94,42 @@ TEST(CrystalIndentation, QuarterFullAndCubicSymmetryAgree)
       EXPECT_NEAR(r[k], q[k], 1e-6 * f.back()) << "increment " << k + 1;
     }
 }
+
+// The indentation of (111) (no mirror planes: full model) must not let the sharp tip slip past
+// the surface node under it: that node stays on the axis and, in contact with the apex, sits at
+// the indenter depth (node-to-surface contact alone let the tip pass between the nodes, leaving
+// the surface 2.8 um above the apex at 6 um depth on the paper's mesh).
+TEST(CrystalIndentation, SurfaceUnderSharpTipFollowsTheApexFor111)
+{
+  io::Case c = tiny_crystal_case("full", {{0., 0., 0.}});
+  c.material.orientation.kind = "surface_normal";
+  c.material.orientation.surface_normal = {{1., 1., 1.}};
+  c.material.orientation.reference_direction = {{1., -1., 0.}};
+  const double depth = 0.4;
+  c.loading.max_depth = depth;
+  c.loading.steps = 4;
+  solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problem.setup();
+  problem.run("");
+  ASSERT_NEAR(problem.records().back().depth, depth, 1e-12);
+  // Displacement of the top-surface vertex at the origin, from the rank that owns its dofs.
+  double     apex_displacement[3] = {0, 0, 0}, found = 0;
+  const auto owned = problem.solution().locally_owned_elements();
+  for (const auto &cell : problem.dof_handler().active_cell_iterators())
+    if (cell->is_locally_owned())
+      for (const unsigned int v : cell->vertex_indices())
+        if (cell->vertex(v).norm() < 1e-9 && owned.is_element(cell->vertex_dof_index(v, 0)) &&
+            found == 0)
+          {
+            found = 1;
+            for (unsigned int d = 0; d < 3; ++d)
+              apex_displacement[d] = problem.solution()[cell->vertex_dof_index(v, d)];
+          }
+  found = dealii::Utilities::MPI::sum(found, MPI_COMM_WORLD);
+  for (double &u : apex_displacement)
+    u = dealii::Utilities::MPI::sum(u, MPI_COMM_WORLD);
+  ASSERT_EQ(found, 1);
+  EXPECT_EQ(apex_displacement[0], 0.0);
+  EXPECT_EQ(apex_displacement[1], 0.0);
+  EXPECT_NEAR(apex_displacement[2], -depth, c.contact.penetration_tolerance);
+}

@@ -193,9 +193,8 @@ namespace
     EXPECT_FALSE(is_cubic_mirror_plane(g111, e_x) && is_cubic_mirror_plane(g111, e_y));
   }
 
-  // Random orientations are rotations, reproducible from the seed, and uniform on SO(3): the
-  // mean of g vanishes and the mean of cos(rotation angle) = (tr g - 1)/2 is -1/2 ... here we
-  // use E[g_ij] = 0 and E[g_ij^2] = 1/3 for the Haar measure.
+  // Random orientations are rotations, reproducible from the seed, and uniform on SO(3): under
+  // the Haar measure every entry has E[g_ij] = 0 and E[g_ij^2] = 1/3.
   TEST(CrystalOrientation, RandomOrientationsAreUniformAndReproducible)
   {
     const unsigned int n = 20000;

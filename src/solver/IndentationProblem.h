@@ -13,7 +13,9 @@
 #include "io/Case.h"
 #include "materials/MaterialModel.h"
 #include "mesh/IndentationMesh.h"
+#include "solver/CellWorkspace.h"
 #include "solver/FiniteStrainElement.h"
+#include "solver/IncrementStatus.h"
 #include "solver/PileUp.h"
 
 #include <deal.II/base/conditional_ostream.h>
@@ -52,17 +54,6 @@ namespace indentsim::solver
     double       bottom_reaction = 0; // [mN], whole indent
     double       wall_time = 0;       // [s] since the start of the run
   };
-
-  enum class IncrementStatus
-  {
-    converged,
-    material_failure,
-    contact_search_failure,
-    newton_diverged,
-    too_many_iterations,
-    too_many_augmentations
-  };
-  std::string to_string(IncrementStatus status);
 
   class IndentationProblem
   {
@@ -114,18 +105,6 @@ namespace indentsim::solver
     AssemblyResult assemble(bool with_matrix);
     // Number of constrained dofs owned by this rank, summed over ranks.
     unsigned int count_owned_constraints(const dealii::AffineConstraints<double> &constraints) const;
-
-    // FEValues at the Gauss points and at the centre of a cell, turned into the element
-    // kernel's inputs (dF/du_a, weights, element displacements).
-    struct CellWorkspace
-    {
-      CellWorkspace(const dealii::FESystem<3> &fe, unsigned int n_q_points);
-      void reinit(const dealii::DoFHandler<3>::active_cell_iterator &cell,
-                  const dealii::PETScWrappers::MPI::Vector           &solution);
-      dealii::FEValues<3>    fe_values, fe_centre;
-      ElementScratch         scratch;
-      dealii::Vector<double> u_local, r_local;
-    };
     std::span<const double> cell_state(const std::vector<double>                        &states,
                                        const dealii::DoFHandler<3>::active_cell_iterator &cell) const;
     std::span<double>       cell_state(std::vector<double>                              &states,

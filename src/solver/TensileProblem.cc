@@ -60,22 +60,6 @@ namespace indentsim::solver
     }
   } // namespace
 
-  std::string TensileProblem::to_string(const IncrementStatus status)
-  {
-    switch (status)
-      {
-        case IncrementStatus::converged:
-          return "converged";
-        case IncrementStatus::material_failure:
-          return "material update failed";
-        case IncrementStatus::newton_diverged:
-          return "Newton diverged";
-        case IncrementStatus::too_many_iterations:
-          return "Newton iteration limit reached";
-      }
-    return "unknown";
-  }
-
   TensileProblem::TensileProblem(const io::Case &the_case,
                                  const MPI_Comm  communicator,
                                  const bool      verbose)
@@ -197,30 +181,6 @@ namespace indentsim::solver
     return std::span<double>(states).subspan(cell->active_cell_index() * length, length);
   }
 
-  TensileProblem::CellWorkspace::CellWorkspace(const FESystem<3> &fe, const unsigned int n_q_points)
-    : fe_values(fe, QGauss<3>(2), update_gradients | update_JxW_values)
-    , fe_centre(fe, QGauss<3>(1), update_gradients)
-    , scratch(fe.n_dofs_per_cell(), n_q_points)
-    , u_local(fe.n_dofs_per_cell())
-    , r_local(fe.n_dofs_per_cell())
-  {}
-
-  void TensileProblem::CellWorkspace::reinit(const DoFHandler<3>::active_cell_iterator &cell,
-                                             const PETScWrappers::MPI::Vector          &solution)
-  {
-    const FEValuesExtractors::Vector displacement(0);
-    fe_values.reinit(cell);
-    fe_centre.reinit(cell);
-    for (unsigned int q = 0; q < scratch.n_q_points; ++q)
-      {
-        scratch.JxW[q] = fe_values.JxW(q);
-        for (unsigned int a = 0; a < scratch.n_dofs; ++a)
-          scratch.G[q][a] = fe_values[displacement].gradient(a, q);
-      }
-    for (unsigned int a = 0; a < scratch.n_dofs; ++a)
-      scratch.G0[a] = fe_centre[displacement].gradient(a, 0);
-    cell->get_dof_values(solution, u_local);
-  }
 
   TensileProblem::AssemblyResult
   TensileProblem::assemble(const AffineConstraints<double> &constraints)
@@ -295,7 +255,7 @@ namespace indentsim::solver
     return std::sqrt(Utilities::MPI::sum(local, communicator_));
   }
 
-  TensileProblem::IncrementStatus TensileProblem::solve_increment(const double    u_top,
+  IncrementStatus TensileProblem::solve_increment(const double    u_top,
                                                                   unsigned int   &iterations,
                                                                   AssemblyResult &result)
   {

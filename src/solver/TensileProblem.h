@@ -23,7 +23,9 @@
 
 #include "io/Case.h"
 #include "materials/MaterialModel.h"
+#include "solver/CellWorkspace.h"
 #include "solver/FiniteStrainElement.h"
+#include "solver/IncrementStatus.h"
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
@@ -83,15 +85,6 @@ namespace indentsim::solver
     unsigned int lexicographic_index(const dealii::Point<3> &cell_centre) const;
 
   private:
-    enum class IncrementStatus
-    {
-      converged,
-      material_failure,
-      newton_diverged,
-      too_many_iterations
-    };
-    static std::string to_string(IncrementStatus status);
-
     struct AssemblyResult
     {
       materials::UpdateStatus status = materials::UpdateStatus::success;
@@ -113,17 +106,6 @@ namespace indentsim::solver
     void            reject_increment();
 
     void write_paraview(const std::string &output_directory, unsigned int index);
-
-    // FEValues at the Gauss points and the cell centre turned into the kernel's inputs.
-    struct CellWorkspace
-    {
-      CellWorkspace(const dealii::FESystem<3> &fe, unsigned int n_q_points);
-      void reinit(const dealii::DoFHandler<3>::active_cell_iterator &cell,
-                  const dealii::PETScWrappers::MPI::Vector           &solution);
-      dealii::FEValues<3>    fe_values, fe_centre;
-      ElementScratch         scratch;
-      dealii::Vector<double> u_local, r_local;
-    };
     std::span<double> cell_state(std::vector<double>                               &states,
                                  const dealii::DoFHandler<3>::active_cell_iterator &cell) const;
 

@@ -10,8 +10,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <iostream>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -111,4 +113,32 @@ namespace indentsim::testing
     return (finite_difference - response.dP_dF).norm() / response.dP_dF.norm();
   }
 
+  // One row of tests/unit/data/j2_uniaxial_reference*.csv, written by the independent
+  // python/reference_j2_uniaxial.py: uniaxial J2 tension (Table 1) at a logarithmic strain.
+  struct J2UniaxialReferenceRow
+  {
+    double log_strain, cauchy_stress, lateral_stretch, alpha;
+  };
+
+  inline std::vector<J2UniaxialReferenceRow> read_j2_uniaxial_reference(const std::string &file_name)
+  {
+    const std::string path = std::string(INDENTSIM_TEST_DATA_DIR) + "/unit/data/" + file_name;
+    std::ifstream     file(path);
+    EXPECT_TRUE(file) << "cannot open " << path;
+    std::vector<J2UniaxialReferenceRow> rows;
+    std::string               line;
+    while (std::getline(file, line))
+      {
+        if (line.empty() || line[0] == '#' || line.rfind("log_strain", 0) == 0)
+          continue;
+        std::istringstream stream(line);
+        J2UniaxialReferenceRow       row;
+        char               comma;
+        stream >> row.log_strain >> comma >> row.cauchy_stress >> comma >> row.lateral_stretch >>
+          comma >> row.alpha;
+        EXPECT_FALSE(stream.fail()) << "bad line in " << path << ": " << line;
+        rows.push_back(row);
+      }
+    return rows;
+  }
 } // namespace indentsim::testing

@@ -561,39 +561,12 @@ namespace
   // ---------------------------------------------------------------------------------------
   // Homogeneous uniaxial tension against the independent reference (REFERENCES.md).
 
-  struct ReferenceRow
-  {
-    double log_strain, cauchy_stress, lateral_stretch, alpha;
-  };
-
-  std::vector<ReferenceRow> read_reference(const std::string &file_name)
-  {
-    const std::string path = std::string(INDENTSIM_TEST_DATA_DIR) + "/unit/data/" + file_name;
-    std::ifstream     file(path);
-    EXPECT_TRUE(file) << "cannot open " << path;
-    std::vector<ReferenceRow> rows;
-    std::string               line;
-    while (std::getline(file, line))
-      {
-        if (line.empty() || line[0] == '#' || line.rfind("log_strain", 0) == 0)
-          continue;
-        std::istringstream stream(line);
-        ReferenceRow       row;
-        char               comma;
-        stream >> row.log_strain >> comma >> row.cauchy_stress >> comma >> row.lateral_stretch >>
-          comma >> row.alpha;
-        EXPECT_FALSE(stream.fail()) << "bad line in " << path << ": " << line;
-        rows.push_back(row);
-      }
-    return rows;
-  }
-
   // Drives F = diag(lambda, lambda_t, lambda_t) to the reference strains in n_increments equal
   // steps; at every step lambda_t is found by a secant iteration on the lateral stress P_22 = 0
   // (independent of the tangent). Returns the worst relative stress error and the worst
   // absolute errors of lambda_t and gamma_p.
   std::array<double, 3> uniaxial_errors(const J2Plasticity              &model,
-                                        const std::vector<ReferenceRow> &reference,
+                                        const std::vector<J2UniaxialReferenceRow> &reference,
                                         const unsigned int               n_increments)
   {
     const unsigned int rows_per_increment = (reference.size() - 1) / n_increments;
@@ -603,7 +576,7 @@ namespace
     std::array<double, 3> worst = {{0.0, 0.0, 0.0}};
     for (unsigned int increment = 1; increment <= n_increments; ++increment)
       {
-        const ReferenceRow   &row = reference[increment * rows_per_increment];
+        const J2UniaxialReferenceRow   &row = reference[increment * rows_per_increment];
         const double          lambda = std::exp(row.log_strain);
         std::vector<double>   state_new(state.size());
         MaterialPointResponse response;
@@ -650,7 +623,7 @@ namespace
   {
     for (const auto measure : {YieldStressMeasure::cauchy, YieldStressMeasure::kirchhoff})
       {
-        const auto reference = read_reference(measure == YieldStressMeasure::cauchy ?
+        const auto reference = read_j2_uniaxial_reference(measure == YieldStressMeasure::cauchy ?
                                                 "j2_uniaxial_reference.csv" :
                                                 "j2_uniaxial_reference_kirchhoff.csv");
         ASSERT_EQ(reference.size(), 101u);

@@ -7,6 +7,8 @@
 #include "materials/MaterialFactory.h"
 #include "solver/TensileProblem.h"
 
+#include "../unit/material_test_utilities.h"
+
 #include <deal.II/base/mpi.h>
 
 #include <gtest/gtest.h>
@@ -61,32 +63,6 @@ namespace
         return false;
       }
   }
-
-  struct ReferenceRow
-  {
-    double log_strain, cauchy_stress, lateral_stretch;
-  };
-
-  std::vector<ReferenceRow> read_reference(const std::string &file_name)
-  {
-    const std::string path = std::string(INDENTSIM_TEST_DATA_DIR) + "/unit/data/" + file_name;
-    std::ifstream     file(path);
-    EXPECT_TRUE(file) << "cannot open " << path;
-    std::vector<ReferenceRow> rows;
-    std::string               line;
-    while (std::getline(file, line))
-      {
-        if (line.empty() || line[0] == '#' || line.rfind("log_strain", 0) == 0)
-          continue;
-        std::istringstream stream(line);
-        ReferenceRow       row;
-        char               comma;
-        stream >> row.log_strain >> comma >> row.cauchy_stress >> comma >> row.lateral_stretch;
-        EXPECT_FALSE(stream.fail()) << "bad line in " << path << ": " << line;
-        rows.push_back(row);
-      }
-    return rows;
-  }
 } // namespace
 
 // Homogeneous J2 tension (Table 1, single grain, 2x2x2 elements, to log strain 0.2) must
@@ -97,7 +73,7 @@ TEST(Tensile, J2MatchesIndependentUniaxialReference)
 {
   for (const auto &[measure, steps] : {std::pair{"cauchy", 100u}, std::pair{"kirchhoff", 10u}})
     {
-      const auto reference = read_reference(std::string(measure) == "cauchy" ?
+      const auto reference = indentsim::testing::read_j2_uniaxial_reference(std::string(measure) == "cauchy" ?
                                               "j2_uniaxial_reference.csv" :
                                               "j2_uniaxial_reference_kirchhoff.csv");
       ASSERT_EQ(reference.size(), 101u);

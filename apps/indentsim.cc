@@ -9,6 +9,7 @@
 #include "solver/TensileProblem.h"
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -124,6 +125,13 @@ namespace
     if (!error.empty())
       throw io::CaseFileError(error);
 
+    // Assembly threads per rank: solver.threads, or (0) the cores of the node divided among the
+    // ranks on it, as MPI_InitFinalize set it up.
+    if (the_case.solver.threads > 0)
+      dealii::MultithreadInfo::set_thread_limit(the_case.solver.threads);
+    if (root)
+      std::cout << "Threads per MPI rank: " << dealii::MultithreadInfo::n_threads() << std::endl;
+
     if (the_case.test == "tensile")
       run_tensile(the_case, communicator, root);
     else
@@ -134,7 +142,8 @@ namespace
 
 int main(int argc, char **argv)
 {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // Threads: determined from the cores and the ranks per node (refined by solver.threads).
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, dealii::numbers::invalid_unsigned_int);
   const MPI_Comm communicator = MPI_COMM_WORLD;
   const bool     root = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
   try

@@ -92,9 +92,14 @@ namespace indentsim::io
 
   struct SolverParameters
   {
-    double       residual_tolerance = 1e-8;  // relative to the first residual of the increment
+    double       residual_tolerance = 1e-8;  // relative to the first residual of the increment (indentation: or the last indenter force, if larger)
     double       absolute_tolerance = 1e-10; // [mN]
     unsigned int max_newton_iterations = 25;
+    // Linear solver of the Newton iterations (solver/LinearSolver.h): auto (direct below
+    // LinearSolver::iterative_threshold_dofs unknowns, else iterative) | direct (MUMPS LU) |
+    // iterative (CG/GMRES with smoothed-aggregation AMG, rigid-body modes).
+    std::string  linear_solver = "auto";
+    unsigned int threads = 0; // assembly threads per MPI rank; 0: the cores divided by the ranks
 
     bool operator==(const SolverParameters &) const = default;
   };

@@ -48,7 +48,9 @@ namespace indentsim::io
       {"loading", {"max_depth", "steps", "unload", "unload_steps", "max_cutbacks", "max_strain"}},
       {"contact",
        {"friction_coefficient", "penalty", "penetration_tolerance", "max_augmentations"}},
-      {"solver", {"residual_tolerance", "absolute_tolerance", "max_newton_iterations"}},
+      {"solver",
+       {"residual_tolerance", "absolute_tolerance", "max_newton_iterations", "linear_solver",
+        "threads"}},
       {"output", {"directory", "vtu_every"}}};
 
     const std::vector<std::string> allowed_tests = {"indentation", "tensile"};
@@ -56,6 +58,7 @@ namespace indentsim::io
     const std::vector<std::string> allowed_lattices = {"fcc"};
     const std::vector<std::string> planned_lattices = {"bcc", "hcp"}; // recognised, not yet
     const std::vector<std::string> allowed_grains = {"single", "per_element"};
+    const std::vector<std::string> allowed_linear_solvers = {"auto", "direct", "iterative"};
     const std::vector<std::string> allowed_orientation_kinds = {"euler_bunge_deg",
                                                                 "surface_normal"};
     const std::vector<std::string> allowed_shapes = {"rounded_cone"};
@@ -289,6 +292,8 @@ namespace indentsim::io
           read_double(map, "solver", "absolute_tolerance", "a force in mN",
                       solver.absolute_tolerance);
           read_unsigned(map, "solver", "max_newton_iterations", solver.max_newton_iterations);
+          read_string(map, "solver", "linear_solver", "a linear solver", solver.linear_solver);
+          read_unsigned(map, "solver", "threads", solver.threads);
         }
         {
           const YAML::Node map = section(root, "output");
@@ -718,6 +723,10 @@ namespace indentsim::io
                  "must be > 0 mN");
         if (sol.max_newton_iterations == 0)
           reject("solver.max_newton_iterations", "0", "must be >= 1");
+        check_choice("solver.linear_solver", sol.linear_solver, allowed_linear_solvers);
+        if (sol.threads > 1024)
+          reject("solver.threads", std::to_string(sol.threads),
+                 "must be between 0 (automatic) and 1024");
 
         if (o.directory.empty())
           reject("output.directory", "\"\"", "must be a non-empty directory path");
@@ -1061,6 +1070,10 @@ namespace indentsim::io
          "relative to the first residual of an increment");
     line("  absolute_tolerance: " + format_number(c.solver.absolute_tolerance), "[mN]");
     line("  max_newton_iterations: " + std::to_string(c.solver.max_newton_iterations), "");
+    line("  linear_solver: " + c.solver.linear_solver,
+         "auto | direct (MUMPS) | iterative (AMG-preconditioned CG/GMRES)");
+    line("  threads: " + std::to_string(c.solver.threads),
+         "assembly threads per MPI rank, 0: cores / ranks");
 
     out << "output:\n";
     line("  directory: " + quoted(c.output.directory),

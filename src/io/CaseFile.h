@@ -57,6 +57,7 @@ namespace indentsim::io
     inline constexpr const char *stress_strain_png    = "stress_strain.png";
     inline constexpr const char *resolved_case        = "resolved_case.yaml";
     inline constexpr const char *log                  = "run.log";
+    inline constexpr const char *run_summary          = "run_summary.json"; // cost of the run
     // Pile-up of the top surface (solver/PileUp.h) at maximum depth and after unloading.
     inline constexpr const char *pileup_json          = "pileup.json";
     inline constexpr const char *pileup_max_depth_csv = "pileup_max_depth.csv";
@@ -69,9 +70,9 @@ namespace indentsim::io
     inline constexpr const char *paraview_basename = "specimen";
 
     // Exact names that mark an earlier run and are removed by --overwrite.
-    inline constexpr std::array<const char *, 14> known_names = {
+    inline constexpr std::array<const char *, 15> known_names = {
       {load_penetration_csv, load_penetration_png, stress_strain_csv, stress_strain_j2_csv,
-       stress_strain_png, resolved_case, log, pileup_json, pileup_max_depth_csv,
+       stress_strain_png, resolved_case, log, run_summary, pileup_json, pileup_max_depth_csv,
        pileup_unloaded_csv, pileup_profiles_csv, pileup_max_depth_png, pileup_unloaded_png,
        pileup_profiles_png}};
     // Files named paraview_basename* with these extensions are ours as well.

@@ -104,6 +104,9 @@ namespace indentsim::materials
 
     // Voigt average shear modulus (C11 - C12 + 3 C44) / 5 [GPa].
     double reference_modulus() const override;
+    // The latent-hardening coupling and the non-symmetric Mandel stress of the anisotropic
+    // lattice make the tangent non-symmetric: GMRES, not CG.
+    bool symmetric_tangent() const override { return false; }
 
     // Accessors of a state.
     static Tensor<2, 3> plastic_deformation(std::span<const double> state); // F_p

@@ -70,6 +70,13 @@ namespace indentsim::materials
     // The shear modulus mu [GPa].
     double reference_modulus() const override { return elasticity.shear_modulus(); }
 
+    // Symmetric for the Kirchhoff measure only: the Cauchy measure's 1/J couples the volume
+    // change into the return (tested).
+    bool symmetric_tangent() const override
+    {
+      return measure == YieldStressMeasure::kirchhoff;
+    }
+
     // C_p^-1 stored in a state.
     static dealii::SymmetricTensor<2, 3> plastic_metric_inverse(std::span<const double> state);
 

@@ -69,5 +69,10 @@ namespace indentsim::materials
 
     // Small-strain shear and bulk moduli [GPa], used to scale penalties and tolerances.
     virtual double reference_modulus() const = 0;
+
+    // True when the consistent tangent has the major symmetry dP_iJ/dF_kL = dP_kL/dF_iJ
+    // (hyperelastic models and associative plasticity with isotropic hardening); the Newton
+    // systems are then symmetric and CG applies. The unit tests check the claim.
+    virtual bool symmetric_tangent() const { return true; }
   };
 } // namespace indentsim::materials

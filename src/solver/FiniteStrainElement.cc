@@ -8,41 +8,34 @@ namespace indentsim::solver
 {
   using namespace dealii;
 
-  ElementScratch::ElementScratch(const unsigned int n_dofs, const unsigned int n_q_points)
-    : n_dofs(n_dofs)
+  ElementScratch::ElementScratch(const unsigned int n_nodes, const unsigned int n_q_points)
+    : n_nodes(n_nodes)
+    , n_dofs(3 * n_nodes)
     , n_q_points(n_q_points)
-    , G(n_q_points, std::vector<Tensor<2, 3>>(n_dofs))
-    , G0(n_dofs)
+    , grad(n_q_points, std::vector<Tensor<1, 3>>(n_nodes))
+    , grad0(n_nodes)
     , JxW(n_q_points)
-    , B(n_dofs)
-    , A_B(n_dofs)
-    , H(n_dofs)
-    , H0(n_dofs)
-    , c(n_dofs)
-    , g(n_dofs)
+    , h(n_nodes)
+    , h0(n_nodes)
+    , Pg(n_nodes)
+    , AFg(n_nodes)
+    , FAg(n_nodes)
+    , Ag(n_nodes)
+    , c(3 * n_nodes)
+    , beta(3 * n_nodes)
   {}
 
-  namespace
+  Tensor<2, 3> deformation_gradient(const ElementScratch &s,
+                                    const unsigned int    q,
+                                    const Vector<double> &u_local)
   {
-    Tensor<2, 3> deformation_gradient(const std::vector<Tensor<2, 3>> &G,
-                                      const Vector<double>            &u_local)
-    {
-      Tensor<2, 3> F = unit_symmetric_tensor<3>();
-      for (unsigned int a = 0; a < G.size(); ++a)
-        F += u_local[a] * G[a];
-      return F;
-    }
-
-    // tr(X Y) without forming the product.
-    double trace_of_product(const Tensor<2, 3> &X, const Tensor<2, 3> &Y)
-    {
-      double sum = 0;
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = 0; j < 3; ++j)
-          sum += X[i][j] * Y[j][i];
-      return sum;
-    }
-  } // namespace
+    const std::vector<Tensor<1, 3>> &g = q < s.n_q_points ? s.grad[q] : s.grad0;
+    Tensor<2, 3>                     F = unit_symmetric_tensor<3>();
+    for (unsigned int i = 0; i < s.n_nodes; ++i)
+      for (unsigned int k = 0; k < 3; ++k)
+        F[k] += u_local[3 * i + k] * g[i];
+    return F;
+  }
 
   materials::UpdateStatus
   element_residual_and_tangent(const materials::MaterialModel &material,
@@ -55,30 +48,29 @@ namespace indentsim::solver
                                FullMatrix<double>             *tangent,
                                std::vector<Tensor<2, 3>>      *cauchy_stress)
   {
-    const unsigned int n_dofs = s.n_dofs;
+    const unsigned int n_nodes = s.n_nodes;
     const unsigned int n_state = material.n_state_variables();
     residual = 0;
     if (tangent)
       *tangent = 0;
 
-    Tensor<2, 3> F0_inv;
-    double       J0 = 1;
+    double J0 = 1;
     if (use_f_bar)
       {
-        const Tensor<2, 3> F0 = deformation_gradient(s.G0, u_local);
+        const Tensor<2, 3> F0 = deformation_gradient(s, s.n_q_points, u_local);
         J0 = determinant(F0);
         if (!(J0 > 0) || !std::isfinite(J0))
           return materials::UpdateStatus::invalid_deformation;
-        F0_inv = invert(F0);
-        for (unsigned int a = 0; a < n_dofs; ++a)
-          s.H0[a] = F0_inv * s.G0[a];
+        const Tensor<2, 3> F0_inv_T = transpose(invert(F0));
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          s.h0[i] = F0_inv_T * s.grad0[i]; // (F_0^-T g0_i)_c = tr(F_0^-1 G0_a)
       }
 
     materials::MaterialPointResponse response;
     for (unsigned int q = 0; q < s.n_q_points; ++q)
       {
-        const std::vector<Tensor<2, 3>> &G = s.G[q];
-        const Tensor<2, 3>               F = deformation_gradient(G, u_local);
+        const std::vector<Tensor<1, 3>> &g = s.grad[q];
+        const Tensor<2, 3>               F = deformation_gradient(s, q, u_local);
         const double                     J = determinant(F);
         if (!(J > 0) || !std::isfinite(J))
           return materials::UpdateStatus::invalid_deformation;
@@ -97,54 +89,93 @@ namespace indentsim::solver
         if (cauchy_stress)
           (*cauchy_stress)[q] = response.tau / determinant(F_bar);
 
-        // B_a = dF_bar/du_a.
+        // c_a and beta_a = theta c_a / 3, so that B_a = theta G_a + beta_a F.
         if (use_f_bar)
           {
-            const Tensor<2, 3> F_inv = invert(F);
-            for (unsigned int a = 0; a < n_dofs; ++a)
+            const Tensor<2, 3> F_inv_T = transpose(invert(F));
+            for (unsigned int i = 0; i < n_nodes; ++i)
               {
-                s.H[a] = F_inv * G[a];
-                s.c[a] = trace(s.H0[a]) - trace(s.H[a]);
-                s.B[a] = theta * (G[a] + (s.c[a] / 3.) * F);
+                s.h[i] = F_inv_T * g[i];
+                for (unsigned int c = 0; c < 3; ++c)
+                  {
+                    s.c[3 * i + c] = s.h0[i][c] - s.h[i][c];
+                    s.beta[3 * i + c] = theta * s.c[3 * i + c] / 3.;
+                  }
               }
           }
         else
-          for (unsigned int a = 0; a < n_dofs; ++a)
-            s.B[a] = G[a];
+          std::fill(s.beta.begin(), s.beta.end(), 0.0);
 
+        // Residual P : B_a = theta (P g_i)_c + beta_a P : F.
         const double w = s.JxW[q];
-        for (unsigned int a = 0; a < n_dofs; ++a)
-          residual[a] += scalar_product(P, s.B[a]) * w;
+        const double p = scalar_product(P, F);
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          {
+            s.Pg[i] = P * g[i];
+            for (unsigned int c = 0; c < 3; ++c)
+              residual[3 * i + c] += (theta * s.Pg[i][c] + s.beta[3 * i + c] * p) * w;
+          }
 
         if (!tangent)
           continue;
 
-        // Material part B_a : A : B_b.
-        for (unsigned int b = 0; b < n_dofs; ++b)
-          s.A_B[b] = double_contract<2, 0, 3, 1>(response.dP_dF, s.B[b]);
-        for (unsigned int a = 0; a < n_dofs; ++a)
-          for (unsigned int b = 0; b < n_dofs; ++b)
-            (*tangent)(a, b) += scalar_product(s.B[a], s.A_B[b]) * w;
+        // Material part B_a : A : B_b with B_a = theta E_a + beta_a F, E_a = e_c (x) g_i:
+        //   theta^2 g_iJ A_cJdL g_jL + theta beta_b (A:F g_i)_c + theta beta_a (F:A g_j)_d
+        //   + beta_a beta_b F:A:F.
+        const Tensor<4, 3> &A = response.dP_dF;
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          for (unsigned int c = 0; c < 3; ++c)
+            for (unsigned int d = 0; d < 3; ++d)
+              for (unsigned int L = 0; L < 3; ++L)
+                s.Ag[i][c][d][L] =
+                  g[i][0] * A[c][0][d][L] + g[i][1] * A[c][1][d][L] + g[i][2] * A[c][2][d][L];
+        double FAF = 0;
+        if (use_f_bar)
+          {
+            Tensor<2, 3> AF, FA; // (A:F)_cJ = A_cJdL F_dL, (F:A)_dL = F_cJ A_cJdL
+            for (unsigned int c = 0; c < 3; ++c)
+              for (unsigned int J_ = 0; J_ < 3; ++J_)
+                for (unsigned int d = 0; d < 3; ++d)
+                  for (unsigned int L = 0; L < 3; ++L)
+                    {
+                      AF[c][J_] += A[c][J_][d][L] * F[d][L];
+                      FA[d][L] += F[c][J_] * A[c][J_][d][L];
+                    }
+            FAF = scalar_product(F, AF);
+            for (unsigned int i = 0; i < n_nodes; ++i)
+              {
+                s.AFg[i] = AF * g[i];
+                s.FAg[i] = FA * g[i];
+              }
+          }
 
         // Geometric part of F-bar: P : dB_a/du_b
         //   = theta/3 [c_b g_a + c_a g_b + p/3 c_a c_b + p d_ab],
-        // with g_a = P : G_a, p = P : F and
-        //   d_ab = tr(F^-1 G_b F^-1 G_a) - tr(F_0^-1 G0_b F_0^-1 G0_a).
-        if (use_f_bar)
-          {
-            const double p = scalar_product(P, F);
-            for (unsigned int a = 0; a < n_dofs; ++a)
-              s.g[a] = scalar_product(P, G[a]);
-            const double factor = theta / 3. * w;
-            for (unsigned int a = 0; a < n_dofs; ++a)
-              for (unsigned int b = 0; b < n_dofs; ++b)
-                {
-                  const double d_ab = trace_of_product(s.H[b], s.H[a]) -
-                                      trace_of_product(s.H0[b], s.H0[a]);
-                  (*tangent)(a, b) += factor * (s.c[b] * s.g[a] + s.c[a] * s.g[b] +
-                                                p / 3. * s.c[a] * s.c[b] + p * d_ab);
-                }
-          }
+        // with g_a = P : G_a = (P g_i)_c, p = P : F and
+        //   d_ab = tr(F^-1 G_b F^-1 G_a) - tr(F_0^-1 G0_b F_0^-1 G0_a)
+        //        = (F^-T g_i)_d (F^-T g_j)_c - (F_0^-T g0_i)_d (F_0^-T g0_j)_c.
+        const double geometric = theta / 3.;
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              const unsigned int a = 3 * i + c;
+              for (unsigned int j = 0; j < n_nodes; ++j)
+                for (unsigned int d = 0; d < 3; ++d)
+                  {
+                    const unsigned int b = 3 * j + d;
+                    double             k = theta * theta * (s.Ag[i][c][d] * g[j]);
+                    if (use_f_bar)
+                      {
+                        k += theta * (s.beta[b] * s.AFg[i][c] + s.beta[a] * s.FAg[j][d]) +
+                             s.beta[a] * s.beta[b] * FAF;
+                        const double d_ab =
+                          s.h[i][d] * s.h[j][c] - s.h0[i][d] * s.h0[j][c];
+                        k += geometric * (s.c[b] * s.Pg[i][c] + s.c[a] * s.Pg[j][d] +
+                                          p / 3. * s.c[a] * s.c[b] + p * d_ab);
+                      }
+                    (*tangent)(a, b) += k * w;
+                  }
+            }
       }
     return materials::UpdateStatus::success;
   }

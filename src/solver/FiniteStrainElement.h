@@ -1,15 +1,19 @@
 // Total-Lagrangian finite-strain hexahedron kernel with an optional F-bar modification.
 // Units: stresses in GPa, lengths in um, element forces in mN.
 //
-// Pointwise physics only: the kernel receives the shape-function gradients G_a = dF/du_a at the
-// quadrature points and at the element centre, the element's displacement values and the
-// material, and returns the element residual, tangent and updated material states. It knows
-// nothing about meshes, constraints or MPI.
+// Pointwise physics only: the kernel receives the reference gradients g_i = grad_X N_i of the
+// eight nodal shape functions at the quadrature points and at the element centre, the element's
+// displacement values and the material, and returns the element residual, tangent and updated
+// material states. It knows nothing about meshes, constraints or MPI. Element dof a is
+// component c(a) of node i(a) (deal.II's FESystem(FE_Q(1), 3) numbering, a = 3 i + c), so
+// G_a = dF/du_a = e_c (x) g_i has one non-zero row; the kernel works with g_i directly and never
+// forms G_a (a third of the flops of the dense form).
 //
 // F-bar (de Souza Neto et al. 1996, in the variationally consistent total-Lagrangian form):
 //   F_bar = theta F,  theta = (J_0 / J)^(1/3),  J_0 = det F at the element centre.
 // The residual is R_a = sum_q P(F_bar) : dF_bar/du_a w_q with
-//   dF_bar/du_a = B_a = theta [G_a + 1/3 F c_a],  c_a = tr(F_0^-1 G0_a) - tr(F^-1 G_a),
+//   dF_bar/du_a = B_a = theta [G_a + 1/3 F c_a],  c_a = tr(F_0^-1 G0_a) - tr(F^-1 G_a)
+//                                                    = (F_0^-T g0_i)_c - (F^-T g_i)_c,
 // and the tangent K_ab = B_a : A : B_b + P : dB_a/du_b, which is symmetric whenever the material
 // tangent A = dP/dF is. Without F-bar, theta = 1 and B_a = G_a (plain displacement element).
 #pragma once
@@ -29,22 +33,21 @@ namespace indentsim::solver
 
   struct ElementScratch
   {
-    explicit ElementScratch(unsigned int n_dofs = 24, unsigned int n_q_points = 8);
-    unsigned int                           n_dofs, n_q_points;
-    std::vector<std::vector<Tensor<2, 3>>> G;   // [q][a] dF/du_a at quadrature point q
-    std::vector<Tensor<2, 3>>              G0;  // [a] dF/du_a at the element centre
-    std::vector<double>                    JxW; // [q] reference volume weights
+    explicit ElementScratch(unsigned int n_nodes = 8, unsigned int n_q_points = 8);
+    unsigned int                           n_nodes, n_dofs, n_q_points;
+    std::vector<std::vector<Tensor<1, 3>>> grad;  // [q][i] grad_X N_i at quadrature point q
+    std::vector<Tensor<1, 3>>              grad0; // [i] grad_X N_i at the element centre
+    std::vector<double>                    JxW;   // [q] reference volume weights
     // Work arrays (allocated once).
-    std::vector<Tensor<2, 3>> B, A_B, H, H0;
-    std::vector<double>       c, g;
+    std::vector<Tensor<1, 3>>              h, h0, Pg, AFg, FAg; // [i]
+    std::vector<Tensor<3, 3>>              Ag;                  // [i] g_iJ A_cJdL
+    std::vector<double>                    c, beta;             // [a]
   };
 
-  struct ElementResult
-  {
-    materials::UpdateStatus status = materials::UpdateStatus::success;
-    // Cauchy stress at each quadrature point [GPa] (filled when requested).
-    std::vector<Tensor<2, 3>> cauchy_stress;
-  };
+  // F = 1 + sum_i u_i (x) g_i at quadrature point q (q = n_q_points: the element centre).
+  Tensor<2, 3> deformation_gradient(const ElementScratch         &scratch,
+                                    unsigned int                  q,
+                                    const dealii::Vector<double> &u_local);
 
   // Computes residual (and tangent when `tangent` is not null) for one element.
   // `state_old` / `state_new` hold n_q_points consecutive material states.

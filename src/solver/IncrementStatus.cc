@@ -14,6 +14,8 @@ namespace indentsim::solver
           return "contact search failed";
         case IncrementStatus::newton_diverged:
           return "Newton diverged";
+        case IncrementStatus::linear_solver_failure:
+          return "linear solver failed";
         case IncrementStatus::too_many_iterations:
           return "Newton iteration limit reached";
         case IncrementStatus::too_many_augmentations:

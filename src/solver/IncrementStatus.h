@@ -12,6 +12,7 @@ namespace indentsim::solver
     material_failure,       // a material point returned a failure status
     contact_search_failure, // the closest-point projection onto the indenter failed
     newton_diverged,
+    linear_solver_failure,  // the linear solver of a Newton iteration did not converge
     too_many_iterations,
     too_many_augmentations  // augmented-Lagrangian passes exhausted
   };

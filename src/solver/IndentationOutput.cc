@@ -90,16 +90,21 @@ namespace indentsim::solver
     }
     PETScWrappers::MPI::Vector pressure_ghosted(owned, relevant, communicator_);
     pressure_ghosted = pressure;
+    // DataOut works on threads: it reads thread-readable copies, not the PETSc vectors.
+    const GhostedVector u =
+      to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
+    const GhostedVector pressure_readable =
+      to_thread_readable(pressure_ghosted, owned, relevant, communicator_);
 
     DataOut<3> data_out;
     data_out.attach_dof_handler(dof_handler_);
     const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
       3, DataComponentInterpretation::component_is_part_of_vector);
-    data_out.add_data_vector(solution_,
+    data_out.add_data_vector(u,
                              std::vector<std::string>(3, "displacement_um"),
                              DataOut<3>::type_dof_data,
                              vector_field);
-    data_out.add_data_vector(scalar_dofs, pressure_ghosted, "contact_pressure_GPa");
+    data_out.add_data_vector(scalar_dofs, pressure_readable, "contact_pressure_GPa");
     const char *names[6] = {"cauchy_xx_GPa", "cauchy_xy_GPa", "cauchy_xz_GPa",
                             "cauchy_yy_GPa", "cauchy_yz_GPa", "cauchy_zz_GPa"};
     for (unsigned int k = 0; k < 6; ++k)
@@ -109,7 +114,7 @@ namespace indentsim::solver
     data_out.add_data_vector(subdomain, "mpi_rank");
 
     // The geometry is written in the deformed configuration.
-    const MappingQEulerian<3, PETScWrappers::MPI::Vector> deformed(1, dof_handler_, solution_);
+    const MappingQEulerian<3, GhostedVector> deformed(1, dof_handler_, u);
     data_out.build_patches(deformed, 1);
     const std::string pvtu = data_out.write_vtu_with_pvtu_record(
       output_directory_ + "/", "specimen", index, communicator_, 4, 8);

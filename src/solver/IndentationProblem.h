@@ -16,7 +16,9 @@
 #include "solver/CellWorkspace.h"
 #include "solver/FiniteStrainElement.h"
 #include "solver/IncrementStatus.h"
+#include "solver/LinearSolver.h"
 #include "solver/PileUp.h"
+#include "solver/RunStatistics.h"
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
@@ -68,13 +70,18 @@ namespace indentsim::solver
     // unless it is empty.
     void run(const std::string &output_directory);
 
-    // Solves one increment to depth `depth` from the last converged state (no cut-back).
-    IncrementStatus solve_increment(double depth, StepRecord &record);
+    // Solves one increment to depth `depth` from the last converged state (no cut-back). With
+    // `extrapolate`, Newton starts from the linear extrapolation of the last two converged
+    // states (when the indenter keeps its direction), else from the last converged state.
+    IncrementStatus solve_increment(double depth, StepRecord &record, bool extrapolate = true);
     // Accepts or rejects the increment just solved.
     void accept_increment();
     void reject_increment();
 
     const std::vector<StepRecord> &records() const { return records_; }
+    // Counters and phase times of this problem so far (setup and runs).
+    const RunStatistics &statistics() const { return statistics_; }
+    const LinearSolver  &linear_solver() const { return linear_solver_; }
     // The pile-up analysis of the last run(): stages max_depth and (after unloading) unloaded.
     // Filled on rank 0 when run() was given an output directory, empty otherwise.
     const std::vector<pileup::PileUpResult> &pileup_results() const { return pileup_results_; }
@@ -154,12 +161,21 @@ namespace indentsim::solver
     dealii::PETScWrappers::MPI::SparseMatrix matrix_;
     dealii::PETScWrappers::MPI::Vector       solution_;           // ghosted
     dealii::PETScWrappers::MPI::Vector       solution_converged_; // ghosted
+    // The converged solution before it (owned) and the depths of both: the predictor of the
+    // next increment extrapolates linearly from them.
+    dealii::PETScWrappers::MPI::Vector       solution_previous_;
+    double depth_converged_ = 0, depth_previous_ = 0, depth_trial_ = 0;
+    // |indenter force| of the model [mN] at the last converged and at the trial state.
+    double converged_force_scale_ = 0, trial_force_scale_ = 0;
+    bool   has_previous_ = false;
     dealii::PETScWrappers::MPI::Vector       residual_;           // owned
 
     // Material states: [active_cell_index][q][variable], flattened.
     unsigned int        n_q_points_ = 8, n_state_ = 0;
     std::vector<double> state_old_, state_new_;
 
+    LinearSolver                                     linear_solver_;
+    RunStatistics                                    statistics_;
     std::vector<StepRecord>                          records_;
     std::vector<pileup::PileUpResult>                pileup_results_;
     std::vector<std::pair<double, std::string>>      vtu_records_; // (output index, pvtu file)

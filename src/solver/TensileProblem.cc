@@ -4,6 +4,7 @@
 #include "materials/MaterialFactory.h"
 #include "materials/Orientation.h"
 
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/function.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
@@ -71,6 +72,7 @@ namespace indentsim::solver
     , dof_handler_(triangulation_)
     , material_(materials::create_material(the_case.material))
     , use_f_bar_(the_case.specimen.f_bar)
+    , linear_solver_(communicator)
     , n_per_side_(the_case.specimen.elements_per_side)
     , edge_length_(the_case.specimen.elements_per_side) // elements of 1 um
   {}
@@ -102,6 +104,7 @@ namespace indentsim::solver
 
   void TensileProblem::setup()
   {
+    const RunStatistics::Scope timer(statistics_.setup);
     GridGenerator::subdivided_hyper_cube(triangulation_, n_per_side_, 0., edge_length_, true);
     dof_handler_.distribute_dofs(fe_);
     locally_owned_ = dof_handler_.locally_owned_dofs();
@@ -114,6 +117,9 @@ namespace indentsim::solver
     SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_, communicator_,
                                                locally_relevant_);
     matrix_.reinit(locally_owned_, locally_owned_, dsp, communicator_);
+    linear_solver_.setup(dof_handler_,
+                         LinearSolver::choose_kind(case_.solver.linear_solver, dof_handler_.n_dofs()),
+                         material_->symmetric_tangent());
     solution_.reinit(locally_owned_, locally_relevant_, communicator_);
     solution_converged_.reinit(locally_owned_, locally_relevant_, communicator_);
     rhs_.reinit(locally_owned_, communicator_);
@@ -185,55 +191,59 @@ namespace indentsim::solver
   TensileProblem::AssemblyResult
   TensileProblem::assemble(const AffineConstraints<double> &constraints)
   {
-    AssemblyResult     result;
-    CellWorkspace      workspace(fe_, n_q_points_);
-    const unsigned int n_dofs_cell = fe_.n_dofs_per_cell();
-    FullMatrix<double> k_local(n_dofs_cell, n_dofs_cell);
-    std::vector<types::global_dof_index> dofs(n_dofs_cell);
-    double local_force = 0, local_volume = 0;
+    AssemblyResult result;
+    double         local_force = 0, local_volume = 0;
+    ++statistics_.assemblies;
+    const RunStatistics::Scope timer(statistics_.assembly);
 
     matrix_ = 0;
     rhs_ = 0;
-    for (const auto &cell : dof_handler_.active_cell_iterators())
-      {
-        if (!cell->is_locally_owned())
-          continue;
-        workspace.reinit(cell, solution_);
-        Vector<double> &r_local = workspace.r_local;
-        const auto      status = element_residual_and_tangent(*material_,
+    const GhostedVector u =
+      to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
+    const auto worker = [&](const DoFHandler<3>::active_cell_iterator &cell,
+                            CellWorkspace                             &workspace,
+                            CellContribution                          &contribution) {
+      workspace.reinit(cell, u);
+      Vector<double> &r_local = contribution.vector;
+      contribution.status = element_residual_and_tangent(*material_,
                                                          use_f_bar_,
                                                          workspace.u_local,
                                                          cell_state(state_old_, cell),
                                                          cell_state(state_new_, cell),
                                                          workspace.scratch,
                                                          r_local,
-                                                         &k_local);
-        if (status != materials::UpdateStatus::success)
-          {
-            result.status = status;
-            continue; // every rank must still reach the collective calls below
-          }
-
-        // The top face is held in z, so the internal force at its z dofs is the reaction.
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == face::z_max)
-            for (unsigned int a = 0; a < n_dofs_cell; ++a)
-              if (fe_.system_to_component_index(a).first == 2 && fe_.has_support_on_face(a, f))
-                local_force += r_local[a];
-        // Current volume: integral of det F over the reference cell (exact for Q1 with 2x2x2
-        // Gauss points, det F being of degree 2 in each coordinate).
-        for (unsigned int q = 0; q < n_q_points_; ++q)
-          {
-            Tensor<2, 3> F = unit_symmetric_tensor<3>();
-            for (unsigned int a = 0; a < n_dofs_cell; ++a)
-              F += workspace.u_local[a] * workspace.scratch.G[q][a];
-            local_volume += determinant(F) * workspace.scratch.JxW[q];
-          }
-
-        r_local *= -1.0; // Newton: K du = -R
-        cell->get_dof_indices(dofs);
-        constraints.distribute_local_to_global(k_local, r_local, dofs, matrix_, rhs_);
-      }
+                                                         &contribution.matrix);
+      if (contribution.status != materials::UpdateStatus::success)
+        return;
+      // The top face is held in z, so the internal force at its z dofs is the reaction.
+      contribution.sums = {{0., 0.}};
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == face::z_max)
+          for (unsigned int a = 0; a < fe_.n_dofs_per_cell(); ++a)
+            if (fe_.system_to_component_index(a).first == 2 && fe_.has_support_on_face(a, f))
+              contribution.sums[0] += r_local[a];
+      // Current volume: integral of det F over the reference cell (exact for Q1 with 2x2x2
+      // Gauss points, det F being of degree 2 in each coordinate).
+      for (unsigned int q = 0; q < n_q_points_; ++q)
+        {
+          const Tensor<2, 3> F = deformation_gradient(workspace.scratch, q, workspace.u_local);
+          contribution.sums[1] += determinant(F) * workspace.scratch.JxW[q];
+        }
+      r_local *= -1.0; // Newton: K du = -R
+      cell->get_dof_indices(contribution.dof_indices);
+    };
+    const auto copier = [&](const CellContribution &contribution) {
+      if (contribution.status != materials::UpdateStatus::success)
+        {
+          result.status = contribution.status;
+          return; // every rank must still reach the collective calls below
+        }
+      constraints.distribute_local_to_global(
+        contribution.matrix, contribution.vector, contribution.dof_indices, matrix_, rhs_);
+      local_force += contribution.sums[0];
+      local_volume += contribution.sums[1];
+    };
+    run_on_owned_cells(dof_handler_, n_q_points_, worker, copier);
     matrix_.compress(VectorOperation::add);
     rhs_.compress(VectorOperation::add);
 
@@ -296,9 +306,20 @@ namespace indentsim::solver
         if (it == tolerances.max_newton_iterations)
           break;
 
-        SolverControl                    control(1, 0);
-        PETScWrappers::SparseDirectMUMPS direct(control, communicator_);
-        direct.solve(matrix_, du, rhs_);
+        LinearSolver::Result linear;
+        {
+          const RunStatistics::Scope timer(statistics_.linear_solve);
+          linear = linear_solver_.solve(
+            matrix_, du, rhs_, std::clamp(0.1 * norm / reference, 1e-10, 1e-2));
+        }
+        ++statistics_.linear_solves;
+        ++statistics_.newton_iterations;
+        statistics_.linear_iterations += linear.iterations;
+        if (!linear.converged)
+          {
+            pcout_ << "      linear solver: " << linear.reason << std::endl;
+            return IncrementStatus::linear_solver_failure;
+          }
         constraints.distribute(du);
         u_owned = solution_;
         u_owned += du;
@@ -379,6 +400,7 @@ namespace indentsim::solver
               }
             reject_increment();
             ++record.cutbacks;
+            ++statistics_.cutbacks;
             ++halvings;
             pcout_ << "    [" << model << "] step " << step << " to log strain " << next << ": "
                    << to_string(status) << "; cutting the increment back to " << increment / 2
@@ -406,6 +428,7 @@ namespace indentsim::solver
         record.wall_time = wall_timer_.wall_time();
         total_newton += record.newton_iterations;
         records_.push_back(record);
+        statistics_.steps = step;
 
         const double eta = record.wall_time / step * (loading.steps - step);
         pcout_ << "[" << model << "] step " << std::setw(3) << step << "/" << loading.steps
@@ -429,7 +452,26 @@ namespace indentsim::solver
       log << "# finished: " << loading.steps << " steps, " << total_newton
           << " Newton iterations, " << wall_timer_.wall_time() << " s\n";
     if (write_paraview_file && !output_directory.empty())
-      write_paraview(output_directory, loading.steps);
+      {
+        const RunStatistics::Scope timer(statistics_.output);
+        write_paraview(output_directory, loading.steps);
+      }
+    statistics_.total = statistics_.setup + wall_timer_.wall_time();
+    if (!output_directory.empty() && csv_file_name == io::output_files::stress_strain_csv)
+      {
+        RunDescription description;
+        description.test = "tensile";
+        description.material_model = model;
+        description.linear_solver = linear_solver_.description();
+        description.cells = n_cells();
+        description.dofs = n_dofs();
+        description.mpi_ranks = Utilities::MPI::n_mpi_processes(communicator_);
+        description.threads = MultithreadInfo::n_threads();
+        description.final_value = records_.back().true_stress;
+        description.final_value_name = "final_true_stress_GPa";
+        write_run_summary(output_directory + "/" + io::output_files::run_summary, description,
+                          statistics_, communicator_);
+      }
   }
 
   void TensileProblem::write_paraview(const std::string &output_directory, const unsigned int index)
@@ -440,12 +482,14 @@ namespace indentsim::solver
     CellWorkspace             workspace(fe_, n_q_points_);
     std::vector<Tensor<2, 3>> cauchy(n_q_points_);
     std::vector<double>       state(std::size_t(n_q_points_) * n_state_);
+    const GhostedVector       u =
+      to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
     for (const auto &cell : dof_handler_.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
           continue;
         // The converged state evaluated at the converged displacement: no further flow.
-        workspace.reinit(cell, solution_);
+        workspace.reinit(cell, u);
         element_residual_and_tangent(*material_, use_f_bar_, workspace.u_local,
                                      cell_state(state_old_, cell), state, workspace.scratch,
                                      workspace.r_local, nullptr, &cauchy);
@@ -468,14 +512,15 @@ namespace indentsim::solver
     data_out.attach_dof_handler(dof_handler_);
     const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
       3, DataComponentInterpretation::component_is_part_of_vector);
-    data_out.add_data_vector(solution_, std::vector<std::string>(3, "displacement_um"),
+    data_out.add_data_vector(u, std::vector<std::string>(3, "displacement_um"),
                              DataOut<3>::type_dof_data, vector_field);
     data_out.add_data_vector(sigma_zz, "cauchy_zz_GPa");
     data_out.add_data_vector(von_mises, "von_mises_GPa");
     data_out.add_data_vector(plastic_strain, "equivalent_plastic_strain");
     data_out.add_data_vector(grain, "grain");
     data_out.add_data_vector(rank, "mpi_rank");
-    const MappingQEulerian<3, PETScWrappers::MPI::Vector> deformed(1, dof_handler_, solution_);
+    // DataOut works on threads: it reads the thread-readable copy, not the PETSc vector.
+    const MappingQEulerian<3, GhostedVector> deformed(1, dof_handler_, u);
     data_out.build_patches(deformed, 1);
     data_out.write_vtu_with_pvtu_record(output_directory + "/", io::output_files::paraview_basename,
                                         index, communicator_, 4, 8);

@@ -13,7 +13,7 @@
 // stays flat.
 //
 // The logarithmic strain eps grows in loading.steps equal increments to loading.max_strain.
-// Each increment is solved by Newton's method (PETSc MPI matrix, MUMPS direct solver) with the
+// Each increment is solved by Newton's method (PETSc MPI matrix, solver/LinearSolver.h) with the
 // standard treatment of the inhomogeneous Dirichlet condition: the first iteration applies the
 // increment of u_z on the top face through inhomogeneous constraints (a linearised predictor
 // over the whole cube), later iterations use the homogeneous constraints. A failing material
@@ -26,6 +26,8 @@
 #include "solver/CellWorkspace.h"
 #include "solver/FiniteStrainElement.h"
 #include "solver/IncrementStatus.h"
+#include "solver/LinearSolver.h"
+#include "solver/RunStatistics.h"
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
@@ -69,13 +71,16 @@ namespace indentsim::solver
 
     // Runs the loading. With a non-empty `output_directory` (which must exist) rank 0 writes
     // `csv_file_name` there and appends to run.log, and with `write_paraview_file` the final
-    // state goes to specimen_NNNN.pvtu (NNNN = last step). Throws std::runtime_error if an
+    // state goes to specimen_NNNN.pvtu (NNNN = last step); a run writing stress_strain.csv also
+    // writes run_summary.json (RunStatistics.h). Throws std::runtime_error if an
     // increment fails after loading.max_cutbacks halvings.
     void run(const std::string &output_directory,
              const std::string &csv_file_name,
              bool               write_paraview_file);
 
     const std::vector<TensileRecord> &records() const { return records_; }
+    // Counters and phase times of this problem so far (the contact phase stays 0).
+    const RunStatistics &statistics() const { return statistics_; }
     unsigned int                      n_cells() const;
     unsigned int                      n_dofs() const;
     double                            edge_length() const { return edge_length_; } // L [um]
@@ -125,6 +130,7 @@ namespace indentsim::solver
     double                                    edge_length_;
 
     dealii::PETScWrappers::MPI::SparseMatrix matrix_;
+    LinearSolver                             linear_solver_;
     dealii::PETScWrappers::MPI::Vector       solution_;           // ghosted
     dealii::PETScWrappers::MPI::Vector       solution_converged_; // ghosted
     dealii::PETScWrappers::MPI::Vector       rhs_;                // owned
@@ -136,6 +142,7 @@ namespace indentsim::solver
     double                    u_top_converged_ = 0; // [um]
 
     std::vector<TensileRecord> records_;
+    RunStatistics              statistics_;
     dealii::Timer              wall_timer_;
   };
 } // namespace indentsim::solver

@@ -2,6 +2,8 @@
 #include <io/CaseFile.h>
 #include <io/CommandLine.h>
 
+#include "../test_files.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -18,15 +20,10 @@ namespace
   namespace fs = std::filesystem;
   using namespace indentsim::io;
 
-  // A fresh, empty scratch directory for one test, under $INDENTSIM_TEST_TMP (fallback /tmp).
+  // A fresh, empty scratch directory for one test.
   fs::path scratch_directory(const std::string &test_name)
   {
-    const char *root = std::getenv("INDENTSIM_TEST_TMP");
-    const fs::path dir = fs::path(root != nullptr && *root != '\0' ? root : "/tmp") /
-                         ("case_file_" + std::to_string(::getpid())) / test_name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    return indentsim::test_files::scratch_directory("case_file", test_name);
   }
 
   fs::path write_text(const fs::path &path, const std::string &text)
@@ -624,6 +621,10 @@ TEST(CaseFile, LoadingContactSolverRangesAreChecked)
                   {"solver.residual_tolerance = 1.5"});
   expect_rejected(with("solver:\n  max_newton_iterations: 0\n"),
                   {"solver.max_newton_iterations = 0"});
+  expect_rejected(with("solver:\n  linear_solver: amg\n"),
+                  {"solver.linear_solver", "amg", "auto", "direct", "iterative"});
+  expect_rejected(with("solver:\n  threads: 5000\n"), {"solver.threads = 5000", "1024"});
+  expect_rejected(with("solver:\n  threads: -1\n"), {"solver.threads", "-1"});
   expect_rejected(with("output:\n  directory: \"\"\n"), {"output.directory"});
 }
 

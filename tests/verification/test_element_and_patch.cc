@@ -36,20 +36,19 @@ namespace
     Triangulation<3> tria;
     GridGenerator::hyper_rectangle(tria, Point<3>(0, 0, 0), Point<3>(2., 1.5, 1.));
     GridTools::distort_random(0.15, tria, false, 42);
-    const FESystem<3> fe(FE_Q<3>(1), 3);
-    FEValues<3>       fe_values(fe, QGauss<3>(2), update_gradients | update_JxW_values);
-    FEValues<3>       fe_centre(fe, QGauss<3>(1), update_gradients);
+    const FE_Q<3> fe(1);
+    FEValues<3>   fe_values(fe, QGauss<3>(2), update_gradients | update_JxW_values);
+    FEValues<3>   fe_centre(fe, QGauss<3>(1), update_gradients);
     fe_values.reinit(tria.begin_active());
     fe_centre.reinit(tria.begin_active());
-    const FEValuesExtractors::Vector u(0);
     for (unsigned int q = 0; q < 8; ++q)
       {
         scratch.JxW[q] = fe_values.JxW(q);
-        for (unsigned int a = 0; a < 24; ++a)
-          scratch.G[q][a] = fe_values[u].gradient(a, q);
+        for (unsigned int i = 0; i < 8; ++i)
+          scratch.grad[q][i] = fe_values.shape_grad(i, q);
       }
-    for (unsigned int a = 0; a < 24; ++a)
-      scratch.G0[a] = fe_centre[u].gradient(a, 0);
+    for (unsigned int i = 0; i < 8; ++i)
+      scratch.grad0[i] = fe_centre.shape_grad(i, 0);
   }
 
   // Largest entry-wise difference between the element tangent and central differences of the
@@ -62,7 +61,7 @@ namespace
     for (unsigned int q = 0; q < 8; ++q)
       material->initial_state(std::span<double>(state_old).subspan(q * n_state, n_state));
 
-    solver::ElementScratch scratch(24, 8);
+    solver::ElementScratch scratch(8, 8);
     distorted_element(scratch);
     std::mt19937                           rng(7);
     std::uniform_real_distribution<double> dist(-amplitude, amplitude);

@@ -32,3 +32,25 @@ TEST(Mpi, OneVersusManyRanksGiveTheSameCurve)
       EXPECT_NEAR(p.force, p.bottom_reaction, 1e-6 * p.force) << "step " << i;
     }
 }
+
+// The iterative solver (AMG-preconditioned Krylov) on all ranks against the direct solver on
+// one: the same curve to the Newton tolerance.
+TEST(Mpi, IterativeSolverOnManyRanksMatchesDirectOnOne)
+{
+  io::Case c = test_cases::small_j2_case();
+  c.solver.linear_solver = "iterative";
+  solver::IndentationProblem parallel(c, MPI_COMM_WORLD, false);
+  parallel.setup();
+  parallel.run("");
+  c.solver.linear_solver = "direct";
+  solver::IndentationProblem serial(c, MPI_COMM_SELF, false);
+  serial.setup();
+  serial.run("");
+  ASSERT_EQ(parallel.records().size(), serial.records().size());
+  for (std::size_t i = 1; i < serial.records().size(); ++i)
+    {
+      const auto &p = parallel.records()[i], &s = serial.records()[i];
+      EXPECT_NEAR(p.force, s.force, 1e-7 * s.force) << "step " << i;
+      EXPECT_NEAR(p.depth, s.depth, 1e-12) << "step " << i;
+    }
+}

@@ -2,6 +2,7 @@
 // unloaded writes pileup.json and the pile-up CSV files; its isotropic residual impression
 // piles up with the symmetry of the square mesh. Units: um, mN, GPa.
 #include "../test_cases.h"
+#include "../test_files.h"
 #include "io/Case.h"
 #include "solver/IndentationProblem.h"
 
@@ -21,24 +22,11 @@ namespace
 {
   namespace fs = std::filesystem;
 
-  // A fresh, empty scratch directory under $INDENTSIM_TEST_TMP (fallback /tmp).
   fs::path scratch_directory(const std::string &name)
   {
-    const char    *root = std::getenv("INDENTSIM_TEST_TMP");
-    const fs::path dir = fs::path(root != nullptr && *root != '\0' ? root : "/tmp") /
-                         ("pileup_" + std::to_string(::getpid())) / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    return test_files::scratch_directory("pileup", name);
   }
-
-  std::string read_text(const fs::path &path)
-  {
-    std::ifstream      in(path);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }
+  using test_files::read_text;
 } // namespace
 
 // An isotropic J2 block with low hardening (E / sigma_y = 226, H = 0.5 GPa) piles up around the

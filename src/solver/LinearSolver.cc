@@ -1,0 +1,193 @@
+#include "solver/LinearSolver.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <petscmat.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace indentsim::solver
+{
+  using namespace dealii;
+
+  namespace
+  {
+    void check(const PetscErrorCode code, const char *what)
+    {
+      if (code != 0)
+        throw std::runtime_error(std::string("PETSc error ") + std::to_string(code) + " in " +
+                                 what);
+    }
+
+    // Options of the preconditioner and Krylov solver, under the prefix "indentsim_" so that
+    // nothing else in the process sees them; an option the user already set wins.
+    void set_default_option(const char *name, const char *value)
+    {
+      PetscBool set = PETSC_FALSE;
+      check(PetscOptionsHasName(nullptr, nullptr, name, &set), "PetscOptionsHasName");
+      if (!set)
+        check(PetscOptionsSetValue(nullptr, name, value), "PetscOptionsSetValue");
+    }
+  } // namespace
+
+  LinearSolver::Kind LinearSolver::choose_kind(const std::string &setting, const unsigned long n_dofs)
+  {
+    if (setting == "direct")
+      return Kind::direct;
+    if (setting == "iterative")
+      return Kind::iterative;
+    if (setting != "auto")
+      throw std::invalid_argument("solver.linear_solver: unknown value '" + setting +
+                                  "' (allowed: auto, direct, iterative)");
+    return n_dofs >= iterative_threshold_dofs ? Kind::iterative : Kind::direct;
+  }
+
+  LinearSolver::LinearSolver(const MPI_Comm communicator)
+    : communicator_(communicator)
+  {}
+
+  LinearSolver::~LinearSolver()
+  {
+    destroy();
+  }
+
+  void LinearSolver::destroy()
+  {
+    if (ksp_ != nullptr)
+      KSPDestroy(&ksp_);
+    ksp_ = nullptr;
+    operator_ = nullptr;
+  }
+
+  std::string LinearSolver::description() const
+  {
+    if (kind_ == Kind::direct)
+      return "direct (MUMPS LU)";
+    return std::string(symmetric_ ? "iterative (CG" : "iterative (GMRES") +
+           " + smoothed-aggregation AMG with rigid-body modes)";
+  }
+
+  void LinearSolver::setup(const DoFHandler<3> &dof_handler, const Kind kind, const bool symmetric)
+  {
+    destroy();
+    kind_ = kind;
+    symmetric_ = symmetric;
+    rigid_body_modes_.clear();
+    if (kind_ == Kind::direct)
+      return;
+
+    // Rigid-body modes at the nodes: three translations and three rotations about the centre
+    // of the owned nodes' bounding box (any centre spans the same space), orthonormalized.
+    const IndexSet &owned = dof_handler.locally_owned_dofs();
+    rigid_body_modes_.resize(6);
+    for (auto &mode : rigid_body_modes_)
+      mode.reinit(owned, communicator_);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            const Point<3> x = cell->vertex(v);
+            for (unsigned int c = 0; c < 3; ++c)
+              {
+                const types::global_dof_index dof = cell->vertex_dof_index(v, c);
+                if (!owned.is_element(dof))
+                  continue;
+                rigid_body_modes_[c](dof) = 1.0;
+                // Rotations about x, y, z: omega x X, components (0,-z,y), (z,0,-x), (-y,x,0).
+                const double rot_x[3] = {0., -x[2], x[1]};
+                const double rot_y[3] = {x[2], 0., -x[0]};
+                const double rot_z[3] = {-x[1], x[0], 0.};
+                rigid_body_modes_[3](dof) = rot_x[c];
+                rigid_body_modes_[4](dof) = rot_y[c];
+                rigid_body_modes_[5](dof) = rot_z[c];
+              }
+          }
+    for (auto &mode : rigid_body_modes_)
+      mode.compress(VectorOperation::insert);
+    // Modified Gram-Schmidt.
+    for (unsigned int i = 0; i < rigid_body_modes_.size(); ++i)
+      {
+        for (unsigned int j = 0; j < i; ++j)
+          rigid_body_modes_[i].add(-(rigid_body_modes_[i] * rigid_body_modes_[j]),
+                                   rigid_body_modes_[j]);
+        rigid_body_modes_[i] /= rigid_body_modes_[i].l2_norm();
+      }
+
+    set_default_option("-indentsim_pc_gamg_threshold", "0.01");
+    set_default_option("-indentsim_pc_gamg_square_graph", "1");
+    set_default_option("-indentsim_mg_levels_ksp_type", "chebyshev");
+    set_default_option("-indentsim_mg_levels_pc_type", "jacobi");
+    set_default_option("-indentsim_mg_levels_ksp_max_it", "2");
+  }
+
+  LinearSolver::Result LinearSolver::solve(const PETScWrappers::MPI::SparseMatrix &matrix,
+                                   PETScWrappers::MPI::Vector             &x,
+                                   const PETScWrappers::MPI::Vector       &rhs,
+                                   const double                            relative_tolerance)
+  {
+    const Mat petsc_matrix = static_cast<Mat>(matrix);
+    if (ksp_ == nullptr || operator_ != petsc_matrix)
+      {
+        destroy();
+        check(KSPCreate(communicator_, &ksp_), "KSPCreate");
+        check(KSPSetOptionsPrefix(ksp_, "indentsim_"), "KSPSetOptionsPrefix");
+        PC pc;
+        check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+        if (kind_ == Kind::direct)
+          {
+            check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
+            check(PCSetType(pc, PCLU), "PCSetType");
+            check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+          }
+        else
+          {
+            check(KSPSetType(ksp_, symmetric_ ? KSPCG : KSPGMRES), "KSPSetType");
+            if (!symmetric_)
+              check(KSPGMRESSetRestart(ksp_, 200), "KSPGMRESSetRestart");
+            check(PCSetType(pc, PCGAMG), "PCSetType");
+            check(PCGAMGSetReuseInterpolation(pc, PETSC_TRUE), "PCGAMGSetReuseInterpolation");
+            std::vector<Vec> modes;
+            for (const auto &mode : rigid_body_modes_)
+              modes.push_back(static_cast<const Vec &>(mode));
+            MatNullSpace near_null_space;
+            check(MatNullSpaceCreate(communicator_, PETSC_FALSE, PetscInt(modes.size()),
+                                     modes.data(), &near_null_space),
+                  "MatNullSpaceCreate");
+            check(MatSetNearNullSpace(petsc_matrix, near_null_space), "MatSetNearNullSpace");
+            check(MatNullSpaceDestroy(&near_null_space), "MatNullSpaceDestroy");
+          }
+        check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+        operator_ = petsc_matrix;
+      }
+    // The same Mat with new values: the direct solver refactors numerically (the symbolic
+    // analysis is kept), GAMG rebuilds its coarse operators on the kept interpolation.
+    check(KSPSetOperators(ksp_, petsc_matrix, petsc_matrix), "KSPSetOperators");
+    if (kind_ == Kind::iterative)
+      check(KSPSetTolerances(ksp_, relative_tolerance, 0.0, PETSC_DEFAULT, 2000),
+            "KSPSetTolerances");
+    check(KSPSolve(ksp_, static_cast<const Vec &>(rhs), static_cast<const Vec &>(x)), "KSPSolve");
+    KSPConvergedReason reason;
+    check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+    if (kind_ == Kind::iterative && symmetric_ &&
+        (reason == KSP_DIVERGED_INDEFINITE_PC || reason == KSP_DIVERGED_INDEFINITE_MAT))
+      {
+        // A symmetric tangent need not be positive definite (geometric stiffness under
+        // compression, softening contact curvature), and CG detects it: switch to GMRES for
+        // the rest of the run and solve again.
+        symmetric_ = false;
+        check(KSPSetType(ksp_, KSPGMRES), "KSPSetType");
+        check(KSPGMRESSetRestart(ksp_, 200), "KSPGMRESSetRestart");
+        check(KSPSolve(ksp_, static_cast<const Vec &>(rhs), static_cast<const Vec &>(x)),
+              "KSPSolve");
+        check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+      }
+    PetscInt iterations = 0;
+    check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
+    Result result;
+    result.converged = reason > 0;
+    result.iterations = kind_ == Kind::direct ? 1u : static_cast<unsigned int>(iterations);
+    result.reason = KSPConvergedReasons[reason];
+    return result;
+  }
+} // namespace indentsim::solver

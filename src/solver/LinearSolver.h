@@ -1,0 +1,80 @@
+// The linear solver of the Newton iterations, K du = -R, for the indentation and tensile
+// problems. Units follow the system: K in mN/um, R in mN, du in um.
+//
+// Two kinds, chosen by solver.linear_solver (auto picks by size, see choose_kind):
+//  - direct: LU factorization by MUMPS through PETSc. The symbolic analysis is done once per
+//    sparsity pattern and reused by every later factorization (the pattern never changes).
+//  - iterative: CG (symmetric tangents) or GMRES preconditioned by PETSc's smoothed-aggregation
+//    algebraic multigrid (GAMG) with the six rigid-body modes of the nodes as near-null space
+//    (the modes an aggregation-AMG needs for elasticity; translations alone converge slowly).
+//    The interpolation of the hierarchy is kept across solves of the same pattern. The relative
+//    tolerance is passed per solve (inexact Newton, see IndentationProblem).
+// The preconditioner reads PETSc options with the prefix "indentsim_" (e.g. environment
+// PETSC_OPTIONS="-indentsim_ksp_monitor"), for diagnostics only.
+#pragma once
+
+#include "io/Case.h"
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/lac/petsc_sparse_matrix.h>
+#include <deal.II/lac/petsc_vector.h>
+
+#include <petscksp.h>
+
+#include <string>
+#include <vector>
+
+namespace indentsim::solver
+{
+  class LinearSolver
+  {
+  public:
+    enum class Kind
+    {
+      direct,
+      iterative
+    };
+    // Systems with at least this many unknowns are solved iteratively under
+    // solver.linear_solver: auto (measured crossover on the 2-core machine, bench/README.md).
+    static constexpr unsigned long iterative_threshold_dofs = 60000;
+    // The kind `setting` (solver.linear_solver: auto | direct | iterative) selects for a system of n_dofs unknowns.
+    static Kind choose_kind(const std::string &setting, unsigned long n_dofs);
+
+    LinearSolver(MPI_Comm communicator);
+    ~LinearSolver();
+    LinearSolver(const LinearSolver &) = delete;
+    LinearSolver &operator=(const LinearSolver &) = delete;
+
+    // Prepares for systems on `dof_handler` (vector-valued Q1, three components): the kind and,
+    // for the iterative kind, the rigid-body modes. `symmetric`: the tangent is symmetric (CG
+    // instead of GMRES).
+    void setup(const dealii::DoFHandler<3> &dof_handler, Kind kind, bool symmetric);
+
+    struct Result
+    {
+      bool         converged = false;
+      unsigned int iterations = 0; // Krylov iterations (1 for direct)
+      std::string  reason;         // PETSc's converged/diverged reason
+    };
+    // Solves matrix x = rhs (x is overwritten) to relative residual `relative_tolerance`
+    // (iterative) or exactly (direct). A solve that does not converge (zero pivot, iteration
+    // limit) is reported in the result; the caller cuts the load step back.
+    Result       solve(const dealii::PETScWrappers::MPI::SparseMatrix &matrix,
+                       dealii::PETScWrappers::MPI::Vector             &x,
+                       const dealii::PETScWrappers::MPI::Vector       &rhs,
+                       double                                          relative_tolerance);
+
+    Kind        kind() const { return kind_; }
+    std::string description() const;
+
+  private:
+    void destroy();
+
+    MPI_Comm                                        communicator_;
+    Kind                                            kind_ = Kind::direct;
+    bool                                            symmetric_ = false;
+    KSP                                             ksp_ = nullptr;
+    Mat                                             operator_ = nullptr; // the matrix of ksp_
+    std::vector<dealii::PETScWrappers::MPI::Vector> rigid_body_modes_;   // orthonormal
+  };
+} // namespace indentsim::solver

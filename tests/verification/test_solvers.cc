@@ -1,0 +1,189 @@
+// The performance paths change nothing in the results: the iterative linear solver (AMG-
+// preconditioned CG for J2, GMRES for the crystal) against the direct one, threaded assembly
+// against one thread, and the counters of run_summary.json against the load-penetration CSV.
+// Units: um, mN, GPa.
+#include "../test_cases.h"
+#include "../test_files.h"
+#include "io/Case.h"
+#include "solver/IndentationProblem.h"
+#include "solver/TensileProblem.h"
+
+#include <deal.II/base/multithread_info.h>
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <regex>
+#include <string>
+
+using namespace indentsim;
+
+namespace
+{
+  std::vector<solver::StepRecord> run_indentation(const io::Case &c, const std::string &directory = "")
+  {
+    solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problem.setup();
+    problem.run(directory);
+    return problem.records();
+  }
+
+  // Same number of steps, same depths, forces equal to `tolerance` relative to the largest.
+  void expect_same_curve(const std::vector<solver::StepRecord> &a,
+                         const std::vector<solver::StepRecord> &b,
+                         const double                           tolerance)
+  {
+    ASSERT_EQ(a.size(), b.size());
+    double max_force = 0;
+    for (const auto &r : a)
+      max_force = std::max(max_force, std::abs(r.force));
+    ASSERT_GT(max_force, 0);
+    for (std::size_t i = 0; i < a.size(); ++i)
+      {
+        EXPECT_NEAR(a[i].depth, b[i].depth, 1e-12) << "step " << i;
+        EXPECT_NEAR(a[i].force, b[i].force, tolerance * max_force) << "step " << i;
+      }
+  }
+
+  // The numbers of a flat JSON object (key -> value), as run_summary.json writes them.
+  std::map<std::string, double> json_numbers(const std::string &text)
+  {
+    std::map<std::string, double> numbers;
+    const std::regex pair("\"([a-zA-Z_0-9]+)\": (-?[0-9.eE+-]+)");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), pair); it != std::sregex_iterator();
+         ++it)
+      numbers[(*it)[1]] = std::stod((*it)[2]);
+    return numbers;
+  }
+} // namespace
+
+// Smoothed-aggregation AMG with CG (symmetric J2 tangent) reproduces the direct solver's curve;
+// the Newton tolerance (1e-8 relative residual) bounds the difference. Measured: 5e-9 on the
+// paper's 12 x 12 case.
+TEST(Solvers, IterativeAndDirectGiveTheSameJ2Curve)
+{
+  // Loading only: the unloading step of this coarse case loses the whole contact at once and
+  // the two solvers take different numbers of cut-backs to get there (both end at zero force).
+  io::Case c = test_cases::small_j2_case();
+  c.solver.linear_solver = "direct";
+  const auto direct = run_indentation(c);
+  c.solver.linear_solver = "iterative";
+  const auto iterative = run_indentation(c);
+  expect_same_curve(direct, iterative, 1e-7);
+}
+
+// The crystal tangent is not symmetric: GMRES with the same preconditioner.
+TEST(Solvers, IterativeAndDirectGiveTheSameCrystalCurve)
+{
+  io::Case c = test_cases::small_crystal_case();
+  c.loading.max_depth = 0.5;
+  c.loading.steps = 4;
+  c.solver.linear_solver = "direct";
+  const auto direct = run_indentation(c);
+  c.solver.linear_solver = "iterative";
+  const auto iterative = run_indentation(c);
+  expect_same_curve(direct, iterative, 1e-7);
+}
+
+TEST(Solvers, AutomaticChoiceFollowsTheSize)
+{
+  using solver::LinearSolver;
+  const unsigned long threshold = LinearSolver::iterative_threshold_dofs;
+  EXPECT_EQ(LinearSolver::choose_kind("auto", threshold - 1), LinearSolver::Kind::direct);
+  EXPECT_EQ(LinearSolver::choose_kind("auto", threshold), LinearSolver::Kind::iterative);
+  EXPECT_EQ(LinearSolver::choose_kind("direct", 10 * threshold), LinearSolver::Kind::direct);
+  EXPECT_EQ(LinearSolver::choose_kind("iterative", 10), LinearSolver::Kind::iterative);
+  EXPECT_THROW(LinearSolver::choose_kind("amg", 10), std::invalid_argument);
+}
+
+// Threads compute the cells, one thread adds them up in cell order: the result is the same
+// bit for bit whatever the number of threads (the test binary runs with one by default).
+TEST(Threads, AssemblyDoesNotDependOnTheThreadCount)
+{
+  io::Case c = test_cases::small_j2_case();
+  c.loading.steps = 4;
+  dealii::MultithreadInfo::set_thread_limit(1);
+  const auto one = run_indentation(c);
+  dealii::MultithreadInfo::set_thread_limit(2);
+  ASSERT_EQ(dealii::MultithreadInfo::n_threads(), 2u);
+  const auto two = run_indentation(c);
+  dealii::MultithreadInfo::set_thread_limit(1);
+  expect_same_curve(one, two, 0.0);
+}
+
+// The tensile problem's threaded assembly and its solver: direct and iterative agree, with any
+// thread count.
+TEST(Threads, TensileCubeDoesNotDependOnTheThreadCountOrSolver)
+{
+  io::Case c;
+  c.test = "tensile";
+  c.material.model = "crystal";
+  c.specimen.elements_per_side = 3;
+  c.specimen.grains = "per_element";
+  c.loading.max_strain = 0.02;
+  c.loading.steps = 4;
+  const auto run = [&](const std::string &linear_solver, const unsigned int threads) {
+    c.solver.linear_solver = linear_solver;
+    dealii::MultithreadInfo::set_thread_limit(threads);
+    solver::TensileProblem problem(c, MPI_COMM_WORLD, false);
+    problem.setup();
+    problem.run("", "", false);
+    dealii::MultithreadInfo::set_thread_limit(1);
+    return problem.records();
+  };
+  const auto reference = run("direct", 1), threaded = run("direct", 2),
+             iterative = run("iterative", 2);
+  ASSERT_EQ(reference.size(), 5u);
+  for (std::size_t i = 1; i < reference.size(); ++i)
+    {
+      EXPECT_EQ(threaded[i].true_stress, reference[i].true_stress) << "step " << i;
+      EXPECT_NEAR(iterative[i].true_stress, reference[i].true_stress,
+                  1e-7 * reference[i].true_stress)
+        << "step " << i;
+    }
+}
+
+// run_summary.json: what the benchmark harness reads. Its counters match the CSV, its phase
+// times add up to no more than the total, and its force is the CSV's force at maximum depth.
+TEST(RunSummary, CountersAndTimesAreConsistentWithTheRun)
+{
+  io::Case c = test_cases::small_j2_case();
+  c.loading.unload = true;
+  const auto directory = test_files::scratch_directory("solvers", "summary");
+  solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problem.setup();
+  problem.run(directory.string());
+  const auto numbers = json_numbers(test_files::read_text(directory / "run_summary.json"));
+
+  unsigned long newton = 0, cutbacks = 0;
+  double        force_at_max = 0;
+  for (const auto &r : problem.records())
+    {
+      newton += r.newton_iterations;
+      cutbacks += r.cutbacks;
+      if (std::abs(r.depth - c.loading.max_depth) < 1e-12)
+        force_at_max = r.force;
+    }
+  // Every Newton iteration belongs to a recorded step unless an increment was retried.
+  if (cutbacks == 0 && numbers.at("predictor_retries") == 0)
+    EXPECT_EQ(numbers.at("newton_iterations"), double(newton));
+  else
+    EXPECT_GT(numbers.at("newton_iterations"), double(newton));
+  EXPECT_EQ(numbers.at("cutbacks"), double(cutbacks));
+  EXPECT_EQ(numbers.at("steps"), double(problem.records().size() - 1));
+  EXPECT_EQ(numbers.at("dofs"), double(problem.n_dofs()));
+  EXPECT_EQ(numbers.at("cells"), double(problem.n_cells()));
+  EXPECT_EQ(numbers.at("linear_solves"), numbers.at("newton_iterations")); // one per iteration
+  EXPECT_NEAR(numbers.at("force_at_max_depth_mN"), force_at_max, 1e-8 * force_at_max);
+  double phases = 0;
+  for (const char *phase : {"time_setup_s", "time_assembly_s", "time_contact_s",
+                            "time_linear_solve_s", "time_output_s"})
+    {
+      EXPECT_GE(numbers.at(phase), 0.0) << phase;
+      phases += numbers.at(phase);
+    }
+  EXPECT_GT(numbers.at("time_assembly_s"), 0.0);
+  EXPECT_LE(phases, numbers.at("time_total_s") * 1.001 + 1e-3);
+  EXPECT_GT(numbers.at("peak_memory_per_rank_mib"), 10.0);
+  EXPECT_LE(numbers.at("peak_memory_per_rank_mib"), numbers.at("peak_memory_total_mib"));
+}

@@ -144,6 +144,7 @@ int main(int argc, char **argv)
 {
   // Threads: determined from the cores and the ranks per node (refined by solver.threads).
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, dealii::numbers::invalid_unsigned_int);
+  indentsim::solver::LinearSolver::limit_library_threads();
   const MPI_Comm communicator = MPI_COMM_WORLD;
   const bool     root = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
   try

@@ -23,6 +23,8 @@ namespace indentsim::solver
     , Ag(n_nodes)
     , c(3 * n_nodes)
     , beta(3 * n_nodes)
+    , X(3 * n_nodes)
+    , Y(3 * n_nodes)
   {}
 
   Tensor<2, 3> deformation_gradient(const ElementScratch &s,
@@ -154,28 +156,50 @@ namespace indentsim::solver
         // with g_a = P : G_a = (P g_i)_c, p = P : F and
         //   d_ab = tr(F^-1 G_b F^-1 G_a) - tr(F_0^-1 G0_b F_0^-1 G0_a)
         //        = (F^-T g_i)_d (F^-T g_j)_c - (F_0^-T g0_i)_d (F_0^-T g0_j)_c.
+        // All F-bar terms but d_ab are sums of products x_a y_b; they are gathered into
+        // X_a . Y_b with four entries each:
+        //   X_a = [theta (A:F g_i)_c + F:A:F beta_a, theta beta_a, geo (g_a + p/3 c_a), geo c_a],
+        //   Y_b = [beta_b, (F:A g_j)_d, c_b, g_b],  geo = theta / 3.
+        const double weighted_theta2 = theta * theta * w;
+        if (!use_f_bar)
+          {
+            for (unsigned int i = 0; i < n_nodes; ++i)
+              for (unsigned int j = 0; j < n_nodes; ++j)
+                for (unsigned int c = 0; c < 3; ++c)
+                  for (unsigned int d = 0; d < 3; ++d)
+                    (*tangent)(3 * i + c, 3 * j + d) +=
+                      weighted_theta2 * (s.Ag[i][c][d] * g[j]);
+            continue;
+          }
         const double geometric = theta / 3.;
         for (unsigned int i = 0; i < n_nodes; ++i)
           for (unsigned int c = 0; c < 3; ++c)
             {
               const unsigned int a = 3 * i + c;
-              for (unsigned int j = 0; j < n_nodes; ++j)
+              s.X[a] = {{w * (theta * s.AFg[i][c] + FAF * s.beta[a]),
+                         w * theta * s.beta[a],
+                         w * geometric * (s.Pg[i][c] + p / 3. * s.c[a]),
+                         w * geometric * s.c[a]}};
+              s.Y[a] = {{s.beta[a], s.FAg[i][c], s.c[a], s.Pg[i][c]}};
+            }
+        const double weighted_geometric_p = w * geometric * p;
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          for (unsigned int j = 0; j < n_nodes; ++j)
+            for (unsigned int c = 0; c < 3; ++c)
+              {
+                const unsigned int a = 3 * i + c;
+                const auto        &X = s.X[a];
                 for (unsigned int d = 0; d < 3; ++d)
                   {
                     const unsigned int b = 3 * j + d;
-                    double             k = theta * theta * (s.Ag[i][c][d] * g[j]);
-                    if (use_f_bar)
-                      {
-                        k += theta * (s.beta[b] * s.AFg[i][c] + s.beta[a] * s.FAg[j][d]) +
-                             s.beta[a] * s.beta[b] * FAF;
-                        const double d_ab =
-                          s.h[i][d] * s.h[j][c] - s.h0[i][d] * s.h0[j][c];
-                        k += geometric * (s.c[b] * s.Pg[i][c] + s.c[a] * s.Pg[j][d] +
-                                          p / 3. * s.c[a] * s.c[b] + p * d_ab);
-                      }
-                    (*tangent)(a, b) += k * w;
+                    const auto        &Y = s.Y[b];
+                    (*tangent)(a, b) +=
+                      weighted_theta2 * (s.Ag[i][c][d] * g[j]) + X[0] * Y[0] + X[1] * Y[1] +
+                      X[2] * Y[2] + X[3] * Y[3] +
+                      weighted_geometric_p *
+                        (s.h[i][d] * s.h[j][c] - s.h0[i][d] * s.h0[j][c]);
                   }
-            }
+              }
       }
     return materials::UpdateStatus::success;
   }

@@ -24,6 +24,7 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -42,6 +43,7 @@ namespace indentsim::solver
     std::vector<Tensor<1, 3>>              h, h0, Pg, AFg, FAg; // [i]
     std::vector<Tensor<3, 3>>              Ag;                  // [i] g_iJ A_cJdL
     std::vector<double>                    c, beta;             // [a]
+    std::vector<std::array<double, 4>>     X, Y;                // [a] F-bar product factors
   };
 
   // F = 1 + sum_i u_i (x) g_i at quadrature point q (q = n_q_points: the element centre).

@@ -4,6 +4,10 @@
 
 #include <petscmat.h>
 
+#include <dlfcn.h>
+
+#include <cstdlib>
+
 #include <stdexcept>
 #include <string>
 
@@ -30,6 +34,20 @@ namespace indentsim::solver
         check(PetscOptionsSetValue(nullptr, name, value), "PetscOptionsSetValue");
     }
   } // namespace
+
+  void LinearSolver::limit_library_threads()
+  {
+    // Looked up at run time: neither library is a link dependency of ours.
+    const auto call = [](const char *environment, const char *function) {
+      if (std::getenv(environment) != nullptr)
+        return;
+      using SetThreads = void (*)(int);
+      if (void *symbol = dlsym(RTLD_DEFAULT, function))
+        reinterpret_cast<SetThreads>(symbol)(1);
+    };
+    call("OMP_NUM_THREADS", "omp_set_num_threads");
+    call("OPENBLAS_NUM_THREADS", "openblas_set_num_threads");
+  }
 
   LinearSolver::Kind LinearSolver::choose_kind(const std::string &setting, const unsigned long n_dofs)
   {
@@ -58,6 +76,7 @@ namespace indentsim::solver
       KSPDestroy(&ksp_);
     ksp_ = nullptr;
     operator_ = nullptr;
+    rebuild_preconditioner_ = true;
   }
 
   std::string LinearSolver::description() const
@@ -73,6 +92,7 @@ namespace indentsim::solver
     destroy();
     kind_ = kind;
     symmetric_ = symmetric;
+    rebuild_preconditioner_ = true;
     rigid_body_modes_.clear();
     if (kind_ == Kind::direct)
       return;
@@ -161,14 +181,28 @@ namespace indentsim::solver
         operator_ = petsc_matrix;
       }
     // The same Mat with new values: the direct solver refactors numerically (the symbolic
-    // analysis is kept), GAMG rebuilds its coarse operators on the kept interpolation.
+    // analysis is kept); the iterative one keeps its preconditioner unless it must be rebuilt
+    // (GAMG then recomputes the coarse operators on the kept interpolation).
     check(KSPSetOperators(ksp_, petsc_matrix, petsc_matrix), "KSPSetOperators");
+    const bool rebuilt = kind_ == Kind::direct || rebuild_preconditioner_;
     if (kind_ == Kind::iterative)
-      check(KSPSetTolerances(ksp_, relative_tolerance, 0.0, PETSC_DEFAULT, 2000),
-            "KSPSetTolerances");
-    check(KSPSolve(ksp_, static_cast<const Vec &>(rhs), static_cast<const Vec &>(x)), "KSPSolve");
-    KSPConvergedReason reason;
-    check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+      {
+        check(KSPSetReusePreconditioner(ksp_, rebuilt ? PETSC_FALSE : PETSC_TRUE),
+              "KSPSetReusePreconditioner");
+        check(KSPSetTolerances(ksp_, relative_tolerance, 0.0, PETSC_DEFAULT, 1000),
+              "KSPSetTolerances");
+      }
+    const auto run = [&]() {
+      check(KSPSolve(ksp_, static_cast<const Vec &>(rhs), static_cast<const Vec &>(x)),
+            "KSPSolve");
+      KSPConvergedReason reason;
+      check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+      return reason;
+    };
+    KSPConvergedReason reason = run();
+    PetscInt           iterations = 0;
+    check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
+    PetscInt total_iterations = iterations;
     if (kind_ == Kind::iterative && symmetric_ &&
         (reason == KSP_DIVERGED_INDEFINITE_PC || reason == KSP_DIVERGED_INDEFINITE_MAT))
       {
@@ -178,12 +212,24 @@ namespace indentsim::solver
         symmetric_ = false;
         check(KSPSetType(ksp_, KSPGMRES), "KSPSetType");
         check(KSPGMRESSetRestart(ksp_, 200), "KSPGMRESSetRestart");
-        check(KSPSolve(ksp_, static_cast<const Vec &>(rhs), static_cast<const Vec &>(x)),
-              "KSPSolve");
-        check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+        reason = run();
+        check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
+        total_iterations += iterations;
       }
-    PetscInt iterations = 0;
-    check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
+    if (kind_ == Kind::iterative && !rebuilt && reason < 0)
+      {
+        // The reused preconditioner failed: a fresh one for the same matrix.
+        check(KSPSetReusePreconditioner(ksp_, PETSC_FALSE), "KSPSetReusePreconditioner");
+        reason = run();
+        check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
+        total_iterations += iterations;
+        iterations_after_build_ = static_cast<unsigned int>(iterations);
+      }
+    else if (rebuilt)
+      iterations_after_build_ = static_cast<unsigned int>(iterations);
+    rebuild_preconditioner_ =
+      static_cast<unsigned int>(iterations) > 2 * iterations_after_build_ + 10;
+    iterations = total_iterations;
     Result result;
     result.converged = reason > 0;
     result.iterations = kind_ == Kind::direct ? 1u : static_cast<unsigned int>(iterations);

@@ -7,8 +7,12 @@
 //  - iterative: CG (symmetric tangents) or GMRES preconditioned by PETSc's smoothed-aggregation
 //    algebraic multigrid (GAMG) with the six rigid-body modes of the nodes as near-null space
 //    (the modes an aggregation-AMG needs for elasticity; translations alone converge slowly).
-//    The interpolation of the hierarchy is kept across solves of the same pattern. The relative
-//    tolerance is passed per solve (inexact Newton, see IndentationProblem).
+//    The preconditioner is built for one Newton matrix and reused for the following ones as
+//    long as it works: it is rebuilt when a solve needs more than twice the iterations of the
+//    first solve after the last build (plus 10), or fails (then the same solve is repeated
+//    with a fresh one). The AMG setup costs several Krylov solves, and the Newton matrices of
+//    a load step differ little. The relative tolerance is passed per solve (inexact Newton,
+//    see IndentationProblem).
 // The preconditioner reads PETSc options with the prefix "indentsim_" (e.g. environment
 // PETSC_OPTIONS="-indentsim_ksp_monitor"), for diagnostics only.
 #pragma once
@@ -39,6 +43,12 @@ namespace indentsim::solver
     static constexpr unsigned long iterative_threshold_dofs = 60000;
     // The kind `setting` (solver.linear_solver: auto | direct | iterative) selects for a system of n_dofs unknowns.
     static Kind choose_kind(const std::string &setting, unsigned long n_dofs);
+
+    // Sets the OpenMP threads of MUMPS and the threads of OpenBLAS to one, unless the user set
+    // OMP_NUM_THREADS or OPENBLAS_NUM_THREADS. Our threads are TBB's (assembly) and MPI ranks;
+    // idle OpenMP workers spin and took a quarter of the CPU time of the assembly (measured with
+    // perf on the paper's 12 x 12 case: 6.7 s instead of 10.4 s with it). Call once at start.
+    static void limit_library_threads();
 
     LinearSolver(MPI_Comm communicator);
     ~LinearSolver();
@@ -76,5 +86,7 @@ namespace indentsim::solver
     KSP                                             ksp_ = nullptr;
     Mat                                             operator_ = nullptr; // the matrix of ksp_
     std::vector<dealii::PETScWrappers::MPI::Vector> rigid_body_modes_;   // orthonormal
+    bool         rebuild_preconditioner_ = true;
+    unsigned int iterations_after_build_ = 0; // Krylov iterations of the first solve after it
   };
 } // namespace indentsim::solver

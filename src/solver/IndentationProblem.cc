@@ -375,14 +375,16 @@ namespace indentsim::solver
               break;
 
             // Newton update K du = -R. Inexact Newton: the linear relative tolerance follows
-            // the residual (|R|/|R_ref|, within [1e-10, 1e-2]), so that the linear error stays
-            // below the quadratic Newton error and the last iterations keep their rate.
+            // the residual (0.1 |R|/|R_ref|, within [1e-10, 1e-4]), so that the linear error
+            // stays below the quadratic Newton error and the last iterations keep their rate.
+            // The cap 1e-4 (not 1e-2) keeps the contact active-set iteration on the path of the
+            // direct solver: looser solves made the small test case cycle and cut back.
             residual_ *= -1.0;
             LinearSolver::Result linear;
             {
               const RunStatistics::Scope timer(statistics_.linear_solve);
               linear = linear_solver_.solve(
-                matrix_, du, residual_, std::clamp(0.1 * norm / reference, 1e-10, 1e-2));
+                matrix_, du, residual_, std::clamp(0.1 * norm / reference, 1e-10, 1e-4));
             }
             ++statistics_.linear_solves;
             statistics_.linear_iterations += linear.iterations;

@@ -146,6 +146,13 @@ namespace indentsim::solver
                                    const PETScWrappers::MPI::Vector       &rhs,
                                    const double                            relative_tolerance)
   {
+    if (rhs.l2_norm() == 0.0)
+      {
+        // Nothing to solve (e.g. the first iteration of an increment with no load change);
+        // some preconditioners fail on a zero right-hand side.
+        x = 0;
+        return Result{true, 0, "zero right-hand side"};
+      }
     const Mat petsc_matrix = static_cast<Mat>(matrix);
     if (ksp_ == nullptr || operator_ != petsc_matrix)
       {

@@ -310,7 +310,7 @@ namespace indentsim::solver
         {
           const RunStatistics::Scope timer(statistics_.linear_solve);
           linear = linear_solver_.solve(
-            matrix_, du, rhs_, std::clamp(0.1 * norm / reference, 1e-10, 1e-2));
+            matrix_, du, rhs_, std::clamp(0.1 * norm / reference, 1e-10, 1e-4));
         }
         ++statistics_.linear_solves;
         ++statistics_.newton_iterations;

@@ -261,8 +261,9 @@ namespace indentsim::solver
     // the indenter keeps its direction (not at the reversal to unloading, where the response
     // changes from plastic to elastic). It satisfies the homogeneous constraints, and it saves
     // the first Newton iterations' walk from the old state (measured on the paper's 12 x 12
-    // case: 352 instead of 440 Newton iterations). run() retries a failed extrapolated
-    // increment from the converged state before it cuts the increment back.
+    // case: 352 instead of 440 Newton iterations; 312 with the force-scaled convergence test
+    // above). run() retries a failed extrapolated increment from the converged state before it
+    // cuts the increment back.
     if (extrapolate && has_previous_)
       {
         const double last = depth_converged_ - depth_previous_;

@@ -9,6 +9,17 @@
 
 using namespace indentsim;
 
+namespace
+{
+  std::vector<solver::StepRecord> run(const io::Case &c, const MPI_Comm communicator)
+  {
+    solver::IndentationProblem problem(c, communicator, false);
+    problem.setup();
+    problem.run("");
+    return problem.records();
+  }
+} // namespace
+
 
 // One rank and several ranks give the same curve to 1e-8 relative.
 TEST(Mpi, OneVersusManyRanksGiveTheSameCurve)
@@ -16,16 +27,11 @@ TEST(Mpi, OneVersusManyRanksGiveTheSameCurve)
   // 8 increments: no cut-backs on either side (a cut-back triggered by round-off on one side
   // only would change the plastic path).
   const io::Case c = test_cases::small_j2_case();
-  solver::IndentationProblem parallel(c, MPI_COMM_WORLD, false);
-  parallel.setup();
-  parallel.run("");
-  solver::IndentationProblem serial(c, MPI_COMM_SELF, false);
-  serial.setup();
-  serial.run("");
-  ASSERT_EQ(parallel.records().size(), serial.records().size());
-  for (std::size_t i = 1; i < serial.records().size(); ++i)
+  const auto     parallel = run(c, MPI_COMM_WORLD), serial = run(c, MPI_COMM_SELF);
+  ASSERT_EQ(parallel.size(), serial.size());
+  for (std::size_t i = 1; i < serial.size(); ++i)
     {
-      const auto &p = parallel.records()[i], &s = serial.records()[i];
+      const auto &p = parallel[i], &s = serial[i];
       EXPECT_GT(s.force, 0);
       EXPECT_NEAR(p.force, s.force, 1e-8 * s.force) << "step " << i;
       EXPECT_NEAR(p.depth, s.depth, 1e-12) << "step " << i;
@@ -39,17 +45,13 @@ TEST(Mpi, IterativeSolverOnManyRanksMatchesDirectOnOne)
 {
   io::Case c = test_cases::small_j2_case();
   c.solver.linear_solver = "iterative";
-  solver::IndentationProblem parallel(c, MPI_COMM_WORLD, false);
-  parallel.setup();
-  parallel.run("");
+  const auto parallel = run(c, MPI_COMM_WORLD);
   c.solver.linear_solver = "direct";
-  solver::IndentationProblem serial(c, MPI_COMM_SELF, false);
-  serial.setup();
-  serial.run("");
-  ASSERT_EQ(parallel.records().size(), serial.records().size());
-  for (std::size_t i = 1; i < serial.records().size(); ++i)
+  const auto serial = run(c, MPI_COMM_SELF);
+  ASSERT_EQ(parallel.size(), serial.size());
+  for (std::size_t i = 1; i < serial.size(); ++i)
     {
-      const auto &p = parallel.records()[i], &s = serial.records()[i];
+      const auto &p = parallel[i], &s = serial[i];
       EXPECT_NEAR(p.force, s.force, 1e-7 * s.force) << "step " << i;
       EXPECT_NEAR(p.depth, s.depth, 1e-12) << "step " << i;
     }

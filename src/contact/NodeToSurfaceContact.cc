@@ -4,6 +4,7 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -12,10 +13,17 @@ namespace indentsim::contact
   using namespace dealii;
 
   NodeToSurfaceContact::NodeToSurfaceContact(const indenter::IndenterSurface &surface,
-                                             const double                     penalty)
+                                             const double                     penalty,
+                                             const double friction_coefficient)
     : surface_(surface)
     , penalty_(penalty)
+    , mu_(friction_coefficient)
   {}
+
+  void NodeToSurfaceContact::set_lateral_offset(const Tensor<1, 3> &offset)
+  {
+    offset_ = Tensor<1, 3>({offset[0], offset[1], 0.});
+  }
 
   void NodeToSurfaceContact::setup(const DoFHandler<3>             &dof_handler,
                                    const AffineConstraints<double> &hanging_node_constraints,
@@ -57,6 +65,7 @@ namespace indentsim::contact
                 for (unsigned int d = 0; d < 3; ++d)
                   node.dofs[d] = face->vertex_dof_index(v, d);
                 node.X = face->vertex(v);
+                node.x_converged = node.X;
                 found.emplace(dof_x, node);
               }
           }
@@ -67,6 +76,60 @@ namespace indentsim::contact
         node.area = area(node.dofs[2]);
         nodes_.push_back(node);
       }
+  }
+
+  NodeToSurfaceContact::NodeResponse
+  NodeToSurfaceContact::respond(const ContactNode   &node,
+                                const Point<3>      &x,
+                                const int            normal_active,
+                                const ContactStatus *fixed_status) const
+  {
+    NodeResponse response;
+    response.projection = surface_.project(x - offset_, depth_);
+    response.projection.closest_point += offset_;
+    if (!response.projection.converged || !std::isfinite(response.projection.gap))
+      return response;
+    const Tensor<1, 3> &n = response.projection.normal;
+    const double augmented = node.lambda - penalty_ * response.projection.gap;
+    const bool   active = normal_active >= 0 ? normal_active == 1 : augmented > 0;
+    if (!active)
+      return response;
+    response.pressure = augmented;
+    if (mu_ == 0.0)
+      {
+        response.status = ContactStatus::slip;
+        return response;
+      }
+    // Relative slip over the increment against the rigid indenter, whose position is
+    // w = (offset_x, offset_y, -depth), and its part in the tangent plane.
+    Tensor<1, 3> s = (x - node.x_converged) - (offset_ - offset_converged_);
+    s[2] += depth_ - depth_converged_;
+    response.slip = s - (s * n) * n;
+    const Tensor<1, 3> multiplier =
+      node.traction_multiplier - (node.traction_multiplier * n) * n;
+    const Tensor<1, 3> trial = multiplier - penalty_ * response.slip;
+    const double       limit = mu_ * std::max(response.pressure, 0.0);
+    const double       trial_norm = trial.norm();
+    // A slipping node whose trial traction turns against its last traction has passed through
+    // the stick zone between the two directions: it sticks. Without this rule the semi-smooth
+    // Newton iteration jumps from one side of the cone to the other when the penalty is stiffer
+    // than the specimen under the node (measured: the spring-block test cycled forever).
+    const bool reversed = node.status == ContactStatus::slip && trial * node.traction < 0;
+    const bool stick = fixed_status ? *fixed_status == ContactStatus::stick :
+                                      (trial_norm <= limit || reversed);
+    if (stick)
+      {
+        response.status = ContactStatus::stick;
+        response.traction = trial;
+      }
+    else
+      {
+        // Return onto the Coulomb cone, eq. 18.
+        response.status = ContactStatus::slip;
+        if (trial_norm > 0)
+          response.traction = (limit / trial_norm) * trial;
+      }
+    return response;
   }
 
   bool NodeToSurfaceContact::evaluate(const PETScWrappers::MPI::Vector &u,
@@ -80,24 +143,32 @@ namespace indentsim::contact
       {
         for (unsigned int d = 0; d < 3; ++d)
           node.x[d] = node.X[d] + u(node.dofs[d]);
-        const indenter::SurfaceProjection projection = surface_.project(node.x, depth);
-        if (!projection.converged || !std::isfinite(projection.gap))
+        int normal_active = -1; // decided by the augmented pressure
+        if (mode == ActiveSet::predictor)
+          normal_active = node.lambda_converged > 0;
+        else if (mode == ActiveSet::frozen)
+          normal_active = node.active;
+        const ContactStatus  previous = node.status;
+        const ContactStatus *fixed =
+          (mode == ActiveSet::frozen && node.active) ? &previous : nullptr;
+        const NodeResponse response = respond(node, node.x, normal_active, fixed);
+        if (!response.projection.converged || !std::isfinite(response.projection.gap))
           {
             search_failed_ = true;
             node.pressure = 0;
             node.active = false;
+            node.status = ContactStatus::open;
+            node.traction = 0;
             continue;
           }
-        node.gap = projection.gap;
-        node.normal = projection.normal;
-        const double augmented = node.lambda - penalty_ * node.gap;
-        const bool was_active = node.active;
-        if (mode == ActiveSet::predictor)
-          node.active = node.lambda_converged > 0;
-        else if (mode == ActiveSet::free)
-          node.active = augmented > 0;
-        n_changes_ += (node.active != was_active);
-        node.pressure = node.active ? augmented : 0.0;
+        node.gap = response.projection.gap;
+        node.normal = response.projection.normal;
+        node.active = response.status != ContactStatus::open;
+        node.status = response.status;
+        n_changes_ += (node.status != previous);
+        node.pressure = response.pressure;
+        node.traction = response.traction;
+        node.slip = response.slip;
       }
     return !search_failed_;
   }
@@ -116,27 +187,52 @@ namespace indentsim::contact
         const double force = node.pressure * node.area; // [mN]
         for (unsigned int d = 0; d < 3; ++d)
           {
-            local_residual[d] = -force * node.normal[d];
+            local_residual[d] = -force * node.normal[d] - node.area * node.traction[d];
             dofs[d] = node.dofs[d];
           }
         if (matrix)
           {
-            // d(-p A n)/dx = eps A n (x) n - p A dn/dx. The derivative of the normal (the
-            // Hessian of the signed distance, i.e. the indenter's curvature) is taken by central
-            // differences of the exact closest-point projection.
-            for (unsigned int i = 0; i < 3; ++i)
-              for (unsigned int j = 0; j < 3; ++j)
-                local_matrix(i, j) = penalty_ * node.area * node.normal[i] * node.normal[j];
             const double h = 1e-7 * std::max(1.0, node.x.norm());
-            for (unsigned int j = 0; j < 3; ++j)
+            if (mu_ == 0.0)
               {
-                Point<3> xp = node.x, xm = node.x;
-                xp[j] += h;
-                xm[j] -= h;
-                const auto pp = surface_.project(xp, depth_);
-                const auto pm = surface_.project(xm, depth_);
+                // d(-p A n)/dx = eps A n (x) n - p A dn/dx. The derivative of the normal (the
+                // Hessian of the signed distance, i.e. the indenter's curvature) is taken by
+                // central differences of the exact closest-point projection.
                 for (unsigned int i = 0; i < 3; ++i)
-                  local_matrix(i, j) -= force * (pp.normal[i] - pm.normal[i]) / (2 * h);
+                  for (unsigned int j = 0; j < 3; ++j)
+                    local_matrix(i, j) = penalty_ * node.area * node.normal[i] * node.normal[j];
+                for (unsigned int j = 0; j < 3; ++j)
+                  {
+                    Point<3> xp = node.x, xm = node.x;
+                    xp[j] += h;
+                    xm[j] -= h;
+                    const auto pp = surface_.project(xp - offset_, depth_);
+                    const auto pm = surface_.project(xm - offset_, depth_);
+                    for (unsigned int i = 0; i < 3; ++i)
+                      local_matrix(i, j) -= force * (pp.normal[i] - pm.normal[i]) / (2 * h);
+                  }
+              }
+            else
+              {
+                // With friction: d(-f)/dx, f = A (p n + t), by central differences of the exact
+                // nodal response at the frozen status (normal and Coulomb parts alike; the
+                // slip tangent is not symmetric).
+                for (unsigned int j = 0; j < 3; ++j)
+                  {
+                    Point<3> xp = node.x, xm = node.x;
+                    xp[j] += h;
+                    xm[j] -= h;
+                    const NodeResponse rp = respond(node, xp, 1, &node.status);
+                    const NodeResponse rm = respond(node, xm, 1, &node.status);
+                    for (unsigned int i = 0; i < 3; ++i)
+                      {
+                        const double fp =
+                          rp.pressure * rp.projection.normal[i] + rp.traction[i];
+                        const double fm =
+                          rm.pressure * rm.projection.normal[i] + rm.traction[i];
+                        local_matrix(i, j) = -node.area * (fp - fm) / (2 * h);
+                      }
+                  }
               }
             constraints.distribute_local_to_global(
               local_matrix, local_residual, dofs, *matrix, residual);
@@ -157,8 +253,11 @@ namespace indentsim::contact
     for (ContactNode &node : nodes_)
       {
         largest_change =
-          std::max(largest_change, std::abs(node.pressure - node.lambda) * node.area);
+          std::max({largest_change,
+                    std::abs(node.pressure - node.lambda) * node.area,
+                    (node.traction - node.traction_multiplier).norm() * node.area});
         node.lambda = node.pressure;
+        node.traction_multiplier = node.traction;
       }
     return Utilities::MPI::max(largest_change, communicator_);
   }
@@ -166,35 +265,59 @@ namespace indentsim::contact
   void NodeToSurfaceContact::accept_increment()
   {
     for (ContactNode &node : nodes_)
-      node.lambda_converged = node.lambda;
+      {
+        node.lambda_converged = node.lambda;
+        node.traction_multiplier_converged = node.traction_multiplier;
+        node.x_converged = node.x;
+      }
+    depth_converged_ = depth_;
+    offset_converged_ = offset_;
   }
 
   void NodeToSurfaceContact::reject_increment()
   {
     for (ContactNode &node : nodes_)
-      node.lambda = node.lambda_converged;
+      {
+        node.lambda = node.lambda_converged;
+        node.traction_multiplier = node.traction_multiplier_converged;
+      }
   }
 
   ContactSummary NodeToSurfaceContact::summary() const
   {
     ContactSummary s;
     double         local_force = 0, local_area = 0, local_radius = 0, local_penetration = 0;
-    unsigned int   local_active = 0;
+    double         local_stick_slip = 0;
+    Tensor<1, 3>   local_force_vector;
+    unsigned int   local_active = 0, local_stick = 0, local_slip = 0;
     for (const ContactNode &node : nodes_)
       {
         local_penetration = std::max(local_penetration, -node.gap);
         if (node.pressure <= 0)
           continue;
-        local_force += -node.pressure * node.area * node.normal[2];
+        local_force += -node.pressure * node.area * node.normal[2] - node.area * node.traction[2];
+        local_force_vector += node.area * (node.pressure * node.normal + node.traction);
         local_area += node.area;
         local_radius = std::max(local_radius, std::hypot(node.x[0], node.x[1]));
         ++local_active;
+        if (node.status == ContactStatus::stick)
+          {
+            ++local_stick;
+            local_stick_slip = std::max(local_stick_slip, node.slip.norm());
+          }
+        else
+          ++local_slip;
       }
     s.force_z = Utilities::MPI::sum(local_force, communicator_);
+    for (unsigned int d = 0; d < 3; ++d)
+      s.force_on_specimen[d] = Utilities::MPI::sum(local_force_vector[d], communicator_);
     s.contact_area = Utilities::MPI::sum(local_area, communicator_);
     s.contact_radius = Utilities::MPI::max(local_radius, communicator_);
     s.max_penetration = Utilities::MPI::max(local_penetration, communicator_);
+    s.max_stick_slip = Utilities::MPI::max(local_stick_slip, communicator_);
     s.n_active = Utilities::MPI::sum(local_active, communicator_);
+    s.n_stick = Utilities::MPI::sum(local_stick, communicator_);
+    s.n_slip = Utilities::MPI::sum(local_slip, communicator_);
     s.search_failed =
       Utilities::MPI::max(static_cast<unsigned int>(search_failed_), communicator_) > 0;
     return s;

@@ -1,16 +1,28 @@
-// Frictionless node-to-surface contact between the specimen's top face and a rigid analytic
-// indenter, enforced by the augmented Lagrangian. Units: um, mN, GPa.
+// Node-to-surface contact between the specimen's top face and a rigid analytic indenter,
+// frictionless or with Coulomb friction (paper eqs. 17-18), enforced by the augmented Lagrangian.
+// Units: um, mN, GPa.
 //
 // Each slave node i on the top face carries a tributary (Lobatto, nodal-quadrature) area A_i in
-// the reference configuration and a Lagrange multiplier lambda_i >= 0 (nominal contact pressure,
-// GPa). With the signed gap g_i from the closest-point projection onto the indenter and the
-// penalty (augmentation) parameter eps, the Alart–Curnier augmented pressure is
-//   p_i = < lambda_i - eps g_i >_+ ,
-// and node i receives the force p_i A_i n_i (n_i the indenter's outward normal). The residual
-// contribution is -p_i A_i n_i, its tangent eps A_i n_i (x) n_i - p_i A_i dn/dx for active nodes.
+// the reference configuration, a normal multiplier lambda_i >= 0 (nominal contact pressure, GPa)
+// and, with friction, a tangential multiplier t_i (nominal traction in the tangent plane, GPa).
+//
+// Normal part (Alart–Curnier). With the signed gap g_i from the closest-point projection onto
+// the indenter and the penalty (augmentation) parameter eps,
+//   p_i = < lambda_i - eps g_i >_+ .
+// Tangential part (Coulomb, backward Euler over the increment). With the relative slip of the
+// node against the rigid indenter over the increment, s = (x - x_n) - (w - w_n) (w the indenter
+// position), its tangential part s_T = (I - n (x) n) s and the trial traction
+//   t_trial = (I - n (x) n) t_i - eps s_T ,
+// the node sticks if |t_trial| <= mu p_i (t = t_trial) and slips otherwise
+// (t = mu p_i t_trial / |t_trial|): the return onto the Coulomb cone.
+// Node i receives the force f_i = A_i (p_i n_i + t_i); the residual contribution is -f_i.
+//
 // For fixed multipliers, Newton converges to the penalty solution; the Uzawa update
-// lambda_i <- p_i then drives the gaps of the active nodes to zero, so that the impenetrability
-// conditions (paper eq. 17) g >= 0, p >= 0, p g = 0 hold to the requested tolerance.
+// lambda_i <- p_i, t_i <- t then drives the gaps of the active nodes and the slips of the
+// sticking nodes to zero, so that the conditions of eqs. 17-18 (g >= 0, p >= 0, p g = 0;
+// |t| <= mu p, stick without slip, slip opposite to t) hold to the requested tolerance. The
+// penalty only sets the convergence rate of these passes, not the converged answer: the user
+// tunes nothing.
 //
 // The class never knows which material lies underneath.
 #pragma once
@@ -31,35 +43,55 @@ namespace indentsim::contact
   using dealii::Point;
   using dealii::Tensor;
 
+  // Contact status of a node: open (no contact), stick or slip. Frictionless contact nodes slip.
+  enum class ContactStatus : unsigned char
+  {
+    open = 0,
+    stick = 1,
+    slip = 2
+  };
+
   struct ContactNode
   {
     std::array<dealii::types::global_dof_index, 3> dofs; // x, y, z displacement dofs
     Point<3>                                       X;    // reference position [um]
     double area = 0;          // tributary reference area [um^2]
-    double lambda = 0;        // multiplier (nominal pressure) [GPa]
-    double lambda_converged = 0; // multiplier of the last converged increment
+    double lambda = 0;        // normal multiplier (nominal pressure) [GPa]
+    double lambda_converged = 0; // normal multiplier of the last converged increment
+    Tensor<1, 3> traction_multiplier;           // tangential multiplier t_i [GPa]
+    Tensor<1, 3> traction_multiplier_converged; // t_i of the last converged increment
+    Point<3>     x_converged; // position at the last converged increment [um]
     // State at the last evaluation.
-    double       gap = 0;      // [um]
-    double       pressure = 0; // augmented pressure p [GPa]
-    bool         active = false;
-    Tensor<1, 3> normal;
-    Point<3>     x;            // current position [um]
+    double        gap = 0;      // [um]
+    double        pressure = 0; // augmented pressure p [GPa]
+    bool          active = false;
+    ContactStatus status = ContactStatus::open;
+    Tensor<1, 3>  normal;
+    Tensor<1, 3>  traction;     // tangential traction t on the node [GPa]
+    Tensor<1, 3>  slip;         // tangential slip s_T over the increment [um]
+    Point<3>      x;            // current position [um]
   };
 
   struct ContactSummary
   {
     double       force_z = 0;         // total indenter force (z, positive pushing down) [mN]
+    Tensor<1, 3> force_on_specimen;   // total contact force the indenter exerts [mN]
     double       max_penetration = 0; // max(-g) over all nodes, >= 0 [um]
+    double       max_stick_slip = 0;  // max |s_T| over sticking nodes (0 at convergence) [um]
     double       contact_area = 0;    // sum of tributary areas of active nodes [um^2]
     double       contact_radius = 0;  // largest radial distance of an active node [um]
     unsigned int n_active = 0;
+    unsigned int n_stick = 0;
+    unsigned int n_slip = 0;
     bool         search_failed = false;
   };
 
   class NodeToSurfaceContact
   {
   public:
-    NodeToSurfaceContact(const indenter::IndenterSurface &surface, double penalty);
+    // friction_coefficient: Coulomb mu >= 0 (0: frictionless).
+    NodeToSurfaceContact(const indenter::IndenterSurface &surface, double penalty,
+                         double friction_coefficient = 0.0);
 
     // Collects the locally owned top-face nodes inside the footprint |x| <= half_x,
     // |y| <= half_y and their tributary areas. Hanging nodes (constrained x dof) are excluded.
@@ -70,16 +102,19 @@ namespace indentsim::contact
                double                                   half_y,
                MPI_Comm                                 communicator);
 
-    // Evaluates gaps and augmented pressures for displacement `u` (ghosted) at indenter depth.
-    // In `predictor` mode, the active set is that of the last converged increment and the pressure
-    // of its nodes is not clipped at zero: the first Newton iteration of an increment then moves
-    // the contact zone with the indenter (loading and unloading alike) instead of releasing it.
+    // Lateral (x, y) position of the indenter axis [um]; 0 unless a test slides the indenter.
+    void set_lateral_offset(const Tensor<1, 3> &offset);
+
+    // Evaluates gaps, pressures and tractions for displacement `u` (ghosted) at indenter depth.
+    // In `predictor` mode, the normal active set is that of the last converged increment and the
+    // pressure of its nodes is not clipped at zero: the first Newton iteration of an increment
+    // then moves the contact zone with the indenter (loading and unloading alike) instead of
+    // releasing it. With `frozen`, the statuses of the previous evaluation are kept (pressures
+    // unclipped): the Newton driver freezes them when the semi-smooth iteration cycles.
     // Returns false if a closest-point projection failed on this rank.
-    // With `frozen`, the active set of the previous evaluation is kept (pressures unclipped):
-    // the Newton driver freezes it when the semi-smooth iteration cycles between active sets.
     enum class ActiveSet
     {
-      free,      // active where the augmented pressure is positive
+      free,      // active where the augmented pressure is positive, stick/slip by the cone
       predictor, // active where the last converged increment was active
       frozen     // as in the previous evaluation
     };
@@ -89,30 +124,50 @@ namespace indentsim::contact
     // Number of nodes (global) whose status differs between the last two evaluations.
     unsigned int n_status_changes() const;
 
-    // Adds residual -p A n and tangent for the active nodes through `constraints`.
+    // Adds residual -f and tangent for the active nodes through `constraints`.
     void assemble(const dealii::AffineConstraints<double>   &constraints,
                   dealii::PETScWrappers::MPI::Vector        &residual,
                   dealii::PETScWrappers::MPI::SparseMatrix  *matrix) const;
 
-    // Uzawa update lambda <- p; returns the largest change of lambda*area [mN] (global).
+    // Uzawa update lambda <- p, t_i <- t; returns the largest change of the nodal force [mN]
+    // (global).
     double augment();
 
-    // Accept / reject the current increment's multipliers.
+    // Accept / reject the current increment's multipliers and positions.
     void accept_increment();
     void reject_increment();
 
     ContactSummary summary() const; // global (MPI-summed) values
     const std::vector<ContactNode> &nodes() const { return nodes_; }
     double penalty() const { return penalty_; }
+    double friction_coefficient() const { return mu_; }
+    // The contact tangent is symmetric only without friction (the Coulomb return is not).
+    bool symmetric_tangent() const { return mu_ == 0.0; }
     double total_area() const;      // global tributary area of all contact nodes [um^2]
 
   private:
+    // Pressure, traction and status of `node` placed at `x`. normal_active: -1 decides by the
+    // augmented pressure, 0/1 imposes it (pressure then unclipped); with `fixed_status`, stick or
+    // slip is imposed (frozen set, tangent by differences) instead of decided.
+    struct NodeResponse
+    {
+      indenter::SurfaceProjection projection;
+      double                      pressure = 0;
+      Tensor<1, 3>                traction, slip;
+      ContactStatus               status = ContactStatus::open;
+    };
+    NodeResponse respond(const ContactNode &node, const Point<3> &x, int normal_active,
+                         const ContactStatus *fixed_status) const;
+
     const indenter::IndenterSurface &surface_;
     double                           penalty_;
+    double                           mu_;
     std::vector<ContactNode>         nodes_;
     MPI_Comm                         communicator_ = MPI_COMM_SELF;
     bool                             search_failed_ = false;
     double                           depth_ = 0; // indenter depth of the last evaluate() [um]
+    double                           depth_converged_ = 0;
+    Tensor<1, 3>                     offset_, offset_converged_; // lateral indenter position
     unsigned int                     n_changes_ = 0; // local status changes of the last evaluate()
   };
 } // namespace indentsim::contact

@@ -82,7 +82,7 @@ namespace indentsim::io
 
   struct ContactParameters
   {
-    double friction_coefficient = 0.0; // Coulomb mu [-] (only 0 is supported for now)
+    double friction_coefficient = 0.0; // Coulomb mu [-], 0 <= mu <= 2 (0: frictionless)
     double penalty = 0.0;              // augmentation parameter [GPa/um]; 0: automatic
     double penetration_tolerance = 1e-6; // largest admissible penetration at convergence [um]
     unsigned int max_augmentations = 30;

@@ -700,12 +700,11 @@ namespace indentsim::io
           reject("loading.max_strain", format_number(l.max_strain),
                  "the final logarithmic strain of the tensile test must satisfy 0 < strain <= 1");
 
-        if (!(c.friction_coefficient >= 0.))
+        // Measured indenter-metal coefficients lie below 0.5; 2 leaves room for studies without
+        // admitting a typo (e.g. 10 for 0.10).
+        if (!(c.friction_coefficient >= 0. && c.friction_coefficient <= 2.))
           reject("contact.friction_coefficient", format_number(c.friction_coefficient),
-                 "must be >= 0 (and friction is not implemented yet; only 0 is allowed)");
-        if (c.friction_coefficient > 0.)
-          reject("contact.friction_coefficient", format_number(c.friction_coefficient),
-                 "friction is not implemented yet; only 0 is allowed");
+                 "the Coulomb coefficient mu must satisfy 0 <= mu <= 2 (0: frictionless)");
         if (!(c.penalty >= 0.))
           reject("contact.penalty", format_number(c.penalty),
                  "must be >= 0 GPa/um (0: chosen automatically)");
@@ -1060,7 +1059,7 @@ namespace indentsim::io
 
     out << "contact:\n";
     line("  friction_coefficient: " + format_number(c.contact.friction_coefficient),
-         "Coulomb mu [-] (only 0 is implemented)");
+         "Coulomb mu [-], 0: frictionless");
     line("  penalty: " + format_number(c.contact.penalty), "[GPa/um], 0: automatic");
     line("  penetration_tolerance: " + format_number(c.contact.penetration_tolerance), "[um]");
     line("  max_augmentations: " + std::to_string(c.contact.max_augmentations), "");

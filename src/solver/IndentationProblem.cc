@@ -150,7 +150,8 @@ namespace indentsim::solver
                              case_.contact.penalty :
                              30. * material_->reference_modulus() /
                                mesh_info_.contact_element_size;
-    contact_ = std::make_unique<contact::NodeToSurfaceContact>(*indenter_, penalty);
+    contact_ = std::make_unique<contact::NodeToSurfaceContact>(
+      *indenter_, penalty, case_.contact.friction_coefficient);
     contact_->setup(dof_handler_,
                     constraints_hanging_,
                     mesh::boundary::top,
@@ -160,7 +161,7 @@ namespace indentsim::solver
 
     linear_solver_.setup(dof_handler_,
                          LinearSolver::choose_kind(case_.solver.linear_solver, n_dofs()),
-                         material_->symmetric_tangent());
+                         material_->symmetric_tangent() && contact_->symmetric_tangent());
 
     pcout_ << "Mesh: " << n_cells() << " cells, " << n_dofs() << " DOFs, "
            << n_constrained_dofs() << " constrained DOFs (hanging nodes and supports), "
@@ -411,7 +412,10 @@ namespace indentsim::solver
           return IncrementStatus::too_many_iterations;
 
         const contact::ContactSummary summary = contact_->summary();
-        if (summary.max_penetration <= case_.contact.penetration_tolerance)
+        // Augmented until the active nodes do not penetrate and the sticking ones do not slip
+        // (eqs. 17-18) beyond the tolerance.
+        if (summary.max_penetration <= case_.contact.penetration_tolerance &&
+            summary.max_stick_slip <= case_.contact.penetration_tolerance)
           {
             trial_force_scale_ = std::abs(summary.force_z);
             const double factor = symmetry_factor();

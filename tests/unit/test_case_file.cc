@@ -610,10 +610,10 @@ TEST(CaseFile, LoadingContactSolverRangesAreChecked)
   expect_rejected(with("loading:\n  max_depth: 30\n"),
                   {"loading.max_depth = 30", "refined_region[2] = 30"});
   expect_rejected(with("contact:\n  friction_coefficient: -0.1\n"),
-                  {"contact.friction_coefficient = -0.1", ">= 0"});
-  expect_rejected(with("contact:\n  friction_coefficient: 0.2\n"),
-                  {"contact.friction_coefficient = 0.2",
-                   "friction is not implemented yet; only 0 is allowed"});
+                  {"contact.friction_coefficient = -0.1", "0 <= mu <= 2"});
+  expect_rejected(with("contact:\n  friction_coefficient: 10\n"),
+                  {"contact.friction_coefficient = 10", "0 <= mu <= 2"});
+  EXPECT_EQ(error_of(with("contact:\n  friction_coefficient: 0.2\n")), "");
   expect_rejected(with("contact:\n  penalty: -1\n"), {"contact.penalty = -1"});
   expect_rejected(with("contact:\n  penetration_tolerance: 0\n"),
                   {"contact.penetration_tolerance = 0"});

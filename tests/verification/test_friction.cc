@@ -1,0 +1,273 @@
+// Coulomb friction of the augmented-Lagrangian node-to-surface contact (paper eq. 18) against
+// closed forms: a block whose top-face nodes are held by linear springs is pressed by a rigid
+// plane and the plane is then slid sideways and back. Each node sticks while the spring force
+// k |u_t| stays below mu N and slips with the tangential force mu N beyond; the path back shows
+// the stick-slip hysteresis. The contact tangent with friction is checked against differences of
+// the residual. Units: um, mN, GPa.
+#include "contact/NodeToSurfaceContact.h"
+#include "indenter/RoundedCone.h"
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+using namespace indentsim;
+using namespace dealii;
+
+namespace
+{
+  // A rigid plane z = -depth (the indenter occupies z >= -depth, the specimen lies below).
+  class Plane : public indenter::IndenterSurface
+  {
+  public:
+    double profile(double, double) const override { return 0; }
+    indenter::SurfaceProjection project(const Point<3> &x, const double depth) const override
+    {
+      indenter::SurfaceProjection p;
+      p.gap = -depth - x[2];
+      p.closest_point = Point<3>(x[0], x[1], -depth);
+      p.normal = Tensor<1, 3>({0., 0., -1.});
+      return p;
+    }
+    double      projected_area(double) const override { return 0; }
+    std::string name() const override { return "plane"; }
+  };
+
+  // One hexahedron [0,1]^2 x [-1,0] um; its four top-face nodes are the contact nodes, each held
+  // by an isotropic linear spring of stiffness k to its reference position; the bottom nodes are
+  // fixed. The problem (springs + contact) is solved by Newton with Uzawa augmentations.
+  class SpringBlock
+  {
+  public:
+    SpringBlock(const indenter::IndenterSurface &surface, const double mu, const double penalty)
+      : fe(FE_Q<3>(1), 3)
+      , dof_handler(triangulation)
+      , contact(surface, penalty, mu)
+    {
+      GridGenerator::hyper_rectangle(triangulation, Point<3>(0, 0, -1), Point<3>(1, 1, 0), true);
+      dof_handler.distribute_dofs(fe);
+      owned = dof_handler.locally_owned_dofs();
+      AffineConstraints<double> none;
+      none.close();
+      contact.setup(dof_handler, none, 5, 2., 2., MPI_COMM_SELF); // face 5: z = 0
+      DynamicSparsityPattern pattern(dof_handler.n_dofs(), dof_handler.n_dofs());
+      for (unsigned int i = 0; i < dof_handler.n_dofs(); ++i)
+        for (unsigned int j = 0; j < dof_handler.n_dofs(); ++j)
+          pattern.add(i, j);
+      matrix.reinit(owned, owned, pattern, MPI_COMM_SELF);
+      u.reinit(owned, MPI_COMM_SELF);
+      residual.reinit(owned, MPI_COMM_SELF);
+      is_top.assign(dof_handler.n_dofs(), false);
+      for (const auto &node : contact.nodes())
+        for (const auto dof : node.dofs)
+          is_top[dof] = true;
+    }
+
+    // Residual (springs minus contact forces) and, optionally, its tangent as a dense matrix.
+    double assemble(const contact::NodeToSurfaceContact::ActiveSet mode, const double depth,
+                    FullMatrix<double> *tangent)
+    {
+      EXPECT_TRUE(contact.evaluate(u, depth, mode));
+      residual = 0;
+      matrix = 0;
+      AffineConstraints<double> none;
+      none.close();
+      contact.assemble(none, residual, tangent ? &matrix : nullptr);
+      residual.compress(VectorOperation::add);
+      matrix.compress(VectorOperation::add);
+      const unsigned int n = dof_handler.n_dofs();
+      if (tangent)
+        tangent->reinit(n, n);
+      double norm = 0;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          double r = is_top[i] ? residual(i) + k * u(i) : 0.0;
+          norm += r * r;
+          residual_values[i] = r;
+          if (tangent)
+            for (unsigned int j = 0; j < n; ++j)
+              (*tangent)(i, j) = is_top[i] ? matrix.el(i, j) + (i == j ? k : 0.0) :
+                                             (i == j ? 1.0 : 0.0);
+        }
+      return std::sqrt(norm);
+    }
+
+    // Solves one increment to the indenter position (depth, lateral offset).
+    void solve(const double depth, const double offset_x)
+    {
+      contact.set_lateral_offset(Tensor<1, 3>({offset_x, 0., 0.}));
+      const unsigned int n = dof_handler.n_dofs();
+      residual_values.assign(n, 0.);
+      bool augmented_enough = false;
+      for (unsigned int pass = 0; pass < 60 && !augmented_enough; ++pass)
+        {
+          bool converged = false;
+          for (unsigned int it = 0; it < 30; ++it)
+            {
+              FullMatrix<double> tangent;
+              const double       norm =
+                assemble(contact::NodeToSurfaceContact::ActiveSet::free, depth, &tangent);
+              if (norm < 1e-14)
+                {
+                  converged = true;
+                  break;
+                }
+              tangent.gauss_jordan();
+              Vector<double> r(residual_values.begin(), residual_values.end()), du(n);
+              tangent.vmult(du, r);
+              for (unsigned int i = 0; i < n; ++i)
+                shift(i, -du(i));
+            }
+          ASSERT_TRUE(converged) << "Newton did not converge at depth " << depth
+                                 << ", offset " << offset_x;
+          const auto s = contact.summary();
+          augmented_enough = s.max_penetration <= 1e-12 && s.max_stick_slip <= 1e-12;
+          if (!augmented_enough)
+            contact.augment();
+        }
+      ASSERT_TRUE(augmented_enough);
+      contact.accept_increment();
+    }
+
+    // u_i += delta (serial PETSc vector, insert mode).
+    void shift(const unsigned int i, const double delta)
+    {
+      const double value = u(i);
+      u(i) = value + delta;
+      u.compress(VectorOperation::insert);
+    }
+
+    const double                         k = 1.0; // spring stiffness [mN/um]
+    Triangulation<3>                     triangulation;
+    FESystem<3>                          fe;
+    DoFHandler<3>                        dof_handler;
+    IndexSet                             owned;
+    contact::NodeToSurfaceContact        contact;
+    PETScWrappers::MPI::SparseMatrix     matrix;
+    PETScWrappers::MPI::Vector           u, residual;
+    std::vector<bool>                    is_top;
+    std::vector<double>                  residual_values;
+  };
+
+  // Every top node carries the same state: checks its displacement and the total forces.
+  void expect_state(const SpringBlock &block, const double u_x, const double force_x,
+                    const double force_z, const unsigned int n_stick, const char *what)
+  {
+    SCOPED_TRACE(what);
+    const auto s = block.contact.summary();
+    EXPECT_EQ(s.n_active, 4u);
+    EXPECT_EQ(s.n_stick, n_stick);
+    EXPECT_EQ(s.n_slip, 4u - n_stick);
+    // The augmentations stop at gaps and stick slips of 1e-12 um, i.e. at nodal forces within
+    // eps A 1e-12 = 2.5e-11 mN of the exact ones (four nodes: 1e-10 mN).
+    EXPECT_NEAR(s.force_z, force_z, 1e-10);
+    EXPECT_NEAR(s.force_on_specimen[0], force_x, 1e-10);
+    EXPECT_NEAR(s.force_on_specimen[1], 0.0, 1e-10);
+    for (const auto &node : block.contact.nodes())
+      EXPECT_NEAR(block.u(node.dofs[0]), u_x, 1e-12);
+  }
+} // namespace
+
+// Requirement: pressed by d and slid by s, a node on a spring k sticks (tangential force k s,
+// node carried along with the plane) while k s <= mu k d and slips with the force mu N beyond;
+// sliding back, it sticks until the traction has reversed (a travel of 2 mu d) and then slips
+// the other way: the exact Coulomb response, with no slip while sticking and no penetration.
+TEST(Friction, SpringBlockStickSlipAndReversal)
+{
+  const Plane  plane;
+  const double mu = 0.3, d = 0.01;
+  SpringBlock  block(plane, mu, 100.0);
+  const double N = 4 * block.k * d; // total normal force [mN]
+
+  block.solve(d, 0.0);
+  expect_state(block, 0.0, 0.0, N, 4, "pressed");
+
+  block.solve(d, 0.001); // k s = 0.001 < mu k d = 0.003: stick
+  expect_state(block, 0.001, 4 * block.k * 0.001, N, 4, "stick at s = 0.001");
+
+  block.solve(d, 0.002);
+  expect_state(block, 0.002, 4 * block.k * 0.002, N, 4, "stick at s = 0.002");
+
+  block.solve(d, 0.01); // beyond mu d: slip, the node stays at mu d behind the plane
+  expect_state(block, mu * d, mu * N, N, 0, "slip at s = 0.01");
+
+  block.solve(d, 0.006); // back by 0.004 < 2 mu d: stick again
+  expect_state(block, mu * d - 0.004, 4 * block.k * (mu * d - 0.004), N, 4, "stick on the way back");
+
+  block.solve(d, 0.0); // back by 0.01 > 2 mu d: slip the other way
+  expect_state(block, -mu * d, -mu * N, N, 0, "reverse slip");
+}
+
+// Requirement: mu = 0 gives the frictionless response: no tangential force, whatever the slide.
+TEST(Friction, ZeroCoefficientTransmitsNoTangentialForce)
+{
+  const Plane plane;
+  SpringBlock block(plane, 0.0, 100.0);
+  block.solve(0.01, 0.0);
+  block.solve(0.01, 0.005);
+  expect_state(block, 0.0, 0.0, 4 * block.k * 0.01, 0, "frictionless slide");
+}
+
+// Requirement: the contact tangent with friction (normal curvature, stick and slip parts) is the
+// derivative of the contact residual at frozen statuses, checked against central differences of
+// the assembled residual on the curved rounded-cone indenter.
+TEST(Friction, TangentMatchesDifferencesOfTheResidual)
+{
+  const indenter::RoundedCone cone(2.48, 0.5);
+  for (const double mu : {0.05, 2.0}) // mostly slipping, then sticking
+    {
+      SCOPED_TRACE("mu = " + std::to_string(mu));
+      SpringBlock block(cone, mu, 50.0);
+      block.solve(0.05, 0.0);
+      // A trial state inside the increment: pushed deeper and dragged sideways.
+      block.contact.set_lateral_offset(Tensor<1, 3>({0.02, -0.01, 0.}));
+      for (unsigned int i = 0; i < block.dof_handler.n_dofs(); ++i)
+        if (block.is_top[i])
+          block.shift(i, 1e-3 * std::sin(1.0 + i));
+      const double depth = 0.08;
+      using ActiveSet = contact::NodeToSurfaceContact::ActiveSet;
+      FullMatrix<double> tangent;
+      block.assemble(ActiveSet::free, depth, &tangent);
+      const auto s = block.contact.summary();
+      ASSERT_GT(s.n_active, 0u);
+      if (mu > 1)
+        EXPECT_GT(s.n_stick, 0u);
+      else
+        EXPECT_GT(s.n_slip, 0u);
+
+      const unsigned int n = block.dof_handler.n_dofs();
+      const double       h = 1e-6;
+      double             max_error = 0, max_entry = 0;
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          if (!block.is_top[j])
+            continue;
+          std::vector<double> r_plus, r_minus;
+          for (const double sign : {1.0, -1.0})
+            {
+              block.shift(j, sign * h);
+              block.assemble(ActiveSet::frozen, depth, nullptr);
+              (sign > 0 ? r_plus : r_minus) = block.residual_values;
+              block.shift(j, -sign * h);
+            }
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              const double fd = (r_plus[i] - r_minus[i]) / (2 * h);
+              max_error = std::max(max_error, std::abs(fd - tangent(i, j)));
+              max_entry = std::max(max_entry, std::abs(tangent(i, j)));
+            }
+        }
+      EXPECT_LT(max_error, 1e-6 * max_entry) << "largest entry " << max_entry;
+    }
+}

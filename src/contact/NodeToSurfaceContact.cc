@@ -287,7 +287,7 @@ namespace indentsim::contact
   {
     ContactSummary s;
     double         local_force = 0, local_area = 0, local_radius = 0, local_penetration = 0;
-    double         local_stick_slip = 0;
+    double         local_stick_slip = 0, local_pressure = 0;
     Tensor<1, 3>   local_force_vector;
     unsigned int   local_active = 0, local_stick = 0, local_slip = 0;
     for (const ContactNode &node : nodes_)
@@ -298,6 +298,7 @@ namespace indentsim::contact
         local_force += -node.pressure * node.area * node.normal[2] - node.area * node.traction[2];
         local_force_vector += node.area * (node.pressure * node.normal + node.traction);
         local_area += node.area;
+        local_pressure = std::max(local_pressure, node.pressure);
         local_radius = std::max(local_radius, std::hypot(node.x[0], node.x[1]));
         ++local_active;
         if (node.status == ContactStatus::stick)
@@ -315,6 +316,7 @@ namespace indentsim::contact
     s.contact_radius = Utilities::MPI::max(local_radius, communicator_);
     s.max_penetration = Utilities::MPI::max(local_penetration, communicator_);
     s.max_stick_slip = Utilities::MPI::max(local_stick_slip, communicator_);
+    s.max_pressure = Utilities::MPI::max(local_pressure, communicator_);
     s.n_active = Utilities::MPI::sum(local_active, communicator_);
     s.n_stick = Utilities::MPI::sum(local_stick, communicator_);
     s.n_slip = Utilities::MPI::sum(local_slip, communicator_);

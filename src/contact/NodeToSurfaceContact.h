@@ -78,6 +78,7 @@ namespace indentsim::contact
     Tensor<1, 3> force_on_specimen;   // total contact force the indenter exerts [mN]
     double       max_penetration = 0; // max(-g) over all nodes, >= 0 [um]
     double       max_stick_slip = 0;  // max |s_T| over sticking nodes (0 at convergence) [um]
+    double       max_pressure = 0;    // largest nodal pressure p [GPa]
     double       contact_area = 0;    // sum of tributary areas of active nodes [um^2]
     double       contact_radius = 0;  // largest radial distance of an active node [um]
     unsigned int n_active = 0;

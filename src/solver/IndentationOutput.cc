@@ -1,6 +1,7 @@
 // ParaView output of IndentationProblem: deformed mesh (Eulerian mapping), displacement,
-// cell-averaged Cauchy stress, von Mises stress, equivalent plastic strain and nodal contact
-// pressure; the pile-up files of the top surface. Units: um, GPa.
+// cell-averaged Cauchy stress, von Mises stress, equivalent plastic strain and the nodal contact
+// fields (pressure, status, friction traction); the pile-up files of the top surface.
+// Units: um, GPa.
 #include "io/CaseFile.h"
 #include "solver/FiniteStrainElement.h"
 #include "solver/IndentationProblem.h"
@@ -16,6 +17,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <cstdlib>
+#include <functional>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -62,17 +64,19 @@ namespace indentsim::solver
     for (const auto &cell : triangulation_.active_cell_iterators())
       subdomain[cell->active_cell_index()] = triangulation_.locally_owned_subdomain();
 
-    // Nodal contact pressure on a scalar Q1 field.
+    // Nodal contact fields on a scalar Q1 field: pressure p [GPa], status (0 open, 1 stick,
+    // 2 slip) and the magnitude of the friction traction |t| [GPa], all nominal (per reference
+    // area).
     DoFHandler<3> scalar_dofs(triangulation_);
     const FE_Q<3> fe_scalar(1);
     scalar_dofs.distribute_dofs(fe_scalar);
     const IndexSet owned = scalar_dofs.locally_owned_dofs();
     const IndexSet relevant = DoFTools::extract_locally_relevant_dofs(scalar_dofs);
-    PETScWrappers::MPI::Vector pressure(owned, communicator_);
-    {
-      std::map<types::global_dof_index, double> pressure_by_dof; // vector dof x -> pressure
+    const auto nodal_field = [&](const std::function<double(const contact::ContactNode &)> &value) {
+      PETScWrappers::MPI::Vector field(owned, communicator_);
+      std::map<types::global_dof_index, double> value_by_dof; // vector dof x -> value
       for (const auto &node : contact_->nodes())
-        pressure_by_dof[node.dofs[0]] = node.pressure;
+        value_by_dof[node.dofs[0]] = value(node);
       for (const auto &cell : dof_handler_.active_cell_iterators())
         if (cell->is_locally_owned())
           {
@@ -80,21 +84,26 @@ namespace indentsim::solver
               &triangulation_, cell->level(), cell->index(), &scalar_dofs);
             for (const unsigned int v : cell->vertex_indices())
               {
-                const auto it = pressure_by_dof.find(cell->vertex_dof_index(v, 0));
+                const auto it = value_by_dof.find(cell->vertex_dof_index(v, 0));
                 const auto dof = scalar_cell->vertex_dof_index(v, 0);
-                if (it != pressure_by_dof.end() && owned.is_element(dof))
-                  pressure(dof) = it->second;
+                if (it != value_by_dof.end() && owned.is_element(dof))
+                  field(dof) = it->second;
               }
           }
-      pressure.compress(VectorOperation::insert);
-    }
-    PETScWrappers::MPI::Vector pressure_ghosted(owned, relevant, communicator_);
-    pressure_ghosted = pressure;
-    // DataOut works on threads: it reads thread-readable copies, not the PETSc vectors.
+      field.compress(VectorOperation::insert);
+      PETScWrappers::MPI::Vector ghosted(owned, relevant, communicator_);
+      ghosted = field;
+      // DataOut works on threads: it reads thread-readable copies, not the PETSc vectors.
+      return to_thread_readable(ghosted, owned, relevant, communicator_);
+    };
+    const GhostedVector pressure_readable =
+      nodal_field([](const contact::ContactNode &node) { return node.pressure; });
+    const GhostedVector status_readable = nodal_field(
+      [](const contact::ContactNode &node) { return static_cast<double>(node.status); });
+    const GhostedVector traction_readable =
+      nodal_field([](const contact::ContactNode &node) { return node.traction.norm(); });
     const GhostedVector u =
       to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
-    const GhostedVector pressure_readable =
-      to_thread_readable(pressure_ghosted, owned, relevant, communicator_);
 
     DataOut<3> data_out;
     data_out.attach_dof_handler(dof_handler_);
@@ -105,6 +114,8 @@ namespace indentsim::solver
                              DataOut<3>::type_dof_data,
                              vector_field);
     data_out.add_data_vector(scalar_dofs, pressure_readable, "contact_pressure_GPa");
+    data_out.add_data_vector(scalar_dofs, status_readable, "contact_status");
+    data_out.add_data_vector(scalar_dofs, traction_readable, "friction_traction_GPa");
     const char *names[6] = {"cauchy_xx_GPa", "cauchy_xy_GPa", "cauchy_xz_GPa",
                             "cauchy_yy_GPa", "cauchy_yz_GPa", "cauchy_zz_GPa"};
     for (unsigned int k = 0; k < 6; ++k)

@@ -421,9 +421,13 @@ namespace indentsim::solver
             const double factor = symmetry_factor();
             record.depth = depth;
             record.force = summary.force_z * factor;
-            record.contact_area = summary.contact_area * factor;
-            record.contact_radius = summary.contact_radius;
+            const contact::ContactPatch patch = contact_patch();
+            record.contact_area = patch.area * factor;
+            record.contact_radius = patch.max_radius;
             record.n_active_nodes = summary.n_active;
+            record.n_stick_nodes = summary.n_stick;
+            record.n_slip_nodes = summary.n_slip;
+            record.max_pressure = summary.max_pressure;
             record.max_penetration = summary.max_penetration;
             record.bottom_reaction *= factor;
             return IncrementStatus::converged;
@@ -433,6 +437,53 @@ namespace indentsim::solver
         ++statistics_.augmentations;
       }
     return IncrementStatus::too_many_augmentations;
+  }
+
+  contact::ContactPatch IndentationProblem::contact_patch() const
+  {
+    // The indicator phi (x dof of each contact node) and a marker (y dof) distinguishing contact
+    // nodes from the rest, made readable on the ghost vertices of the owned faces.
+    PETScWrappers::MPI::Vector indicator(locally_owned_, communicator_);
+    for (const contact::ContactNode &node : contact_->nodes())
+      {
+        indicator(node.dofs[0]) =
+          node.active ? node.pressure : node.lambda - contact_->penalty() * node.gap;
+        indicator(node.dofs[1]) = 1;
+      }
+    indicator.compress(VectorOperation::insert);
+    PETScWrappers::MPI::Vector ghosted(locally_owned_, locally_relevant_, communicator_);
+    ghosted = indicator;
+
+    // deal.II numbers a face's vertices lexicographically; cyclic order is 0, 1, 3, 2.
+    constexpr unsigned int cyclic[4] = {0, 1, 3, 2};
+    contact::ContactPatch  local;
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto &face : cell->face_iterators())
+          {
+            if (!face->at_boundary() || face->boundary_id() != mesh::boundary::top)
+              continue;
+            std::array<Point<2>, 4> xy;
+            std::array<double, 4>   phi;
+            bool                    all_contact_nodes = true;
+            for (unsigned int k = 0; k < 4; ++k)
+              {
+                const unsigned int v = cyclic[k];
+                all_contact_nodes = all_contact_nodes && ghosted(face->vertex_dof_index(v, 1)) == 1;
+                phi[k] = ghosted(face->vertex_dof_index(v, 0));
+                for (unsigned int d = 0; d < 2; ++d)
+                  xy[k][d] = face->vertex(v)[d] + solution_(face->vertex_dof_index(v, d));
+              }
+            if (!all_contact_nodes)
+              continue;
+            const contact::ContactPatch patch = contact::quad_contact_patch(xy, phi);
+            local.area += patch.area;
+            local.max_radius = std::max(local.max_radius, patch.max_radius);
+          }
+    contact::ContactPatch global;
+    global.area = Utilities::MPI::sum(local.area, communicator_);
+    global.max_radius = Utilities::MPI::max(local.max_radius, communicator_);
+    return global;
   }
 
   void IndentationProblem::accept_increment()
@@ -551,16 +602,17 @@ namespace indentsim::solver
     void write_csv_header(std::ostream &out)
     {
       out << "step,depth_um,force_mN,contact_radius_um,contact_area_um2,n_active_nodes,"
-             "newton_iterations,augmentations,cutbacks,max_penetration_um,bottom_reaction_mN,"
-             "wall_time_s\n";
+             "n_stick_nodes,n_slip_nodes,max_pressure_GPa,max_penetration_um,"
+             "newton_iterations,augmentations,cutbacks,bottom_reaction_mN,wall_time_s\n";
     }
 
     void write_csv_row(std::ostream &out, const StepRecord &r)
     {
       out << r.step << ',' << std::setprecision(10) << r.depth << ',' << r.force << ','
           << r.contact_radius << ',' << r.contact_area << ',' << r.n_active_nodes << ','
-          << r.newton_iterations << ',' << r.augmentations << ',' << r.cutbacks << ','
-          << std::setprecision(4) << r.max_penetration << ',' << std::setprecision(10)
+          << r.n_stick_nodes << ',' << r.n_slip_nodes << ',' << r.max_pressure << ','
+          << std::setprecision(4) << r.max_penetration << ',' << r.newton_iterations << ','
+          << r.augmentations << ',' << r.cutbacks << ',' << std::setprecision(10)
           << r.bottom_reaction << ',' << std::setprecision(4) << r.wall_time << '\n'
           << std::flush;
     }

@@ -8,6 +8,7 @@
 // traction-free. Contact enters as nodal forces (see contact/NodeToSurfaceContact.h).
 #pragma once
 
+#include "contact/ContactArea.h"
 #include "contact/NodeToSurfaceContact.h"
 #include "indenter/IndenterSurface.h"
 #include "io/Case.h"
@@ -46,9 +47,12 @@ namespace indentsim::solver
     unsigned int step = 0;
     double       depth = 0;           // indenter apex depth [um]
     double       force = 0;           // indenter force [mN]
-    double       contact_radius = 0;  // [um]
-    double       contact_area = 0;    // sum of tributary areas of active nodes [um^2]
+    double       contact_radius = 0;  // largest radius of the interpolated perimeter [um]
+    double       contact_area = 0;    // projected area inside the interpolated perimeter [um^2]
     unsigned int n_active_nodes = 0;  // active nodes of the model (not symmetry-multiplied)
+    unsigned int n_stick_nodes = 0;   // of them sticking (friction) ...
+    unsigned int n_slip_nodes = 0;    // ... and slipping (all of them without friction)
+    double       max_pressure = 0;    // largest nodal contact pressure (nominal) [GPa]
     unsigned int newton_iterations = 0;
     unsigned int augmentations = 0;
     unsigned int cutbacks = 0;
@@ -128,6 +132,9 @@ namespace indentsim::solver
     // on rank 0 (empty elsewhere) and mirrored into the full surface for the quarter model.
     // Collective.
     std::vector<pileup::SurfaceQuad> gather_top_surface() const;
+    // Projected contact area and radius of the model (not symmetry-multiplied) from the
+    // interpolated contact indicator (contact/ContactArea.h).
+    contact::ContactPatch contact_patch() const;
     struct SurfaceSnapshot
     {
       std::string                      stage; // "max_depth" | "unloaded"

@@ -86,6 +86,8 @@ namespace indentsim::solver
     // Counters and phase times of this problem so far (setup and runs).
     const RunStatistics &statistics() const { return statistics_; }
     const LinearSolver  &linear_solver() const { return linear_solver_; }
+    // The contact nodes and their state at the last evaluation.
+    const contact::NodeToSurfaceContact &contact() const { return *contact_; }
     // The pile-up analysis of the last run(): stages max_depth and (after unloading) unloaded.
     // Filled on rank 0 when run() was given an output directory, empty otherwise.
     const std::vector<pileup::PileUpResult> &pileup_results() const { return pileup_results_; }

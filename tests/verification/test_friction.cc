@@ -271,3 +271,90 @@ TEST(Friction, TangentMatchesDifferencesOfTheResidual)
       EXPECT_LT(max_error, 1e-6 * max_entry) << "largest entry " << max_entry;
     }
 }
+
+#include "../test_cases.h"
+#include "solver/IndentationProblem.h"
+
+namespace
+{
+  std::vector<solver::StepRecord> run_with_friction(const double mu)
+  {
+    io::Case c = test_cases::small_j2_case("quarter");
+    c.contact.friction_coefficient = mu;
+    solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problem.setup();
+    problem.run("");
+    return problem.records();
+  }
+} // namespace
+
+// Requirement: the friction code path is continuous in mu: a vanishing coefficient (1e-9)
+// reproduces the frictionless loading curve (to 1e-7 relative, the Newton tolerance's reach).
+TEST(FrictionIndentation, VanishingCoefficientGivesTheFrictionlessCurve)
+{
+  const auto frictionless = run_with_friction(0.0);
+  const auto tiny = run_with_friction(1e-9);
+  ASSERT_EQ(frictionless.size(), tiny.size());
+  const double scale = frictionless.back().force;
+  ASSERT_GT(scale, 0);
+  for (std::size_t i = 0; i < tiny.size(); ++i)
+    {
+      EXPECT_EQ(tiny[i].depth, frictionless[i].depth);
+      EXPECT_NEAR(tiny[i].force, frictionless[i].force, 1e-7 * scale) << "step " << i;
+    }
+}
+
+// Requirement: at every contact node of a converged J2 indentation with mu = 0.2 (small case, at
+// each loading step), the Coulomb conditions of eq. 18 hold: |t| <= mu p with t in the tangent
+// plane; a sticking node has not slipped beyond the tolerance; a slipping node carries
+// |t| = mu p, opposite to its slip; and both states occur at maximum depth.
+TEST(FrictionIndentation, CoulombConditionsHoldAtConvergence)
+{
+  const double mu = 0.2;
+  io::Case     c = test_cases::small_j2_case("quarter");
+  c.contact.friction_coefficient = mu;
+  solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problem.setup();
+  unsigned int n_stick = 0, n_slip = 0;
+  for (unsigned int step = 1; step <= c.loading.steps; ++step)
+    {
+      solver::StepRecord record;
+      const double       depth = c.loading.max_depth * step / c.loading.steps;
+      // As run() does: an extrapolated start that fails is retried from the converged state.
+      if (problem.solve_increment(depth, record) != solver::IncrementStatus::converged)
+        {
+          problem.reject_increment();
+          ASSERT_EQ(problem.solve_increment(depth, record, false),
+                    solver::IncrementStatus::converged)
+            << "depth " << depth;
+        }
+      n_stick = n_slip = 0;
+      for (const auto &node : problem.contact().nodes())
+        {
+          if (node.status == contact::ContactStatus::open)
+            continue;
+          const double limit = mu * node.pressure;
+          EXPECT_LE(node.traction.norm(), limit * (1 + 1e-12) + 1e-15);
+          EXPECT_NEAR(node.traction * node.normal, 0.0, 1e-12 * (1 + node.traction.norm()));
+          if (node.status == contact::ContactStatus::stick)
+            {
+              ++n_stick;
+              EXPECT_LE(node.slip.norm(), c.contact.penetration_tolerance);
+            }
+          else
+            {
+              ++n_slip;
+              EXPECT_NEAR(node.traction.norm(), limit, 1e-12 * (1 + limit));
+              if (node.slip.norm() > 1e-9)
+                EXPECT_LT(node.traction * node.slip, 0.0);
+            }
+        }
+      EXPECT_EQ(n_stick, record.n_stick_nodes);
+      EXPECT_EQ(n_slip, record.n_slip_nodes);
+      problem.accept_increment();
+    }
+  std::cout << "[ friction ] at maximum depth: " << n_stick << " sticking, " << n_slip
+            << " slipping nodes" << std::endl;
+  EXPECT_GT(n_stick, 0u);
+  EXPECT_GT(n_slip, 0u);
+}

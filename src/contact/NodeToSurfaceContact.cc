@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 namespace indentsim::contact
@@ -82,10 +83,11 @@ namespace indentsim::contact
   NodeToSurfaceContact::respond(const ContactNode   &node,
                                 const Point<3>      &x,
                                 const int            normal_active,
-                                const ContactStatus *fixed_status) const
+                                const ContactStatus *fixed_status,
+                                const double         depth) const
   {
     NodeResponse response;
-    response.projection = surface_.project(x - offset_, depth_);
+    response.projection = surface_.project(x - offset_, depth);
     response.projection.closest_point += offset_;
     if (!response.projection.converged || !std::isfinite(response.projection.gap))
       return response;
@@ -103,7 +105,7 @@ namespace indentsim::contact
     // Relative slip over the increment against the rigid indenter, whose position is
     // w = (offset_x, offset_y, -depth), and its part in the tangent plane.
     Tensor<1, 3> s = (x - node.x_converged) - (offset_ - offset_converged_);
-    s[2] += depth_ - depth_converged_;
+    s[2] += depth - depth_converged_;
     response.slip = s - (s * n) * n;
     const Tensor<1, 3> multiplier =
       node.traction_multiplier - (node.traction_multiplier * n) * n;
@@ -151,7 +153,7 @@ namespace indentsim::contact
         const ContactStatus  previous = node.status;
         const ContactStatus *fixed =
           (mode == ActiveSet::frozen && node.active) ? &previous : nullptr;
-        const NodeResponse response = respond(node, node.x, normal_active, fixed);
+        const NodeResponse response = respond(node, node.x, normal_active, fixed, depth_);
         if (!response.projection.converged || !std::isfinite(response.projection.gap))
           {
             search_failed_ = true;
@@ -175,8 +177,10 @@ namespace indentsim::contact
 
   void NodeToSurfaceContact::assemble(const AffineConstraints<double>     &constraints,
                                       PETScWrappers::MPI::Vector          &residual,
-                                      PETScWrappers::MPI::SparseMatrix    *matrix) const
+                                      PETScWrappers::MPI::SparseMatrix    *matrix,
+                                      DepthCoupling                       *coupling) const
   {
+    Assert(!coupling || matrix, ExcMessage("the depth coupling needs the tangent"));
     FullMatrix<double>                   local_matrix(3, 3);
     Vector<double>                       local_residual(3);
     std::vector<types::global_dof_index> dofs(3);
@@ -222,8 +226,8 @@ namespace indentsim::contact
                     Point<3> xp = node.x, xm = node.x;
                     xp[j] += h;
                     xm[j] -= h;
-                    const NodeResponse rp = respond(node, xp, 1, &node.status);
-                    const NodeResponse rm = respond(node, xm, 1, &node.status);
+                    const NodeResponse rp = respond(node, xp, 1, &node.status, depth_);
+                    const NodeResponse rm = respond(node, xm, 1, &node.status, depth_);
                     for (unsigned int i = 0; i < 3; ++i)
                       {
                         const double fp =
@@ -236,6 +240,27 @@ namespace indentsim::contact
               }
             constraints.distribute_local_to_global(
               local_matrix, local_residual, dofs, *matrix, residual);
+            if (coupling)
+              {
+                // d(-f)/dh by central differences of the nodal response at the frozen status;
+                // F = sum(-f_z), so dF/du is the z row of d(-f)/dx.
+                const double   dh = 1e-7 * std::max(1.0, std::abs(depth_));
+                const auto     rp = respond(node, node.x, 1, &node.status, depth_ + dh);
+                const auto     rm = respond(node, node.x, 1, &node.status, depth_ - dh);
+                Vector<double> residual_derivative(3), force_gradient(3);
+                for (unsigned int i = 0; i < 3; ++i)
+                  {
+                    const double fp = rp.pressure * rp.projection.normal[i] + rp.traction[i];
+                    const double fm = rm.pressure * rm.projection.normal[i] + rm.traction[i];
+                    residual_derivative[i] = -node.area * (fp - fm) / (2 * dh);
+                    force_gradient[i] = local_matrix(2, i);
+                  }
+                coupling->force_derivative += residual_derivative[2];
+                constraints.distribute_local_to_global(residual_derivative, dofs,
+                                                       *coupling->residual_derivative);
+                constraints.distribute_local_to_global(force_gradient, dofs,
+                                                       *coupling->force_gradient);
+              }
           }
         else
           constraints.distribute_local_to_global(local_residual, dofs, residual);
@@ -264,8 +289,13 @@ namespace indentsim::contact
 
   void NodeToSurfaceContact::accept_increment()
   {
+    // The converged pressures and tractions are the multipliers of the next increment (a last
+    // Uzawa update): its predictor then starts from the active set that carries load now, not
+    // from a node that has left the indenter since the last augmentation.
     for (ContactNode &node : nodes_)
       {
+        node.lambda = node.pressure;
+        node.traction_multiplier = node.traction;
         node.lambda_converged = node.lambda;
         node.traction_multiplier_converged = node.traction_multiplier;
         node.x_converged = node.x;
@@ -287,7 +317,7 @@ namespace indentsim::contact
   {
     ContactSummary s;
     double         local_force = 0, local_area = 0, local_radius = 0, local_penetration = 0;
-    double         local_stick_slip = 0, local_pressure = 0;
+    double         local_stick_slip = 0, local_pressure = 0, local_active_gap = 0;
     Tensor<1, 3>   local_force_vector;
     unsigned int   local_active = 0, local_stick = 0, local_slip = 0;
     for (const ContactNode &node : nodes_)
@@ -298,6 +328,7 @@ namespace indentsim::contact
         local_force += -node.pressure * node.area * node.normal[2] - node.area * node.traction[2];
         local_force_vector += node.area * (node.pressure * node.normal + node.traction);
         local_area += node.area;
+        local_active_gap = std::max(local_active_gap, std::abs(node.gap));
         local_pressure = std::max(local_pressure, node.pressure);
         local_radius = std::max(local_radius, std::hypot(node.x[0], node.x[1]));
         ++local_active;
@@ -317,12 +348,21 @@ namespace indentsim::contact
     s.max_penetration = Utilities::MPI::max(local_penetration, communicator_);
     s.max_stick_slip = Utilities::MPI::max(local_stick_slip, communicator_);
     s.max_pressure = Utilities::MPI::max(local_pressure, communicator_);
+    s.max_active_gap = Utilities::MPI::max(local_active_gap, communicator_);
     s.n_active = Utilities::MPI::sum(local_active, communicator_);
     s.n_stick = Utilities::MPI::sum(local_stick, communicator_);
     s.n_slip = Utilities::MPI::sum(local_slip, communicator_);
     s.search_failed =
       Utilities::MPI::max(static_cast<unsigned int>(search_failed_), communicator_) > 0;
     return s;
+  }
+
+  double NodeToSurfaceContact::min_gap() const
+  {
+    double local = std::numeric_limits<double>::max();
+    for (const ContactNode &node : nodes_)
+      local = std::min(local, node.gap);
+    return Utilities::MPI::min(local, communicator_);
   }
 
   double NodeToSurfaceContact::total_area() const

@@ -77,6 +77,7 @@ namespace indentsim::contact
     double       force_z = 0;         // total indenter force (z, positive pushing down) [mN]
     Tensor<1, 3> force_on_specimen;   // total contact force the indenter exerts [mN]
     double       max_penetration = 0; // max(-g) over all nodes, >= 0 [um]
+    double       max_active_gap = 0;  // max |g| over the active nodes (0 at convergence) [um]
     double       max_stick_slip = 0;  // max |s_T| over sticking nodes (0 at convergence) [um]
     double       max_pressure = 0;    // largest nodal pressure p [GPa]
     double       contact_area = 0;    // sum of tributary areas of active nodes [um^2]
@@ -125,10 +126,25 @@ namespace indentsim::contact
     // Number of nodes (global) whose status differs between the last two evaluations.
     unsigned int n_status_changes() const;
 
-    // Adds residual -f and tangent for the active nodes through `constraints`.
+    // Force control couples the indenter depth h into the Newton system: the derivative of the
+    // contact residual with respect to h, the gradient of the indenter force F (force_z) with
+    // respect to the nodal displacements, and dF/dh (this rank's nodes; the caller sums).
+    struct DepthCoupling
+    {
+      dealii::PETScWrappers::MPI::Vector *residual_derivative = nullptr; // dR/dh [mN/um]
+      dealii::PETScWrappers::MPI::Vector *force_gradient = nullptr;      // dF/du [mN/um]
+      double                              force_derivative = 0;          // dF/dh [mN/um]
+    };
+
+    // Adds residual -f and tangent for the active nodes through `constraints`; with `coupling`
+    // (and a matrix), also the depth coupling of force control.
     void assemble(const dealii::AffineConstraints<double>   &constraints,
                   dealii::PETScWrappers::MPI::Vector        &residual,
-                  dealii::PETScWrappers::MPI::SparseMatrix  *matrix) const;
+                  dealii::PETScWrappers::MPI::SparseMatrix  *matrix,
+                  DepthCoupling                             *coupling = nullptr) const;
+
+    // Smallest gap over the nodes at the last evaluation (global) [um].
+    double min_gap() const;
 
     // Uzawa update lambda <- p, t_i <- t; returns the largest change of the nodal force [mN]
     // (global).
@@ -158,7 +174,7 @@ namespace indentsim::contact
       ContactStatus               status = ContactStatus::open;
     };
     NodeResponse respond(const ContactNode &node, const Point<3> &x, int normal_active,
-                         const ContactStatus *fixed_status) const;
+                         const ContactStatus *fixed_status, double depth) const;
 
     const indenter::IndenterSurface &surface_;
     double                           penalty_;

@@ -68,12 +68,21 @@ namespace indentsim::io
     bool operator==(const SpecimenParameters &) const = default;
   };
 
+  // The loading programme: `cycles` times (load to the maximum in `steps` increments, hold it
+  // for `hold_steps` increments, unload), under depth or force control.
   struct LoadingParameters
   {
-    double       max_depth = 6.0;  // [um]
-    unsigned int steps = 64;       // increments from 0 to max_depth
-    bool         unload = true;    // then back until the indenter force vanishes
+    std::string  control = "depth"; // depth | force (the indenter depth becomes an unknown)
+    double       max_depth = 6.0;  // depth control: the maximum depth; force control: the
+                                   // largest admissible depth (the refined region's design) [um]
+    double       max_force = 0.0;  // force control: the maximum indenter force [mN]
+    unsigned int steps = 64;       // increments from 0 to the maximum
+    bool         unload = true;    // then back until the indenter force vanishes (force control:
+                                   // down to 1 % of max_force)
     unsigned int unload_steps = 0; // 0: same increment size as loading (computed)
+    unsigned int hold_steps = 0;   // increments holding the maximum (recorded; no creep in these
+                                   // rate-independent models)
+    unsigned int cycles = 1;       // load-hold-unload cycles to the same maximum
     unsigned int max_cutbacks = 8; // successive halvings of an increment before giving up
     double       max_strain = 0.2; // tensile test: final logarithmic strain along z [-]
 

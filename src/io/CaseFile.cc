@@ -45,7 +45,9 @@ namespace indentsim::io
       {"specimen",
        {"size", "refined_region", "contact_elements", "symmetry", "f_bar", "elements_per_side",
         "grains", "seed"}},
-      {"loading", {"max_depth", "steps", "unload", "unload_steps", "max_cutbacks", "max_strain"}},
+      {"loading",
+       {"control", "max_depth", "max_force", "steps", "unload", "unload_steps", "hold_steps",
+        "cycles", "max_cutbacks", "max_strain"}},
       {"contact",
        {"friction_coefficient", "penalty", "penetration_tolerance", "max_augmentations"}},
       {"solver",
@@ -63,6 +65,7 @@ namespace indentsim::io
                                                                 "surface_normal"};
     const std::vector<std::string> allowed_shapes = {"rounded_cone"};
     const std::vector<std::string> allowed_symmetries = {"full", "quarter"};
+    const std::vector<std::string> allowed_controls = {"depth", "force"};
     const std::vector<std::string> allowed_yield_measures = {"cauchy", "kirchhoff"};
 
     // Successive halvings of a load increment beyond this leave increments of 1e-9 of the
@@ -267,10 +270,14 @@ namespace indentsim::io
         {
           const YAML::Node map = section(root, "loading");
           auto &loading = result.loading;
+          read_string(map, "loading", "control", "a loading control", loading.control);
           read_double(map, "loading", "max_depth", "a depth in um", loading.max_depth);
+          read_double(map, "loading", "max_force", "a force in mN", loading.max_force);
           read_unsigned(map, "loading", "steps", loading.steps);
           read_bool(map, "loading", "unload", loading.unload);
           read_unsigned(map, "loading", "unload_steps", loading.unload_steps);
+          read_unsigned(map, "loading", "hold_steps", loading.hold_steps);
+          read_unsigned(map, "loading", "cycles", loading.cycles);
           read_unsigned(map, "loading", "max_cutbacks", loading.max_cutbacks);
           read_double(map, "loading", "max_strain", "a logarithmic strain", loading.max_strain);
         }
@@ -691,8 +698,27 @@ namespace indentsim::io
                  "must be smaller than the depth of the refined region, specimen.refined_region"
                  "[2] = " +
                    format_number(s.refined_region[2]) + " um");
+        check_choice("loading.control", l.control, allowed_controls);
+        if (l.control == "force")
+          {
+            if (tensile)
+              reject("loading.control", l.control,
+                     "force control is implemented for the indentation test only");
+            if (!(l.max_force > 0.))
+              reject("loading.max_force", format_number(l.max_force),
+                     "force control needs the maximum indenter force, > 0 mN");
+          }
+        else if (l.max_force != 0.)
+          reject("loading.max_force", format_number(l.max_force),
+                 "is the target of force control; with loading.control: depth the maximum is "
+                 "loading.max_depth (remove max_force or set control: force)");
         if (l.steps == 0)
           reject("loading.steps", "0", "must be >= 1");
+        if (l.cycles == 0 || l.cycles > 1000)
+          reject("loading.cycles", std::to_string(l.cycles), "must satisfy 1 <= cycles <= 1000");
+        if (l.cycles > 1 && !l.unload)
+          reject("loading.cycles", std::to_string(l.cycles),
+                 "several load-unload cycles need loading.unload: true");
         if (l.max_cutbacks > max_allowed_cutbacks)
           reject("loading.max_cutbacks", std::to_string(l.max_cutbacks),
                  "must be <= " + std::to_string(max_allowed_cutbacks));
@@ -1046,12 +1072,18 @@ namespace indentsim::io
     line("  seed: " + std::to_string(c.specimen.seed), "random orientations (per_element)");
 
     out << "loading:\n";
-    line("  max_depth: " + format_number(c.loading.max_depth), "[um]");
+    line("  control: " + c.loading.control, "depth | force");
+    line("  max_depth: " + format_number(c.loading.max_depth),
+         "[um] (force control: the largest admissible depth)");
+    line("  max_force: " + format_number(c.loading.max_force), "[mN] (force control)");
     line("  steps: " + std::to_string(c.loading.steps),
-         "increments to max_depth (tensile: max_strain)");
-    line("  unload: " + format_bool(c.loading.unload), "then back until the force vanishes");
+         "increments to the maximum (tensile: max_strain)");
+    line("  unload: " + format_bool(c.loading.unload),
+         "then back until the force vanishes (force control: to 1 % of max_force)");
     line("  unload_steps: " + std::to_string(c.loading.unload_steps),
          "0: same increment size as loading");
+    line("  hold_steps: " + std::to_string(c.loading.hold_steps), "increments holding the maximum");
+    line("  cycles: " + std::to_string(c.loading.cycles), "load-hold-unload cycles");
     line("  max_cutbacks: " + std::to_string(c.loading.max_cutbacks),
          "successive halvings of an increment");
     line("  max_strain: " + format_number(c.loading.max_strain),

@@ -223,7 +223,8 @@ namespace indentsim::solver
     };
     run_on_owned_cells(dof_handler_, n_q_points_, worker, copier);
     timer.emplace(statistics_.contact);
-    contact_->assemble(constraints_all_, residual_, with_matrix ? &matrix_ : nullptr);
+    contact_->assemble(constraints_all_, residual_, with_matrix ? &matrix_ : nullptr,
+                       with_matrix ? depth_coupling_ : nullptr);
     timer.emplace(statistics_.assembly);
     if (with_matrix)
       matrix_.compress(VectorOperation::add);
@@ -239,10 +240,43 @@ namespace indentsim::solver
     return result;
   }
 
-  IncrementStatus IndentationProblem::solve_increment(const double depth,
-                                                      StepRecord  &record,
-                                                      const bool   extrapolate)
+  double IndentationProblem::depth_guess_for_force(const double target_force) const
   {
+    if (has_previous_ && force_converged_ != force_previous_)
+      {
+        // Secant of the last two converged states, limited to twice their depth step.
+        const double slope = (depth_converged_ - depth_previous_) / (force_converged_ - force_previous_);
+        const double step = slope * (target_force - force_converged_);
+        const double limit = 2 * std::abs(depth_converged_ - depth_previous_);
+        if (std::isfinite(step))
+          return depth_converged_ + std::clamp(step, -limit, limit);
+      }
+    return depth_converged_;
+  }
+
+  IncrementStatus IndentationProblem::solve_increment(const double                depth_start,
+                                                      StepRecord                 &record,
+                                                      const bool                  extrapolate,
+                                                      const std::optional<double> target_force)
+  {
+    // Under force control the depth h is an unknown: it starts at `depth_start` and moves with
+    // the Newton updates (bordered system below); under depth control it stays fixed.
+    double depth = depth_start;
+    const bool force_control = target_force.has_value();
+    // The force target of the model (a quarter of the indent's for the quarter model) [mN].
+    const double model_force_target = force_control ? *target_force / symmetry_factor() : 0.0;
+    PETScWrappers::MPI::Vector residual_derivative, force_gradient, coupled_update;
+    contact::NodeToSurfaceContact::DepthCoupling coupling;
+    if (force_control)
+      {
+        residual_derivative.reinit(locally_owned_, communicator_);
+        force_gradient.reinit(locally_owned_, communicator_);
+        coupled_update.reinit(locally_owned_, communicator_);
+        coupling.residual_derivative = &residual_derivative;
+        coupling.force_gradient = &force_gradient;
+      }
+    double depth_start_of_step = depth; // h at the start of the Newton step (line search)
+    double depth_update = 0;
     const auto  &solver_parameters = case_.solver;
     // Scale of the relative convergence test: the largest residual of the first pass, and at
     // least the indenter force of the last converged state. Without the force, an increment
@@ -302,12 +336,32 @@ namespace indentsim::solver
             contact_timer.reset();
             const bool search_failed =
               Utilities::MPI::max(static_cast<unsigned int>(!searched), communicator_) > 0;
+            if (force_control)
+              {
+                residual_derivative = 0;
+                force_gradient = 0;
+                coupling.force_derivative = 0;
+                depth_coupling_ = &coupling;
+              }
             const AssemblyResult assembly =
               search_failed ? AssemblyResult{} : assemble(true);
+            depth_coupling_ = nullptr;
             const bool   failed = search_failed ||
                                 assembly.status != materials::UpdateStatus::success;
+            // Force control adds the force equation F(u, h) - F* = 0 to the residual [mN].
+            double force_error = 0;
+            if (force_control)
+              {
+                // Collective on every rank, also after a failed material update.
+                residual_derivative.compress(VectorOperation::add);
+                force_gradient.compress(VectorOperation::add);
+                coupling.force_derivative =
+                  Utilities::MPI::sum(coupling.force_derivative, communicator_);
+                if (!failed)
+                  force_error = contact_->summary().force_z - model_force_target;
+              }
             const double norm = failed ? std::numeric_limits<double>::infinity() :
-                                         residual_.l2_norm();
+                                         std::hypot(residual_.l2_norm(), force_error);
             if (it > 0 && alpha > min_alpha && !(norm <= previous_norm))
               {
                 // Minimiser of the quadratic model of phi = |R|^2/2 along the Newton direction
@@ -326,6 +380,7 @@ namespace indentsim::solver
                 u_owned = u_start;
                 u_owned.add(alpha, du);
                 solution_ = u_owned;
+                depth = depth_start_of_step + alpha * depth_update;
                 pcout_ << "      pass " << pass << " it " << std::setw(2) << it
                        << "  line search: step length " << alpha << std::endl;
                 continue;
@@ -397,7 +452,36 @@ namespace indentsim::solver
                        << linear.iterations << " iterations" << std::endl;
                 return IncrementStatus::linear_solver_failure;
               }
+            depth_update = 0;
+            if (force_control)
+              {
+                // Bordered Newton system of force control:
+                //   K du + R_h dh = -R,   F_u . du + F_h dh = -(F - F*).
+                // With K a = -R and K b = -R_h: du = a + b dh and
+                //   dh = -((F - F*) + F_u . a) / (F_h + F_u . b).
+                residual_derivative *= -1.0;
+                {
+                  const RunStatistics::Scope timer(statistics_.linear_solve);
+                  linear = linear_solver_.solve(matrix_, coupled_update, residual_derivative,
+                                                std::clamp(0.1 * norm / reference, 1e-10, 1e-4));
+                }
+                ++statistics_.linear_solves;
+                statistics_.linear_iterations += linear.iterations;
+                if (!linear.converged)
+                  return IncrementStatus::linear_solver_failure;
+                const double stiffness = coupling.force_derivative + force_gradient * coupled_update;
+                if (stiffness > 1e-12 * std::max(1.0, std::abs(model_force_target)))
+                  depth_update = -(force_error + force_gradient * du) / stiffness;
+                else
+                  // No contact stiffness (no node touches the indenter): move the indenter
+                  // onto the nearest node, and a little beyond, to make contact.
+                  depth_update = std::max(contact_->min_gap(), 0.0) +
+                                 0.01 * mesh_info_.contact_element_size;
+                du.add(depth_update, coupled_update);
+              }
             constraints_all_.distribute(du);
+            depth_start_of_step = depth;
+            depth += depth_update;
             u_start = solution_;
             u_owned = u_start;
             u_owned += du;
@@ -412,12 +496,16 @@ namespace indentsim::solver
           return IncrementStatus::too_many_iterations;
 
         const contact::ContactSummary summary = contact_->summary();
-        // Augmented until the active nodes do not penetrate and the sticking ones do not slip
-        // (eqs. 17-18) beyond the tolerance.
-        if (summary.max_penetration <= case_.contact.penetration_tolerance &&
-            summary.max_stick_slip <= case_.contact.penetration_tolerance)
+        // Augmented until no node penetrates, no node carrying pressure stands off the indenter
+        // (p g = 0 of eq. 17: a multiplier from an earlier pass can hold a node that has
+        // separated) and the sticking nodes do not slip (eq. 18), to the tolerance.
+        const double tolerance = case_.contact.penetration_tolerance;
+        if (summary.max_penetration <= tolerance && summary.max_active_gap <= tolerance &&
+            summary.max_stick_slip <= tolerance)
           {
             trial_force_scale_ = std::abs(summary.force_z);
+            depth_trial_ = depth;
+            force_trial_ = summary.force_z * symmetry_factor();
             const double factor = symmetry_factor();
             record.depth = depth;
             record.force = summary.force_z * factor;
@@ -495,6 +583,8 @@ namespace indentsim::solver
     solution_converged_ = solution_;
     depth_previous_ = depth_converged_;
     depth_converged_ = depth_trial_;
+    force_previous_ = force_converged_;
+    force_converged_ = force_trial_;
     converged_force_scale_ = trial_force_scale_;
     has_previous_ = true;
     contact_->accept_increment();
@@ -601,14 +691,14 @@ namespace indentsim::solver
   {
     void write_csv_header(std::ostream &out)
     {
-      out << "step,depth_um,force_mN,contact_radius_um,contact_area_um2,n_active_nodes,"
+      out << "step,cycle,segment,depth_um,force_mN,contact_radius_um,contact_area_um2,n_active_nodes,"
              "n_stick_nodes,n_slip_nodes,max_pressure_GPa,max_penetration_um,"
              "newton_iterations,augmentations,cutbacks,bottom_reaction_mN,wall_time_s\n";
     }
 
     void write_csv_row(std::ostream &out, const StepRecord &r)
     {
-      out << r.step << ',' << std::setprecision(10) << r.depth << ',' << r.force << ','
+      out << r.step << ',' << r.cycle << ',' << r.segment << ',' << std::setprecision(10) << r.depth << ',' << r.force << ','
           << r.contact_radius << ',' << r.contact_area << ',' << r.n_active_nodes << ','
           << r.n_stick_nodes << ',' << r.n_slip_nodes << ',' << r.max_pressure << ','
           << std::setprecision(4) << r.max_penetration << ',' << r.newton_iterations << ','
@@ -652,18 +742,44 @@ namespace indentsim::solver
     if (csv.is_open())
       write_csv_row(csv, initial);
 
+    // The loading programme: per cycle, load to the maximum, hold it, unload. The control value
+    // is the indenter depth [um] or, under force control, the indenter force [mN] (whole
+    // indent); then the depth is an unknown of every increment.
     const auto  &loading = case_.loading;
-    const double nominal_increment = loading.max_depth / loading.steps;
-    const double unload_increment = loading.unload_steps > 0 ?
-                                      loading.max_depth / loading.unload_steps :
-                                      nominal_increment;
-    double       depth = 0, increment = nominal_increment;
-    bool         unloading = false;
-    unsigned int step = 0, total_newton = 0, vtu_index = 0, easy_steps = 0;
+    const bool   force_control = loading.control == "force";
+    const double maximum = force_control ? loading.max_force : loading.max_depth;
+    // Under force control, unloading stops at 1 % of the maximum force: towards zero force the
+    // contact stiffness vanishes and the depth is no longer determined by the force.
+    const double unload_target = force_control ? 0.01 * loading.max_force : 0.0;
+    struct Segment
+    {
+      const char  *kind; // load | hold | unload
+      double       target;
+      unsigned int steps;
+      unsigned int cycle;
+    };
+    std::vector<Segment> programme;
+    for (unsigned int cycle = 1; cycle <= loading.cycles; ++cycle)
+      {
+        programme.push_back({"load", maximum, loading.steps, cycle});
+        if (loading.hold_steps > 0)
+          programme.push_back({"hold", maximum, loading.hold_steps, cycle});
+        if (loading.unload)
+          programme.push_back(
+            {"unload", unload_target,
+             loading.unload_steps > 0 ? loading.unload_steps : loading.steps, cycle});
+      }
+    unsigned int nominal_steps = 0;
+    for (const Segment &segment : programme)
+      nominal_steps += segment.steps;
+
+    double       depth = 0, value = 0; // current depth and control value
+    unsigned int step = 0, total_newton = 0, vtu_index = 0;
     double       max_force = 0;
-    // Top-surface snapshots for the pile-up analysis (rank 0), at maximum depth and at the end.
+    // Top-surface snapshots for the pile-up analysis (rank 0), at the maximum of the last cycle
+    // and at the end of unloading.
     std::vector<SurfaceSnapshot> pileup_snapshots;
-    double                       contact_radius_at_max = 0, force_at_max_depth = 0;
+    double                       contact_radius_at_max = 0, value_at_max = 0;
     pileup_results_.clear();
 
     if (!output_directory_.empty())
@@ -672,116 +788,151 @@ namespace indentsim::solver
         write_vtu(vtu_index++);
       }
 
-    while (true)
+    const char *unit = force_control ? " mN" : " um";
+    for (const Segment &segment : programme)
       {
-        const double target_increment = unloading ? unload_increment : nominal_increment;
-        increment = std::min(increment, target_increment);
-        StepRecord   record;
-        unsigned int cutbacks = 0;
-        double       new_depth = 0;
-        bool         extrapolate = true;
+        const bool   hold = std::string(segment.kind) == "hold";
+        const bool   unloading = std::string(segment.kind) == "unload";
+        const double nominal_increment = maximum / segment.steps;
+        double       increment = nominal_increment;
+        unsigned int easy_steps = 0, segment_steps = 0;
         while (true)
           {
-            new_depth = unloading ? std::max(0.0, depth - increment) :
-                                    std::min(loading.max_depth, depth + increment);
-            const IncrementStatus status = solve_increment(new_depth, record, extrapolate);
-            if (status == IncrementStatus::converged)
-              break;
-            reject_increment();
-            if (extrapolate && step > 0)
+            increment = std::min(increment, nominal_increment);
+            StepRecord   record;
+            unsigned int cutbacks = 0;
+            double       new_value = value;
+            bool         extrapolate = !hold;
+            while (true)
               {
-                // The extrapolated start can put nodes deep into the indenter or far beyond
-                // yield; the same increment from the converged state is the old, safe start.
-                extrapolate = false;
-                ++statistics_.predictor_retries;
-                pcout_ << "    step " << step + 1 << " to depth " << new_depth << " um: "
-                       << to_string(status)
-                       << " from the extrapolated start; retrying from the converged state\n";
-                continue;
+                if (!hold)
+                  new_value = unloading ? std::max(segment.target, value - increment) :
+                                          std::min(segment.target, value + increment);
+                const IncrementStatus status =
+                  force_control ?
+                    solve_increment(depth_guess_for_force(new_value), record, extrapolate,
+                                    new_value) :
+                    solve_increment(new_value, record, extrapolate);
+                if (status == IncrementStatus::converged)
+                  break;
+                reject_increment();
+                if (extrapolate && step > 0)
+                  {
+                    // The extrapolated start can put nodes deep into the indenter or far beyond
+                    // yield; the same increment from the converged state is the old, safe start.
+                    extrapolate = false;
+                    ++statistics_.predictor_retries;
+                    pcout_ << "    step " << step + 1 << " to " << new_value << unit << ": "
+                           << to_string(status)
+                           << " from the extrapolated start; retrying from the converged state\n";
+                    continue;
+                  }
+                ++cutbacks;
+                pcout_ << "    step " << step + 1 << " to " << new_value << unit << ": "
+                       << to_string(status) << "; cutting the increment back to "
+                       << increment / 2 << unit << "\n";
+                if (log.is_open())
+                  log << "# step " << step + 1 << ": " << to_string(status)
+                      << ", increment cut back to " << increment / 2 << unit << "\n";
+                if (cutbacks > loading.max_cutbacks || hold)
+                  throw std::runtime_error(
+                    std::string(hold ? "hold" : "increment") + " to " + std::to_string(new_value) +
+                    unit + " failed after " + std::to_string(cutbacks - 1) + " cut-backs (" +
+                    to_string(status) + ")");
+                increment /= 2;
               }
-            ++cutbacks;
-            pcout_ << "    step " << step + 1 << " to depth " << new_depth << " um: "
-                   << to_string(status) << "; cutting the increment back to " << increment / 2
-                   << " um\n";
-            if (log.is_open())
-              log << "# step " << step + 1 << ": " << to_string(status)
-                  << ", increment cut back to " << increment / 2 << " um\n";
-            if (cutbacks > loading.max_cutbacks)
-              throw std::runtime_error("increment to depth " + std::to_string(new_depth) +
-                                       " um failed after " + std::to_string(cutbacks - 1) +
-                                       " cut-backs (" + to_string(status) + ")");
-            increment /= 2;
-          }
-        depth = new_depth;
-        ++step;
-        record.step = step;
-        record.cutbacks = cutbacks;
-        record.wall_time = wall_timer_.wall_time();
-        total_newton += record.newton_iterations;
-        records_.push_back(record);
+            value = new_value;
+            depth = record.depth;
+            if (force_control && depth > loading.max_depth)
+              throw std::runtime_error(
+                "force control: the indenter reached the depth " + std::to_string(depth) +
+                " um at the force " + std::to_string(record.force) +
+                " mN, beyond loading.max_depth = " + std::to_string(loading.max_depth) +
+                " um, the depth the mesh is designed for; lower loading.max_force or raise "
+                "loading.max_depth with specimen.refined_region");
+            ++step;
+            ++segment_steps;
+            record.step = step;
+            record.cycle = segment.cycle;
+            record.segment = segment.kind;
+            record.cutbacks = cutbacks;
+            record.wall_time = wall_timer_.wall_time();
+            total_newton += record.newton_iterations;
+            records_.push_back(record);
+            max_force = std::max(max_force, record.force);
 
-        const bool at_max = !unloading && depth >= loading.max_depth * (1 - 1e-12);
-        max_force = std::max(max_force, record.force);
-        // Unloading ends when contact is lost or the force has fallen below 0.1 % of its maximum
-        // (the last node leaving the indenter makes the active set toggle; nothing measurable
-        // happens below that force).
-        const bool finished =
-          (unloading && (record.n_active_nodes == 0 || depth <= 0 ||
-                         record.force <= 1e-3 * max_force)) ||
-          (at_max && !loading.unload);
-        statistics_.steps = step;
-        statistics_.cutbacks += cutbacks;
-        std::optional<RunStatistics::Scope> output_timer(std::in_place, statistics_.output);
-        if (!output_directory_.empty() &&
-            (at_max || finished || (case_.output.vtu_every > 0 && step % case_.output.vtu_every == 0)))
-          write_vtu(vtu_index++);
-        if (!output_directory_.empty() && (at_max || (finished && unloading)))
-          {
-            pileup_snapshots.push_back(
-              {at_max ? "max_depth" : "unloaded", depth, gather_top_surface()});
+            const bool reached = hold ? segment_steps >= segment.steps :
+                                        std::abs(value - segment.target) <= 1e-12 * maximum;
+            // Depth-controlled unloading ends when contact is lost or the force has fallen below
+            // 0.1 % of its maximum (the last node leaving the indenter makes the active set
+            // toggle; nothing measurable happens below that force).
+            const bool lost = unloading && !force_control &&
+                              (record.n_active_nodes == 0 || depth <= 0 ||
+                               record.force <= 1e-3 * max_force);
+            const bool segment_done = reached || lost;
+            const bool at_max = segment_done && std::string(segment.kind) == "load";
+            const bool finished = segment_done && &segment == &programme.back();
+            statistics_.steps = step;
+            statistics_.cutbacks += cutbacks;
+            std::optional<RunStatistics::Scope> output_timer(std::in_place, statistics_.output);
+            if (!output_directory_.empty() &&
+                (at_max || finished ||
+                 (case_.output.vtu_every > 0 && step % case_.output.vtu_every == 0)))
+              write_vtu(vtu_index++);
+            if (!output_directory_.empty() && at_max)
+              {
+                std::erase_if(pileup_snapshots,
+                              [](const SurfaceSnapshot &s) { return s.stage == "max_depth"; });
+                pileup_snapshots.push_back({"max_depth", depth, gather_top_surface()});
+              }
+            if (!output_directory_.empty() && finished && unloading)
+              pileup_snapshots.push_back({"unloaded", depth, gather_top_surface()});
             if (at_max)
-              contact_radius_at_max = record.contact_radius;
-          }
-        output_timer.reset();
-        accept_increment();
+              {
+                contact_radius_at_max = record.contact_radius;
+                value_at_max = force_control ? depth : record.force;
+              }
+            output_timer.reset();
+            accept_increment();
 
-        // Progress: one line per step, with an ETA from the mean step time of this run.
-        const double elapsed = record.wall_time;
-        const double remaining_depth =
-          unloading ? depth * 0.25 : (loading.max_depth - depth) + (loading.unload ? 0.25 * loading.max_depth : 0);
-        const double eta = depth > 0 ? elapsed / (step) * remaining_depth / nominal_increment : 0;
-        pcout_ << "step " << std::setw(3) << step << (unloading ? " unload" : " load  ")
-               << "  depth " << std::setprecision(6) << depth << " um  force "
-               << record.force << " mN  (bottom reaction " << record.bottom_reaction
-               << ")  active " << record.n_active_nodes
-               << "  Newton " << record.newton_iterations << "  aug " << record.augmentations
-               << "  cut " << cutbacks << "  pen " << std::scientific << std::setprecision(1)
-               << record.max_penetration << std::defaultfloat << "  wall "
-               << format_duration(elapsed) << "  ETA ~" << format_duration(eta) << std::endl;
-        if (at_max)
-          force_at_max_depth = record.force;
-        if (csv.is_open())
-          write_csv_row(csv, record);
-        if (log.is_open())
-          log << step << ' ' << std::setprecision(8) << depth << ' ' << record.force << ' '
-              << record.newton_iterations << ' ' << record.augmentations << ' ' << cutbacks
-              << ' ' << record.max_penetration << ' ' << std::setprecision(4) << elapsed
-              << std::endl;
+            // Progress: one line per step, with an ETA from the mean step time of this run.
+            const double elapsed = record.wall_time;
+            const double eta =
+              elapsed / step * std::max(0.0, double(nominal_steps) - double(step));
+            pcout_ << "step " << std::setw(3) << step << ' ' << std::left << std::setw(6)
+                   << segment.kind << std::right;
+            if (loading.cycles > 1)
+              pcout_ << " cycle " << segment.cycle;
+            pcout_ << "  depth " << std::setprecision(6) << depth << " um  force "
+                   << record.force << " mN";
+            if (force_control)
+              pcout_ << " (target " << value << ")";
+            pcout_ << "  (bottom reaction " << record.bottom_reaction << ")  active "
+                   << record.n_active_nodes;
+            if (contact_->friction_coefficient() > 0)
+              pcout_ << " (stick " << record.n_stick_nodes << ")";
+            pcout_ << "  Newton " << record.newton_iterations << "  aug " << record.augmentations
+                   << "  cut " << cutbacks << "  pen " << std::scientific << std::setprecision(1)
+                   << record.max_penetration << std::defaultfloat << "  wall "
+                   << format_duration(elapsed) << "  ETA ~" << format_duration(eta) << std::endl;
+            if (csv.is_open())
+              write_csv_row(csv, record);
+            if (log.is_open())
+              log << step << ' ' << std::setprecision(8) << depth << ' ' << record.force << ' '
+                  << record.newton_iterations << ' ' << record.augmentations << ' ' << cutbacks
+                  << ' ' << record.max_penetration << ' ' << std::setprecision(4) << elapsed
+                  << std::endl;
 
-        if (finished)
-          break;
-        if (at_max)
-          {
-            unloading = true;
-            increment = unload_increment;
-          }
-        // After a cut-back, grow the increment again only once three steps in a row have
-        // converged easily, so that a difficult stretch is not retried at every step.
-        easy_steps = (cutbacks == 0 && record.newton_iterations <= 6) ? easy_steps + 1 : 0;
-        if (easy_steps >= 3)
-          {
-            increment *= 2;
-            easy_steps = 0;
+            if (segment_done)
+              break;
+            // After a cut-back, grow the increment again only once three steps in a row have
+            // converged easily, so that a difficult stretch is not retried at every step.
+            easy_steps = (cutbacks == 0 && record.newton_iterations <= 6) ? easy_steps + 1 : 0;
+            if (easy_steps >= 3)
+              {
+                increment *= 2;
+                easy_steps = 0;
+              }
           }
       }
     pcout_ << "Finished: " << step << " steps, " << total_newton << " Newton iterations, wall time "
@@ -811,8 +962,9 @@ namespace indentsim::solver
         description.dofs = n_dofs();
         description.mpi_ranks = Utilities::MPI::n_mpi_processes(communicator_);
         description.threads = MultithreadInfo::n_threads();
-        description.final_value = force_at_max_depth;
-        description.final_value_name = "force_at_max_depth_mN";
+        description.final_value = value_at_max;
+        description.final_value_name =
+          force_control ? "depth_at_max_force_um" : "force_at_max_depth_mN";
         write_run_summary(output_directory_ + "/" + io::output_files::run_summary, description, statistics_,
                           communicator_);
       }

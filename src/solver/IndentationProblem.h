@@ -35,6 +35,7 @@
 #include <functional>
 #include <span>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,8 @@ namespace indentsim::solver
   struct StepRecord
   {
     unsigned int step = 0;
+    unsigned int cycle = 0;           // load-unload cycle of the programme (0: initial state)
+    std::string  segment = "start";   // start | load | hold | unload
     double       depth = 0;           // indenter apex depth [um]
     double       force = 0;           // indenter force [mN]
     double       contact_radius = 0;  // largest radius of the interpolated perimeter [um]
@@ -77,7 +80,13 @@ namespace indentsim::solver
     // Solves one increment to depth `depth` from the last converged state (no cut-back). With
     // `extrapolate`, Newton starts from the linear extrapolation of the last two converged
     // states (when the indenter keeps its direction), else from the last converged state.
-    IncrementStatus solve_increment(double depth, StepRecord &record, bool extrapolate = true);
+    // Force control: with `target_force` [mN, whole indent], the depth is an unknown solved with
+    // the displacements (bordered Newton system) and `depth` is its starting guess.
+    IncrementStatus solve_increment(double depth, StepRecord &record, bool extrapolate = true,
+                                    std::optional<double> target_force = std::nullopt);
+    // Force control: the starting depth for the force `target_force` [mN], by the secant of the
+    // last two converged states (else the last converged depth).
+    double depth_guess_for_force(double target_force) const;
     // Accepts or rejects the increment just solved.
     void accept_increment();
     void reject_increment();
@@ -174,6 +183,10 @@ namespace indentsim::solver
     // next increment extrapolates linearly from them.
     dealii::PETScWrappers::MPI::Vector       solution_previous_;
     double depth_converged_ = 0, depth_previous_ = 0, depth_trial_ = 0;
+    // Indenter force (whole indent) of the last two converged increments [mN].
+    double force_converged_ = 0, force_previous_ = 0, force_trial_ = 0;
+    // Set by solve_increment under force control: the assembly then adds the depth coupling.
+    contact::NodeToSurfaceContact::DepthCoupling *depth_coupling_ = nullptr;
     // |indenter force| of the model [mN] at the last converged and at the trial state.
     double converged_force_scale_ = 0, trial_force_scale_ = 0;
     bool   has_previous_ = false;

@@ -301,8 +301,8 @@ namespace indentsim::indenter
                                                const double d1, const double width)
     {
       const double rise = z1 - z0;
-      return {z0, width * d0, 3. * rise - 2. * width * d0 - width * d1,
-              -2. * rise + width * d0 + width * d1};
+      return {{z0, width * d0, 3. * rise - 2. * width * d0 - width * d1,
+               -2. * rise + width * d0 + width * d1}};
     }
 
     double horner(const std::array<double, 4> &c, const double t)
@@ -428,7 +428,7 @@ namespace indentsim::indenter
         const auto F = hermite_coefficients(z[k], z[k + 1], dz_dr[k], dz_dr[k + 1], width);
         std::array<double, 4> P = F;
         P[0] -= zeta;
-        const std::array<double, 3> Q = {F[1], 2. * F[2], 3. * F[3]};
+        const std::array<double, 3> Q = {{F[1], 2. * F[2], 3. * F[3]}};
         std::array<double, 6>       power{};
         for (int i = 0; i < 4; ++i)
           for (int j = 0; j < 3; ++j)

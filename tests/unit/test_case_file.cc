@@ -540,7 +540,7 @@ TEST(CaseFile, ProfileTableFileIsResolvedAndChecked)
     {
       const std::string message = error.what();
       const std::string table = (fs::absolute(dir / "cases" / "tables" / "bad.csv")).string();
-      for (const std::string part : {bad_case.string() + ":6:", std::string("indenter.file"),
+      for (const std::string &part : {bad_case.string() + ":6:", std::string("indenter.file"),
                                      table + ":4:", std::string("r_um = 0.5 does not increase"),
                                      std::string("strictly increasing")})
         EXPECT_NE(message.find(part), std::string::npos) << "missing '" << part << "' in\n"

@@ -8,6 +8,8 @@
 
 namespace indentsim::indenter
 {
-  // Throws std::invalid_argument for an unknown shape (read_case_file rejects it earlier).
+  // The shape named by parameters.shape with the keys that belong to it (the other keys are
+  // ignored). Throws std::invalid_argument for an unknown shape or an out-of-range value
+  // (read_case_file rejects both earlier) and ProfileTableError for a bad profile_table file.
   std::unique_ptr<IndenterSurface> create_indenter(const io::IndenterParameters &parameters);
 } // namespace indentsim::indenter

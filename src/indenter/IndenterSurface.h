@@ -5,6 +5,11 @@
 // the specimen occupies z <= 0 and the indenter approaches from above. At indentation depth h the
 // tip apex sits at (0, 0, -h). The surface is described in the indenter's own frame (apex at
 // the origin, opening upwards: z_tip = profile(x, y) >= 0).
+//
+// Implementations: RoundedCone (the paper's eq. 16), and the library of rigid shapes with exact
+// closest-point projection: Sphere, Cone, Pyramid (Vickers, Berkovich), FlatPunch (the rounded
+// ones built by MinkowskiRounding.h) and ProfileTable (a tabulated axisymmetric profile or area
+// function). IndenterFactory maps indenter.shape to them.
 #pragma once
 
 #include <deal.II/base/point.h>
@@ -39,8 +44,15 @@ namespace indentsim::indenter
     // configuration) when the apex is at depth `depth` (apex at (0,0,-depth)).
     virtual SurfaceProjection project(const Point<3> &x, double depth) const = 0;
 
-    // Projected (horizontal cross-section) contact area of the ideal shape at depth h [um^2].
+    // Projected (horizontal cross-section) contact area of the ideal shape at depth h [um^2]:
+    // the area of {(x, y): profile(x, y) < h}, 0 for h <= 0.
     virtual double projected_area(double h) const = 0;
+
+    // True if the planes x = 0 (the yz plane) and y = 0 (the xz plane) are both mirror planes
+    // of the indenter. The quarter model (specimen.symmetry: quarter, u_x = 0 on x = 0 and
+    // u_y = 0 on y = 0) is exact only then: axisymmetric shapes always, a Vickers pyramid at a
+    // rotation that is a multiple of 45 deg, a Berkovich pyramid never.
+    virtual bool mirror_symmetric_about_xz_and_yz() const = 0;
 
     virtual std::string name() const = 0;
   };

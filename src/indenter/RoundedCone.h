@@ -24,6 +24,8 @@ namespace indentsim::indenter
     // pi r(h)^2, with r(h) = a sqrt(h (h + 2 delta)) the exact inverse of f.
     double projected_area(double h) const override;
 
+    bool mirror_symmetric_about_xz_and_yz() const override { return true; } // axisymmetric
+
     std::string name() const override { return "rounded_cone"; }
 
     // f(r) [um] for radius r >= 0, written without cancellation for r << a delta.

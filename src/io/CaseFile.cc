@@ -1,5 +1,7 @@
 // YAML case files: parse -> fill defaults -> validate, and the resolved case written next to
 // every run's results. See CaseFile.h for the rules (required keys, defaults, messages).
+#include <indenter/IndenterFactory.h>
+#include <indenter/ProfileTable.h>
 #include <io/CaseFile.h>
 #include <materials/MaterialFactory.h>
 #include <materials/Orientation.h>
@@ -15,6 +17,7 @@
 #include <initializer_list>
 #include <limits>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <system_error>
 #include <vector>
@@ -41,7 +44,9 @@ namespace indentsim::io
       {"material.elastic", {"C11", "C12", "C44"}},
       {"material.hardening", {"tau0", "tau1", "theta0", "theta1", "q"}},
       {"material.orientation", {"euler_bunge_deg", "surface_normal", "reference_direction"}},
-      {"indenter", {"shape", "a", "delta"}},
+      {"indenter",
+       {"shape", "a", "delta", "radius", "half_angle_deg", "tip_radius", "rotation_deg",
+        "edge_radius", "file"}},
       {"specimen",
        {"size", "refined_region", "contact_elements", "symmetry", "f_bar", "elements_per_side",
         "grains", "seed"}},
@@ -63,7 +68,9 @@ namespace indentsim::io
     const std::vector<std::string> allowed_linear_solvers = {"auto", "direct", "iterative"};
     const std::vector<std::string> allowed_orientation_kinds = {"euler_bunge_deg",
                                                                 "surface_normal"};
-    const std::vector<std::string> allowed_shapes = {"rounded_cone"};
+    const std::vector<std::string> allowed_shapes = {"rounded_cone", "sphere",     "cone",
+                                                     "vickers",      "berkovich",  "flat_punch",
+                                                     "profile_table"};
     const std::vector<std::string> allowed_symmetries = {"full", "quarter"};
     const std::vector<std::string> allowed_controls = {"depth", "force"};
     const std::vector<std::string> allowed_yield_measures = {"cauchy", "kirchhoff"};
@@ -250,6 +257,17 @@ namespace indentsim::io
           read_string(map, "indenter", "shape", "an indenter shape", indenter.shape);
           read_double(map, "indenter", "a", "the slope parameter a", indenter.a);
           read_double(map, "indenter", "delta", "the tip rounding delta in um", indenter.delta);
+          read_double(map, "indenter", "radius", "the radius in um", indenter.radius);
+          read_double(map, "indenter", "half_angle_deg", "the cone half-angle in degrees",
+                      indenter.half_angle_deg);
+          read_double(map, "indenter", "tip_radius", "the tip radius in um", indenter.tip_radius);
+          read_double(map, "indenter", "rotation_deg", "an angle in degrees",
+                      indenter.rotation_deg);
+          read_double(map, "indenter", "edge_radius", "the edge radius in um",
+                      indenter.edge_radius);
+          if (read_string(map, "indenter", "file", "the path of a CSV profile table",
+                          indenter.file))
+            indenter.file = relative_to_case_file(indenter.file);
         }
         {
           const YAML::Node map = section(root, "specimen");
@@ -457,6 +475,20 @@ namespace indentsim::io
           }
       }
 
+      // A path given relative to the case file's directory, made absolute (the resolved case
+      // is written elsewhere and must still find the file).
+      std::string relative_to_case_file(const std::string &path) const
+      {
+        if (path.empty())
+          return path;
+        fs::path resolved(path);
+        if (resolved.is_relative())
+          resolved = fs::path(source).parent_path() / resolved;
+        std::error_code error;
+        const fs::path absolute = fs::absolute(resolved, error);
+        return (error ? resolved : absolute).lexically_normal().string();
+      }
+
       // The value node of `key`, or an undefined node if the key is absent.
       YAML::Node value_node(const YAML::Node  &map,
                             const std::string &section_name,
@@ -615,7 +647,6 @@ namespace indentsim::io
       void validate() const
       {
         const auto &m = checked.material;
-        const auto &ind = checked.indenter;
         const auto &s = checked.specimen;
         const auto &l = checked.loading;
         const auto &c = checked.contact;
@@ -647,13 +678,7 @@ namespace indentsim::io
                      allowed_yield_measures);
         validate_crystal_parameters();
 
-        check_choice("indenter.shape", ind.shape, allowed_shapes);
-        if (!(ind.a > 0.))
-          reject("indenter.a", format_number(ind.a),
-                 "the slope parameter a (tan of the cone half-angle) must be > 0");
-        if (!(ind.delta >= 0.))
-          reject("indenter.delta", format_number(ind.delta),
-                 "the tip rounding delta must be >= 0 um (0: sharp cone)");
+        const std::unique_ptr<indenter::IndenterSurface> surface = validate_indenter();
 
         static const char *axis_names[3] = {"x", "y", "z"};
         for (unsigned int d = 0; d < 3; ++d)
@@ -679,6 +704,8 @@ namespace indentsim::io
                  "symmetry: quarter the modelled N/2 x N/2 faces must be even as well; a "
                  "multiple of 4 satisfies both");
         check_choice("specimen.symmetry", s.symmetry, allowed_symmetries);
+        if (!tensile && s.symmetry == "quarter" && !surface->mirror_symmetric_about_xz_and_yz())
+          reject_quarter_symmetry_of_the_indenter();
         if (m.model == "crystal" && !tensile && s.symmetry == "quarter")
           check_quarter_symmetry_of_the_lattice();
         if (s.elements_per_side < 1 || s.elements_per_side > max_elements_per_side)
@@ -770,6 +797,80 @@ namespace indentsim::io
             if (value_origins->count(path) > 0)
               return path;
         return *paths.begin();
+      }
+
+      // Keys of the indenter. Like the crystal keys, every key is checked for every shape (the
+      // resolved case always holds them) but used only by its shapes; the profile table file is
+      // read only for shape: profile_table. Returns the indenter, built as the run will build it.
+      std::unique_ptr<indenter::IndenterSurface> validate_indenter() const
+      {
+        const auto &ind = checked.indenter;
+        check_choice("indenter.shape", ind.shape, allowed_shapes);
+        if (!(ind.a > 0.))
+          reject("indenter.a", format_number(ind.a),
+                 "the slope parameter a (tan of the cone half-angle) must be > 0");
+        if (!(ind.delta >= 0.))
+          reject("indenter.delta", format_number(ind.delta),
+                 "the tip rounding delta must be >= 0 um (0: sharp cone)");
+        if (!(ind.radius > 0.) || !std::isfinite(ind.radius))
+          reject("indenter.radius", format_number(ind.radius),
+                 "the radius of the sphere or of the flat punch must be > 0 um");
+        if (!(ind.half_angle_deg > 0. && ind.half_angle_deg < 90.))
+          reject("indenter.half_angle_deg", format_number(ind.half_angle_deg),
+                 "the cone half-angle (between flank and axis) must satisfy 0 < alpha < 90 deg "
+                 "(70.3: the area function 24.5 h^2 of the Vickers and Berkovich pyramids)");
+        if (!(ind.tip_radius >= 0.) || !std::isfinite(ind.tip_radius))
+          reject("indenter.tip_radius", format_number(ind.tip_radius),
+                 "the tip radius of the cone or pyramid must be >= 0 um (0: sharp)");
+        if (!std::isfinite(ind.rotation_deg))
+          reject("indenter.rotation_deg", format_number(ind.rotation_deg),
+                 "the rotation about the indentation axis must be a finite angle in degrees");
+        if (!(ind.edge_radius >= 0. && ind.edge_radius <= ind.radius))
+          reject(given_or_first({"indenter.edge_radius", "indenter.radius"}),
+                 "edge_radius = " + format_number(ind.edge_radius) +
+                   ", radius = " + format_number(ind.radius),
+                 "the rim rounding of the flat punch must satisfy 0 <= edge_radius <= radius "
+                 "(um; 0: a sharp rim)");
+        if (ind.shape == "profile_table" && ind.file.empty())
+          reject("indenter.file", "\"\"",
+                 "shape: profile_table needs the table: file: a CSV path (relative to the case "
+                 "file's directory) with the header r_um,z_um (profile) or depth_um,area_um2 "
+                 "(area function)");
+        try
+          {
+            return indenter::create_indenter(ind);
+          }
+        catch (const indenter::ProfileTableError &error)
+          {
+            reject("indenter.file", "\"" + ind.file + "\"", error.what());
+          }
+        catch (const std::invalid_argument &error)
+          {
+            reject("indenter.shape", ind.shape, error.what());
+          }
+      }
+
+      // The quarter model imposes u_x = 0 on x = 0 and u_y = 0 on y = 0, exact only if both are
+      // mirror planes of the indenter (IndenterSurface::mirror_symmetric_about_xz_and_yz).
+      [[noreturn]] void reject_quarter_symmetry_of_the_indenter() const
+      {
+        const auto &ind = checked.indenter;
+        std::string shape = "indenter.shape = " + ind.shape;
+        std::string advice = "use symmetry: full";
+        if (ind.shape == "vickers")
+          {
+            shape += " with rotation_deg = " + format_number(ind.rotation_deg);
+            advice = "a Vickers pyramid has them when rotation_deg is a multiple of 45; use "
+                     "rotation_deg: 0 (faces towards +-x, +-y) or 45 (edges along x and y), or "
+                     "symmetry: full";
+          }
+        else if (ind.shape == "berkovich")
+          advice = "a three-sided pyramid never has two perpendicular mirror planes; use "
+                   "symmetry: full";
+        reject("specimen.symmetry", checked.specimen.symmetry,
+               "the quarter model (u_x = 0 on x = 0, u_y = 0 on y = 0) needs the planes x = 0 "
+               "and y = 0 to be mirror planes of the indenter, and " + shape +
+                 " is not mirror-symmetric about both; " + advice);
       }
 
       // Keys of the crystal model. They are checked for every model (the resolved case always
@@ -1054,9 +1155,21 @@ namespace indentsim::io
 
     out << "indenter:\n";
     line("  shape: " + c.indenter.shape,
-         "rounded_cone: z = sqrt((x^2+y^2)/a^2 + delta^2) - delta");
-    line("  a: " + format_number(c.indenter.a), "slope [-], cone half-angle atan(a)");
+         "rounded_cone | sphere | cone | vickers | berkovich | flat_punch | profile_table");
+    line("  a: " + format_number(c.indenter.a),
+         "rounded_cone (eq. 16): slope [-], half-angle atan(a)");
     line("  delta: " + format_number(c.indenter.delta), "tip rounding [um], tip radius a^2*delta");
+    line("  radius: " + format_number(c.indenter.radius), "sphere, flat_punch: radius [um]");
+    line("  half_angle_deg: " + format_number(c.indenter.half_angle_deg),
+         "cone: half-angle flank-axis [deg]");
+    line("  tip_radius: " + format_number(c.indenter.tip_radius),
+         "cone, vickers, berkovich: tip and edge radius [um], 0: sharp");
+    line("  rotation_deg: " + format_number(c.indenter.rotation_deg),
+         "vickers, berkovich: about +z, ccw from above [deg]; 0: a face towards +x");
+    line("  edge_radius: " + format_number(c.indenter.edge_radius),
+         "flat_punch: rim rounding [um], 0: sharp");
+    line("  file: " + quoted(c.indenter.file),
+         "profile_table: CSV r_um,z_um or depth_um,area_um2");
 
     out << "specimen:\n";
     line("  size: " + format_triple(c.specimen.size), "full block edge lengths [um]");

@@ -7,7 +7,11 @@
 // The crystal keys (material.lattice, .elastic, .hardening, .yield_exponent_n, .orientation)
 // are read and checked for every model but used only by `crystal`; `material.orientation` is
 // either `euler_bunge_deg` or `surface_normal` + `reference_direction`, and the resolved case
-// writes the form that was given.
+// writes the form that was given. The indenter keys likewise are read and checked for every
+// shape but used only by their shapes; `indenter.file` is relative to the case file's directory
+// (stored as an absolute path) and read only for `shape: profile_table`. `specimen.symmetry:
+// quarter` needs an indenter with the mirror planes x = 0 and y = 0 (not berkovich, vickers only
+// at multiples of 45 deg).
 //
 // Bad input never reaches the solver: every problem raises one CaseFileError whose message names
 // the file, the key path (e.g. `material.poisson_ratio`), the offending value and what is allowed.

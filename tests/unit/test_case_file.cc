@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -31,6 +32,11 @@ namespace
     std::ofstream out(path);
     out << text;
     return path;
+  }
+
+  std::string read_text_file(const std::string &path)
+  {
+    return indentsim::test_files::read_text(path);
   }
 
   const std::string minimal_case = "test: indentation\nmaterial:\n  model: j2\n";
@@ -160,6 +166,12 @@ TEST(CaseFile, ResolvedCaseRoundTrips)
   c.material.hardening_modulus = 0.75;
   c.material.yield_stress_measure = "kirchhoff";
   c.indenter = {"rounded_cone", 1.9, 0.0123};
+  c.indenter.radius = 7.5;
+  c.indenter.half_angle_deg = 65.5;
+  c.indenter.tip_radius = 0.04;
+  c.indenter.rotation_deg = -22.5;
+  c.indenter.edge_radius = 0.3;
+  c.indenter.file = "/data/tips/my tip #2.csv"; // read only for shape: profile_table
   c.specimen = {{{300., 310., 150.}}, {{100., 90., 25.}}, 16, "quarter", false};
   c.loading = {"depth", 5.5, 0.0, 33, false, 7, 2, 1, 5};
   c.contact = {0.0, 12.5, 3e-7, 17};
@@ -409,6 +421,179 @@ TEST(CaseFile, QuarterSymmetryNeedsCubicMirrorPlanes)
             "");
 }
 
+// Every indenter key of the library reaches the Case; the keys of other shapes keep their
+// defaults and are checked but not used (as the crystal keys under j2).
+TEST(CaseFile, IndenterKeysAreParsed)
+{
+  const Case c = parse_case_yaml(with("indenter:\n"
+                                      "  shape: vickers\n"
+                                      "  tip_radius: 0.05\n"
+                                      "  rotation_deg: 45\n"
+                                      "  radius: 12.5\n"
+                                      "  half_angle_deg: 60\n"
+                                      "  edge_radius: 0.5\n"),
+                                 "v.yaml");
+  EXPECT_EQ(c.indenter.shape, "vickers");
+  EXPECT_DOUBLE_EQ(c.indenter.tip_radius, 0.05);
+  EXPECT_DOUBLE_EQ(c.indenter.rotation_deg, 45.);
+  EXPECT_DOUBLE_EQ(c.indenter.radius, 12.5);
+  EXPECT_DOUBLE_EQ(c.indenter.half_angle_deg, 60.);
+  EXPECT_DOUBLE_EQ(c.indenter.edge_radius, 0.5);
+  EXPECT_EQ(c.indenter.file, "");
+  EXPECT_DOUBLE_EQ(c.indenter.a, 2.48) << "rounded_cone keys keep their defaults";
+
+  // Defaults of the new keys (Case.h, README).
+  const Case d = parse_case_yaml(minimal_case, "d.yaml");
+  EXPECT_DOUBLE_EQ(d.indenter.radius, 10.);
+  EXPECT_DOUBLE_EQ(d.indenter.half_angle_deg, 70.3);
+  EXPECT_DOUBLE_EQ(d.indenter.tip_radius, 0.);
+  EXPECT_DOUBLE_EQ(d.indenter.rotation_deg, 0.);
+  EXPECT_DOUBLE_EQ(d.indenter.edge_radius, 0.);
+  EXPECT_EQ(d.indenter.file, "");
+
+  for (const std::string shape : {"sphere", "cone", "berkovich", "flat_punch"})
+    EXPECT_EQ(parse_case_yaml(with("indenter:\n  shape: " + shape + "\n"), "s.yaml").indenter.shape,
+              shape);
+  // A file given for another shape is not read (but kept in the resolved case).
+  EXPECT_EQ(error_of(with("indenter:\n  shape: sphere\n  file: no_such_table.csv\n")), "");
+}
+
+// Indenter values outside their range are rejected with the file, key, value and rule.
+TEST(CaseFile, IndenterRangesAreChecked)
+{
+  expect_rejected(with("indenter:\n  radius: 0\n"), {"indenter.radius = 0", "> 0 um", ":5:"});
+  expect_rejected(with("indenter:\n  shape: sphere\n  radius: -2\n"),
+                  {"indenter.radius = -2", "> 0 um", ":6:"});
+  expect_rejected(with("indenter:\n  half_angle_deg: 90\n"),
+                  {"indenter.half_angle_deg = 90", "0 < alpha < 90 deg"});
+  expect_rejected(with("indenter:\n  shape: cone\n  half_angle_deg: 0\n"),
+                  {"indenter.half_angle_deg = 0", "0 < alpha < 90 deg"});
+  expect_rejected(with("indenter:\n  tip_radius: -0.1\n"),
+                  {"indenter.tip_radius = -0.1", ">= 0 um", "0: sharp"});
+  expect_rejected(with("indenter:\n  shape: flat_punch\n  edge_radius: -0.1\n"),
+                  {"indenter.edge_radius", "edge_radius = -0.1, radius = 10",
+                   "0 <= edge_radius <= radius"});
+  expect_rejected(with("indenter:\n  shape: flat_punch\n  radius: 2\n  edge_radius: 3\n"),
+                  {"indenter.edge_radius", "edge_radius = 3, radius = 2", ":7:"});
+  expect_rejected(with("indenter:\n  rotation_deg: ninety\n"),
+                  {"indenter.rotation_deg", "ninety", "expected a number", "degrees"});
+  expect_rejected(with("indenter:\n  tip_radius: [0.1]\n"),
+                  {"indenter.tip_radius", "expected a number"});
+  expect_rejected(with("indenter:\n  tipradius: 0.1\n"),
+                  {"unknown key 'indenter.tipradius'", "did you mean 'indenter.tip_radius'"});
+  expect_rejected(with("indenter:\n  shape: profile_table\n"),
+                  {"indenter.file = \"\" (default)", "profile_table needs the table",
+                   "r_um,z_um", "depth_um,area_um2"});
+  expect_rejected(with("indenter:\n  shape: profile_table\n  file: [a.csv]\n"),
+                  {"indenter.file", "expected the path of a CSV profile table"});
+  EXPECT_EQ(error_of(with("indenter:\n  shape: berkovich\n  rotation_deg: -725.5\n")), "")
+    << "any finite rotation";
+  EXPECT_EQ(error_of(with("indenter:\n  shape: flat_punch\n  radius: 2\n  edge_radius: 2\n")),
+            "")
+    << "edge_radius = radius: a hemispherical end";
+
+  Case c;
+  c.indenter.half_angle_deg = 95.;
+  expect_rejected_case(c, {"indenter.half_angle_deg = 95"});
+  c = Case();
+  c.indenter.rotation_deg = std::numeric_limits<double>::infinity();
+  expect_rejected_case(c, {"indenter.rotation_deg = inf", "finite"});
+}
+
+// profile_table: the file is relative to the case file's directory, stored as an absolute path
+// (so that the resolved case, written elsewhere, finds it), and a bad table is reported with
+// the case file's line of indenter.file, the table's file and line, and what is allowed.
+TEST(CaseFile, ProfileTableFileIsResolvedAndChecked)
+{
+  const fs::path dir = scratch_directory("profile_table");
+  fs::create_directories(dir / "cases" / "tables");
+  write_text(dir / "cases" / "tables" / "tip.csv", "r_um,z_um\n0,0\n1,0.1\n3,1\n");
+  const std::string case_text = with("indenter:\n  shape: profile_table\n"
+                                     "  file: tables/../tables/tip.csv\n");
+  const fs::path case_path = write_text(dir / "cases" / "case.yaml", case_text);
+  const Case     c = read_case_file(case_path.string());
+  const fs::path expected = fs::absolute(dir / "cases" / "tables" / "tip.csv").lexically_normal();
+  EXPECT_EQ(c.indenter.file, expected.string());
+
+  // The resolved case, written into another directory, reads back identically.
+  fs::create_directories(dir / "results");
+  const std::string resolved = (dir / "results" / "resolved_case.yaml").string();
+  write_resolved_case(c, resolved);
+  Case back = read_case_file(resolved);
+  back.source_file = c.source_file;
+  EXPECT_TRUE(back == c) << read_text_file(resolved);
+
+  // Missing and malformed tables.
+  expect_rejected(with("indenter:\n  shape: profile_table\n  file: /no/such/dir/tip.csv\n"),
+                  {"bad.yaml:6:", "indenter.file = \"/no/such/dir/tip.csv\"", "does not exist",
+                   "r_um,z_um"});
+  write_text(dir / "cases" / "tables" / "bad.csv", "r_um,z_um\n0,0\n1,0.5\n0.5,0.7\n");
+  const fs::path bad_case = write_text(
+    dir / "cases" / "bad_case.yaml",
+    with("indenter:\n  shape: profile_table\n  file: tables/bad.csv\n"));
+  try
+    {
+      read_case_file(bad_case.string());
+      ADD_FAILURE() << "a non-monotone table was accepted";
+    }
+  catch (const CaseFileError &error)
+    {
+      const std::string message = error.what();
+      const std::string table = (fs::absolute(dir / "cases" / "tables" / "bad.csv")).string();
+      for (const std::string &part : {bad_case.string() + ":6:", std::string("indenter.file"),
+                                     table + ":4:", std::string("r_um = 0.5 does not increase"),
+                                     std::string("strictly increasing")})
+        EXPECT_NE(message.find(part), std::string::npos) << "missing '" << part << "' in\n"
+                                                         << message;
+    }
+}
+
+// The quarter model needs x = 0 and y = 0 to be mirror planes of the indenter: never for
+// Berkovich, for Vickers only at multiples of 45 deg; axisymmetric shapes always.
+TEST(CaseFile, QuarterSymmetryNeedsAMirrorSymmetricIndenter)
+{
+  const std::string quarter = with("specimen:\n  symmetry: quarter\n");
+  expect_rejected(quarter + "indenter:\n  shape: berkovich\n",
+                  {"specimen.symmetry = quarter", ":5:", "indenter.shape = berkovich",
+                   "mirror planes", "never", "use symmetry: full"});
+  expect_rejected(quarter + "indenter:\n  shape: vickers\n  rotation_deg: 30\n",
+                  {"specimen.symmetry = quarter", "vickers with rotation_deg = 30",
+                   "multiple of 45", "symmetry: full"});
+  for (const std::string ok : {"vickers\n", "vickers\n  rotation_deg: 45\n",
+                               "vickers\n  rotation_deg: -90\n", "sphere\n", "cone\n",
+                               "flat_punch\n", "rounded_cone\n"})
+    EXPECT_EQ(error_of(quarter + "indenter:\n  shape: " + ok), "") << ok;
+  EXPECT_EQ(error_of(with("specimen:\n  symmetry: full\nindenter:\n  shape: berkovich\n")), "");
+  EXPECT_EQ(error_of("test: tensile\nmaterial:\n  model: j2\nspecimen:\n  symmetry: quarter\n"
+                     "indenter:\n  shape: berkovich\n"),
+            "")
+    << "the tensile test ignores the indenter's symmetry";
+  Case c;
+  c.indenter.shape = "berkovich";
+  c.specimen.symmetry = "quarter";
+  expect_rejected_case(c, {"specimen.symmetry = quarter", "berkovich"});
+}
+
+// The Vickers and Berkovich examples are valid cases with the advertised indenters and meshes.
+TEST(CaseFile, PyramidExamplesAreValid)
+{
+  const Case v =
+    read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/vickers_j2_n12.yaml");
+  EXPECT_EQ(v.indenter.shape, "vickers");
+  EXPECT_EQ(v.material.model, "j2");
+  EXPECT_EQ(v.specimen.contact_elements, 12u);
+  EXPECT_EQ(v.specimen.symmetry, "quarter");
+  EXPECT_EQ(v.output.directory, "results/vickers_j2_n12");
+  const Case b =
+    read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/berkovich_j2_n12.yaml");
+  EXPECT_EQ(b.indenter.shape, "berkovich");
+  EXPECT_EQ(b.material.model, "j2");
+  EXPECT_EQ(b.specimen.contact_elements, 12u);
+  EXPECT_EQ(b.specimen.symmetry, "full");
+  EXPECT_EQ(b.output.directory, "results/berkovich_j2_n12");
+  EXPECT_DOUBLE_EQ(v.indenter.tip_radius, b.indenter.tip_radius);
+}
+
 // Tensile-test keys outside their range, or given for the indentation test, are rejected.
 TEST(CaseFile, TensileRangesAreChecked)
 {
@@ -466,6 +651,8 @@ TEST(CaseFile, ResolvedCaseCarriesUnitComments)
   const std::string text = resolved_case_yaml(Case());
   for (const std::string fragment :
        {"young_modulus: 69", "# E [GPa]", "max_depth: 6", "delta: 0.005", "[um]", "[mN]",
+        "radius: 10", "half_angle_deg: 70.3", "tip_radius: 0", "rotation_deg: 0",
+        "edge_radius: 0", "file: \"\"", "[deg]",
         "size: [360, 360, 180]", "f_bar: true", "directory: \"results/run\""})
     EXPECT_NE(text.find(fragment), std::string::npos) << fragment << "\n" << text;
 }
@@ -635,8 +822,11 @@ TEST(CaseFile, UnknownChoicesListAllowedValues)
                   {"material.model = 'elastic'", "neo_hookean | j2"});
   expect_rejected("test: indentation\nmaterial:\n  model: J2\n",
                   {"material.model = 'J2'", "did you mean 'j2'"});
-  expect_rejected(with("indenter:\n  shape: sphere\n"),
-                  {"indenter.shape = 'sphere'", "rounded_cone"});
+  expect_rejected(with("indenter:\n  shape: sphre\n"),
+                  {"indenter.shape = 'sphre'",
+                   "rounded_cone | sphere | cone | vickers | berkovich | flat_punch | "
+                   "profile_table",
+                   "did you mean 'sphere'"});
   expect_rejected(with("specimen:\n  symmetry: half\n"),
                   {"specimen.symmetry = 'half'", "full | quarter"});
   expect_rejected("test: compression\nmaterial:\n  model: j2\n",

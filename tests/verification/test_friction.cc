@@ -42,6 +42,7 @@ namespace
     }
     double      projected_area(double) const override { return 0; }
     std::string name() const override { return "plane"; }
+    bool        mirror_symmetric_about_xz_and_yz() const override { return true; }
   };
 
   // One hexahedron [0,1]^2 x [-1,0] um; its four top-face nodes are the contact nodes, each held

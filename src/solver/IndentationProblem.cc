@@ -242,9 +242,25 @@ namespace indentsim::solver
 
   double IndentationProblem::depth_guess_for_force(const double target_force) const
   {
-    if (has_previous_ && force_converged_ != force_previous_)
+    if (target_force > force_converged_ && force_converged_ > 0 && depth_converged_ > 0)
       {
-        // Secant of the last two converged states, limited to twice their depth step.
+        // Loading: indentation curves follow F ~ h^m (m = 2 for a cone, 1.5 for a sphere in the
+        // Hertz range): m from the last two states in log-log, else 1.5.
+        double m = 1.5;
+        if (force_previous_ > 0 && depth_previous_ > 0 && depth_converged_ > depth_previous_ &&
+            force_converged_ > force_previous_)
+          m = std::log(force_converged_ / force_previous_) /
+              std::log(depth_converged_ / depth_previous_);
+        m = std::clamp(std::isfinite(m) ? m : 1.5, 1.0, 3.0);
+        return depth_converged_ * std::pow(target_force / force_converged_, 1 / m);
+      }
+    // Unloading (or reloading at low force): secant of the last two converged states, limited
+    // to twice their depth step, when they moved the same way; at a reversal (plastic loading to
+    // elastic unloading) the last slope says nothing, and the Newton update finds the depth.
+    const bool same_direction =
+      (target_force - force_converged_) * (force_converged_ - force_previous_) > 0;
+    if (has_previous_ && same_direction)
+      {
         const double slope = (depth_converged_ - depth_previous_) / (force_converged_ - force_previous_);
         const double step = slope * (target_force - force_converged_);
         const double limit = 2 * std::abs(depth_converged_ - depth_previous_);
@@ -800,6 +816,37 @@ namespace indentsim::solver
           {
             increment = std::min(increment, nominal_increment);
             StepRecord   record;
+            // Force control from a state that carries no load has no contact stiffness to steer
+            // the depth: first touch under depth control, 0.1 % of a contact element beyond the
+            // nearest node (a recorded step; its force lies below the first target in the
+            // examples: 3 mN of 7.8 mN on the paper's 12 x 12 mesh).
+            if (force_control && !unloading && step == 0 && force_converged_ <= 0)
+              {
+                contact_->evaluate(solution_, depth_converged_);
+                const double touch = depth_converged_ + std::max(contact_->min_gap(), 0.0) +
+                                     1e-3 * mesh_info_.contact_element_size;
+                const IncrementStatus status = solve_increment(touch, record, false);
+                if (status != IncrementStatus::converged)
+                  throw std::runtime_error("force control: the first contact at depth " +
+                                           std::to_string(touch) + " um failed (" +
+                                           to_string(status) + ")");
+                value = record.force;
+                depth = record.depth;
+                ++step;
+                record.step = step;
+                record.cycle = segment.cycle;
+                record.segment = segment.kind;
+                record.wall_time = wall_timer_.wall_time();
+                total_newton += record.newton_iterations;
+                records_.push_back(record);
+                accept_increment();
+                if (csv.is_open())
+                  write_csv_row(csv, record);
+                pcout_ << "step " << std::setw(3) << step << " touch   depth " << depth
+                       << " um  force " << record.force << " mN (first contact, depth control)"
+                       << std::endl;
+                continue;
+              }
             unsigned int cutbacks = 0;
             double       new_value = value;
             bool         extrapolate = !hold;

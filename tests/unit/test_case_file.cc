@@ -801,6 +801,16 @@ TEST(CaseFile, LoadingContactSolverRangesAreChecked)
   expect_rejected(with("contact:\n  friction_coefficient: 10\n"),
                   {"contact.friction_coefficient = 10", "0 <= mu <= 2"});
   EXPECT_EQ(error_of(with("contact:\n  friction_coefficient: 0.2\n")), "");
+  expect_rejected(with("loading:\n  control: load\n"), {"loading.control = 'load'", "depth | force"});
+  expect_rejected(with("loading:\n  control: force\n"),
+                  {"loading.max_force = 0", "force control needs the maximum indenter force"});
+  expect_rejected(with("loading:\n  max_force: 100\n"),
+                  {"loading.max_force = 100", "with loading.control: depth"});
+  EXPECT_EQ(error_of(with("loading:\n  control: force\n  max_force: 100\n")), "");
+  expect_rejected(with("loading:\n  cycles: 0\n"), {"loading.cycles = 0", "1 <= cycles"});
+  expect_rejected(with("loading:\n  cycles: 2\n  unload: false\n"),
+                  {"loading.cycles = 2", "need loading.unload: true"});
+  EXPECT_EQ(error_of(with("loading:\n  cycles: 3\n  hold_steps: 4\n")), "");
   expect_rejected(with("contact:\n  penalty: -1\n"), {"contact.penalty = -1"});
   expect_rejected(with("contact:\n  penetration_tolerance: 0\n"),
                   {"contact.penetration_tolerance = 0"});

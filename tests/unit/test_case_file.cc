@@ -594,6 +594,22 @@ TEST(CaseFile, PyramidExamplesAreValid)
   EXPECT_DOUBLE_EQ(v.indenter.tip_radius, b.indenter.tip_radius);
 }
 
+// The friction and force-control examples are valid cases with the advertised programme.
+TEST(CaseFile, FrictionAndForceControlExamplesAreValid)
+{
+  const Case f =
+    read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/friction_j2_n12.yaml");
+  EXPECT_DOUBLE_EQ(f.contact.friction_coefficient, 0.1);
+  EXPECT_EQ(f.loading.control, "depth");
+  const Case c =
+    read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/force_control_j2_n12.yaml");
+  EXPECT_EQ(c.loading.control, "force");
+  EXPECT_DOUBLE_EQ(c.loading.max_force, 500.0);
+  EXPECT_EQ(c.loading.cycles, 2u);
+  EXPECT_EQ(c.loading.hold_steps, 2u);
+  EXPECT_TRUE(c.loading.unload);
+}
+
 // Tensile-test keys outside their range, or given for the indentation test, are rejected.
 TEST(CaseFile, TensileRangesAreChecked)
 {

@@ -22,6 +22,27 @@ namespace indentsim::test_cases
     return c;
   }
 
+  // Elastic (neo-Hookean) half-space under a blunt rounded cone, delta = 1 um (tip radius
+  // R = a^2 delta = 6.15 um), so that the Hertz regime h <= 0.1 delta is resolved by a modest
+  // mesh: at h = 0.1 um the contact radius is sqrt(R h) = 0.78 um, at h = delta it is 2.8 um.
+  // Frictionless and hyperelastic: the solution at a depth does not depend on the path to it.
+  inline io::Case elastic_rounded_cone_case()
+  {
+    io::Case c;
+    c.material.model = "neo_hookean";
+    c.specimen.f_bar = false;
+    c.indenter.a = 2.48;
+    c.indenter.delta = 1.0;
+    c.specimen.size = {80., 80., 40.};
+    c.specimen.refined_region = {6., 6., 2.5};
+    c.specimen.contact_elements = 32; // h = 0.1875 um: 4.2 elements across a_c at 0.1 delta
+    c.specimen.symmetry = "quarter";
+    c.loading.max_depth = 1.0;
+    c.loading.steps = 10;
+    c.loading.unload = false;
+    return c;
+  }
+
   // The same geometry with the crystal model of the paper's Table 2 (FCC, n = 10), Euler
   // angles (phi1, Phi, phi2) in degrees.
   inline io::Case small_crystal_case(const std::string            &symmetry = "quarter",

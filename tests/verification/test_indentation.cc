@@ -14,25 +14,7 @@ using namespace indentsim;
 
 namespace
 {
-  // Elastic (neo-Hookean) half-space under a rounded cone with delta = 1 um, so that the
-  // Hertz regime h <= 0.1 delta is resolved by a modest mesh: at h = 0.1 um the contact radius is
-  // sqrt(R h) = 0.78 um (R = A^2 delta = 6.15 um), at h = delta it is 2.8 um.
-  io::Case elastic_case()
-  {
-    io::Case c;
-    c.material.model = "neo_hookean";
-    c.specimen.f_bar = false;
-    c.indenter.a = 2.48;
-    c.indenter.delta = 1.0;
-    c.specimen.size = {80., 80., 40.};
-    c.specimen.refined_region = {6., 6., 2.5};
-    c.specimen.contact_elements = 32; // h = 0.1875 um: 4.2 elements across a_c at 0.1 delta
-    c.specimen.symmetry = "quarter";
-    c.loading.max_depth = 1.0;
-    c.loading.steps = 10;
-    c.loading.unload = false;
-    return c;
-  }
+  io::Case elastic_case() { return test_cases::elastic_rounded_cone_case(); }
 
   double sneddon_force(const io::Case &c, double depth)
   {

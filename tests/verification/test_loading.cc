@@ -12,21 +12,15 @@ using namespace indentsim;
 
 namespace
 {
-  // Elastic (neo-Hookean) half-space under a blunt rounded cone (tip radius 6.2 um): frictionless
-  // and hyperelastic, so the solution at a depth does not depend on the path to it.
+  // The shared elastic rounded-cone case on a smaller block, to 0.3 um in 3 steps.
   io::Case elastic_case()
   {
-    io::Case c;
-    c.material.model = "neo_hookean";
-    c.specimen.f_bar = false;
-    c.indenter.delta = 1.0;
+    io::Case c = test_cases::elastic_rounded_cone_case();
     c.specimen.size = {40., 40., 20.};
     c.specimen.refined_region = {4., 4., 2.};
     c.specimen.contact_elements = 16;
-    c.specimen.symmetry = "quarter";
     c.loading.max_depth = 0.3;
     c.loading.steps = 3;
-    c.loading.unload = false;
     return c;
   }
 

@@ -36,6 +36,34 @@ TEST(Mpi, OneVersusManyRanksGiveTheSameCurve)
       EXPECT_NEAR(p.force, s.force, 1e-8 * s.force) << "step " << i;
       EXPECT_NEAR(p.depth, s.depth, 1e-12) << "step " << i;
       EXPECT_NEAR(p.force, p.bottom_reaction, 1e-6 * p.force) << "step " << i;
+      // The interpolated contact area reads the contact indicator on ghost vertices.
+      EXPECT_NEAR(p.contact_area, s.contact_area, 1e-8 * s.contact_area) << "step " << i;
+      EXPECT_NEAR(p.contact_radius, s.contact_radius, 1e-8 * s.contact_radius) << "step " << i;
+      EXPECT_EQ(p.n_active_nodes, s.n_active_nodes) << "step " << i;
+    }
+}
+
+// Coulomb friction (mu = 0.2) under force control, loaded and unloaded: the depth unknown of the
+// bordered Newton system, the stick/slip states and their counts are the same on all ranks as on
+// one (1e-7 relative: the Newton tolerance of the differently ordered sums).
+TEST(Mpi, FrictionUnderForceControlMatchesOneRank)
+{
+  io::Case c = test_cases::small_j2_case();
+  c.contact.friction_coefficient = 0.2;
+  c.loading.control = "force";
+  c.loading.max_force = 6.0;
+  c.loading.max_depth = 3.0;
+  c.loading.steps = 4;
+  c.loading.unload = true;
+  const auto parallel = run(c, MPI_COMM_WORLD), serial = run(c, MPI_COMM_SELF);
+  ASSERT_EQ(parallel.size(), serial.size());
+  for (std::size_t i = 1; i < serial.size(); ++i)
+    {
+      const auto &p = parallel[i], &s = serial[i];
+      EXPECT_NEAR(p.force, s.force, 1e-7 * c.loading.max_force) << "step " << i;
+      EXPECT_NEAR(p.depth, s.depth, 1e-7 * s.depth) << "step " << i;
+      EXPECT_EQ(p.n_stick_nodes, s.n_stick_nodes) << "step " << i;
+      EXPECT_EQ(p.n_slip_nodes, s.n_slip_nodes) << "step " << i;
     }
 }
 

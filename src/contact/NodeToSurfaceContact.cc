@@ -296,12 +296,21 @@ namespace indentsim::contact
       {
         node.lambda = node.pressure;
         node.traction_multiplier = node.traction;
+        node.lambda_previous = node.lambda_converged;
         node.lambda_converged = node.lambda;
         node.traction_multiplier_converged = node.traction_multiplier;
         node.x_converged = node.x;
       }
     depth_converged_ = depth_;
     offset_converged_ = offset_;
+  }
+
+  void NodeToSurfaceContact::extrapolate_multipliers(const double ratio)
+  {
+    for (ContactNode &node : nodes_)
+      if (node.lambda_converged > 0 && node.lambda_previous > 0)
+        node.lambda = std::max(
+          0.0, node.lambda_converged + ratio * (node.lambda_converged - node.lambda_previous));
   }
 
   void NodeToSurfaceContact::reject_increment()

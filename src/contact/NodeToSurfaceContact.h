@@ -58,6 +58,7 @@ namespace indentsim::contact
     double area = 0;          // tributary reference area [um^2]
     double lambda = 0;        // normal multiplier (nominal pressure) [GPa]
     double lambda_converged = 0; // normal multiplier of the last converged increment
+    double lambda_previous = 0;  // ... and of the one before
     Tensor<1, 3> traction_multiplier;           // tangential multiplier t_i [GPa]
     Tensor<1, 3> traction_multiplier_converged; // t_i of the last converged increment
     Point<3>     x_converged; // position at the last converged increment [um]
@@ -149,6 +150,11 @@ namespace indentsim::contact
     // Uzawa update lambda <- p, t_i <- t; returns the largest change of the nodal force [mN]
     // (global).
     double augment();
+
+    // Predictor of the normal multipliers: lambda = lambda_n + ratio (lambda_n - lambda_{n-1})
+    // on the nodes that carried pressure in both of the last two increments, so that the first
+    // augmentation pass starts from the pressure the increment is heading for.
+    void extrapolate_multipliers(double ratio);
 
     // Accept / reject the current increment's multipliers and positions.
     void accept_increment();

@@ -326,6 +326,7 @@ namespace indentsim::solver
             u_start -= solution_previous_;
             u_owned.add(ratio, u_start);
             solution_ = u_owned;
+            contact_->extrapolate_multipliers(ratio);
           }
       }
 

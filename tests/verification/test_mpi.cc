@@ -45,42 +45,32 @@ TEST(Mpi, OneVersusManyRanksGiveTheSameCurve)
 
 // Coulomb friction (mu = 0.2) under force control, loaded and unloaded: the depth unknown of the
 // bordered Newton system, the stick/slip states and their counts are the same on all ranks as on
-// one (1e-7 relative: the Newton tolerance of the differently ordered sums).
+// one (1e-7 relative: the Newton tolerance of the differently ordered sums), and so are the
+// cut-backs (the first force step from the touching contact is cut back twice on both sides).
 TEST(Mpi, FrictionUnderForceControlMatchesOneRank)
 {
-  io::Case c = test_cases::small_j2_case();
+  io::Case c = test_cases::elastic_rounded_cone_case();
+  c.specimen.size = {40., 40., 20.};
+  c.specimen.refined_region = {4., 4., 2.};
+  c.specimen.contact_elements = 16;
   c.contact.friction_coefficient = 0.2;
   c.loading.control = "force";
-  c.loading.max_force = 6.0;
-  c.loading.max_depth = 3.0;
+  c.loading.max_force = 40.0;
+  c.loading.max_depth = 1.5;
   c.loading.steps = 4;
   c.loading.unload = true;
   const auto parallel = run(c, MPI_COMM_WORLD), serial = run(c, MPI_COMM_SELF);
   ASSERT_EQ(parallel.size(), serial.size());
+  unsigned int sticking = 0;
   for (std::size_t i = 1; i < serial.size(); ++i)
     {
       const auto &p = parallel[i], &s = serial[i];
+      EXPECT_EQ(p.cutbacks, s.cutbacks) << "step " << i;
       EXPECT_NEAR(p.force, s.force, 1e-7 * c.loading.max_force) << "step " << i;
       EXPECT_NEAR(p.depth, s.depth, 1e-7 * s.depth) << "step " << i;
       EXPECT_EQ(p.n_stick_nodes, s.n_stick_nodes) << "step " << i;
       EXPECT_EQ(p.n_slip_nodes, s.n_slip_nodes) << "step " << i;
+      sticking += s.n_stick_nodes;
     }
-}
-
-// The iterative solver (AMG-preconditioned Krylov) on all ranks against the direct solver on
-// one: the same curve to the Newton tolerance.
-TEST(Mpi, IterativeSolverOnManyRanksMatchesDirectOnOne)
-{
-  io::Case c = test_cases::small_j2_case();
-  c.solver.linear_solver = "iterative";
-  const auto parallel = run(c, MPI_COMM_WORLD);
-  c.solver.linear_solver = "direct";
-  const auto serial = run(c, MPI_COMM_SELF);
-  ASSERT_EQ(parallel.size(), serial.size());
-  for (std::size_t i = 1; i < serial.size(); ++i)
-    {
-      const auto &p = parallel[i], &s = serial[i];
-      EXPECT_NEAR(p.force, s.force, 1e-7 * s.force) << "step " << i;
-      EXPECT_NEAR(p.depth, s.depth, 1e-12) << "step " << i;
-    }
+  EXPECT_GT(sticking, 0u);
 }

@@ -101,7 +101,10 @@ def plot_map(xs, ys, grid, info, title, output):
     axes.set_xlabel("x [um]")
     axes.set_ylabel("y [um]")
     fold = info.get("dominant_fold", 0)
+    symmetry_fold = info.get("symmetry_fold", fold)
     fold_text = f"{fold}-fold" if fold else "no dominant fold"
+    if symmetry_fold != fold:
+        fold_text += f" ({symmetry_fold}-fold beyond the mesh's 4/8-fold imprint)"
     axes.set_title(f"{title}\n{fold_text}, max pile-up {info.get('max_pileup_um', 0.0):.4g} um "
                    f"at r = {info.get('max_pileup_radius_um', 0.0):.3g} um, "
                    f"{info.get('max_pileup_azimuth_deg', 0.0):.3g} deg", fontsize="medium")

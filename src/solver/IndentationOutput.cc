@@ -195,7 +195,8 @@ namespace indentsim::solver
                << " um at r = " << result.max_pileup_radius << " um, azimuth "
                << result.max_pileup_azimuth_deg << " deg; analysis radius "
                << result.analysis_radius << " um, dominant fold "
-               << result.spectrum.dominant_fold << std::endl;
+               << result.spectrum.dominant_fold << ", symmetry fold beyond the mesh imprint "
+               << result.spectrum.symmetry_fold << std::endl;
       }
     if (pileup_results_.empty())
       return;

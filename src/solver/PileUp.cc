@@ -18,6 +18,9 @@ namespace indentsim::solver::pileup
     // Harmonics below this fraction of the mean height on the circle (or below 1e-6 um) are
     // noise: round-off and the interpolation error of a fine mesh.
     constexpr double relative_noise = 1e-3, absolute_noise = 1e-6;
+    // A harmonic that a square mesh cannot produce counts as the material's fold when it reaches
+    // this fraction of the largest harmonic k >= 2 (see spectrum_of_samples).
+    constexpr double mesh_free_fraction = 0.1;
 
     // Azimuth of (x, y) in [0, 360) deg.
     double azimuth_deg(const double x, const double y)
@@ -142,6 +145,7 @@ namespace indentsim::solver::pileup
       write_number(out, r.analysis_radius);
       out << ",\n";
       field("dominant_fold") << r.spectrum.dominant_fold << ",\n";
+      field("symmetry_fold") << r.spectrum.symmetry_fold << ",\n";
       field("noise_level_um");
       write_number(out, r.spectrum.noise_level);
       out << ",\n";
@@ -385,6 +389,28 @@ namespace indentsim::solver::pileup
           largest = spectrum.amplitudes[k];
           spectrum.dominant_fold = k;
         }
+
+    // The fold beyond the mesh imprint. The tensor-product mesh is invariant under the square's
+    // symmetry group (rotations by 90 deg, mirrors x = 0 and y = 0): on an isotropic material it
+    // can only add harmonics k = 4, 8, 12, ... to the pile-up, and on coarse meshes these are as
+    // large as the crystal's own 2-fold (011) or 3-fold (111) pattern. A harmonic that is not a
+    // multiple of 4 cannot come from the mesh; if the largest of them is significant (above the
+    // noise level and at least `mesh_free_fraction` of the largest harmonic k >= 2), its k is
+    // the fold of the material's pattern. Otherwise the pattern is compatible with the square
+    // (a 4-fold crystal such as (001), or an isotropic material seen through the mesh) and the
+    // dominant fold stands.
+    spectrum.symmetry_fold = spectrum.dominant_fold;
+    double largest_off_mesh = 0;
+    unsigned int off_mesh_fold = 0;
+    for (unsigned int k = 2; k <= max_fold; ++k)
+      if (k % 4 != 0 && spectrum.amplitudes[k] > largest_off_mesh)
+        {
+          largest_off_mesh = spectrum.amplitudes[k];
+          off_mesh_fold = k;
+        }
+    if (spectrum.dominant_fold != 0 && largest_off_mesh > spectrum.noise_level &&
+        largest_off_mesh >= mesh_free_fraction * largest)
+      spectrum.symmetry_fold = off_mesh_fold;
 
     // Local maxima of the cyclic sample sequence (a plateau counts once, at its centre) that
     // stand above the mean by more than the noise level.

@@ -25,6 +25,13 @@
 //    h(theta) = A_0 + sum_k A_k cos(k theta - phi_k);
 //  - the dominant fold n = argmax_{k >= 2} A_k, or 0 when no harmonic rises above the noise level
 //    max(1e-3 |A_0|, 1e-6 um) (an axisymmetric pile-up);
+//  - the symmetry fold: the largest harmonic k >= 2 that is not a multiple of 4 when it is above
+//    the noise level and at least 10 % of the largest harmonic, else the dominant fold. The
+//    tensor-product mesh has the square's symmetry and imprints only k = 4, 8, 12 on a pile-up
+//    (on coarse meshes as strongly as the (011) 2-fold or the (111) 3-fold pattern itself), so
+//    a significant harmonic outside that set is the material's; a pattern with none is
+//    compatible with the square ((001), or an isotropic material seen through the mesh: run the
+//    J2 case on the same mesh to see the imprint's size);
 //  - the largest height outside the contact (over the surface nodes with current radius > a_c,
 //    where the piecewise-linear maximum is attained) and its radius and azimuth;
 //  - the azimuths of the local maxima of h on the circle r_c that stand above the circle's mean by
@@ -112,6 +119,7 @@ namespace indentsim::solver::pileup
     std::vector<double> samples;         // h(theta_j), theta_j = 360 j / M deg [um]
     std::vector<double> amplitudes;      // A_0 ... A_max_fold [um] (see the file comment)
     unsigned int        dominant_fold = 0; // 0: no harmonic k >= 2 above the noise level
+    unsigned int        symmetry_fold = 0; // the fold beyond the square mesh's imprint
     double              noise_level = 0;  // max(1e-3 |A_0|, 1e-6) [um]
     std::vector<double> peak_azimuths_deg; // local maxima above mean + noise level, merged
   };
@@ -160,6 +168,7 @@ namespace indentsim::solver::pileup
 
   // pileup.json: {"units", the fields of `top_level`, "<stage>": {the fields of that stage}...}
   // with the fields stage, depth_um, contact_radius_um, analysis_radius_um, dominant_fold,
+  // symmetry_fold,
   // noise_level_um, fourier_amplitudes_um [A_0 ... A_max_fold], max_pileup_um,
   // max_pileup_radius_um, max_pileup_azimuth_deg, axis_height_um (null if not covered),
   // peak_azimuths_deg, grid_half_width_um, grid_spacing_um, n_azimuths.

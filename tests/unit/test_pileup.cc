@@ -192,6 +192,41 @@ TEST(PileUp, FirstHarmonicIsNotAFold)
   EXPECT_EQ(spectrum_of_samples(shifted, 12).dominant_fold, 0u);
 }
 
+// A square mesh imprints harmonics 4 and 8 as large as a crystal's 2- or 3-fold pattern: the
+// symmetry fold names the material's pattern (2 for (011), 3 for (111) with its k = 6 and the
+// mixing products 1 = 4 - 3, 5, 7 of a 3-fold crystal on a 4-fold mesh), while a pattern made
+// of multiples of 4 only ((001), or isotropic plus imprint) keeps fold 4, and off-mesh
+// harmonics below 10 % of the largest (interpolation noise) change nothing.
+TEST(PileUp, SymmetryFoldSeesThroughTheMeshImprint)
+{
+  const auto spectrum_of = [](const std::vector<std::pair<unsigned int, double>> &harmonics) {
+    std::vector<double> samples(360);
+    for (unsigned int j = 0; j < 360; ++j)
+      {
+        const double theta = 2 * pi * j / 360;
+        samples[j] = 0.75;
+        for (const auto &[k, amplitude] : harmonics)
+          samples[j] += amplitude * std::cos(k * theta + 0.1 * k);
+      }
+    return spectrum_of_samples(samples, 12);
+  };
+  const AzimuthalSpectrum crystal_011 = spectrum_of({{2, 0.087}, {4, 0.092}, {8, 0.136}});
+  EXPECT_EQ(crystal_011.dominant_fold, 8u);
+  EXPECT_EQ(crystal_011.symmetry_fold, 2u);
+  const AzimuthalSpectrum crystal_111 =
+    spectrum_of({{1, 0.02}, {3, 0.117}, {4, 0.152}, {5, 0.01}, {6, 0.03}, {7, 0.01}, {8, 0.131}});
+  EXPECT_EQ(crystal_111.dominant_fold, 4u);
+  EXPECT_EQ(crystal_111.symmetry_fold, 3u);
+  const AzimuthalSpectrum crystal_001 = spectrum_of({{4, 0.556}, {8, 0.1}, {12, 0.02}});
+  EXPECT_EQ(crystal_001.dominant_fold, 4u);
+  EXPECT_EQ(crystal_001.symmetry_fold, 4u);
+  const AzimuthalSpectrum noisy_001 = spectrum_of({{2, 0.009}, {3, 0.009}, {4, 0.1}, {8, 0.05}});
+  EXPECT_EQ(noisy_001.symmetry_fold, 4u);
+  const AzimuthalSpectrum flat = spectrum_of({});
+  EXPECT_EQ(flat.dominant_fold, 0u);
+  EXPECT_EQ(flat.symmetry_fold, 0u);
+}
+
 // Local maxima a few degrees apart (a crest split by a shallow dip where it crosses a mesh line)
 // are one peak of the pattern: a 4-fold signal with a dip at every maximum gives four peaks, on
 // the mirror planes.

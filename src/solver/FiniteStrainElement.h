@@ -44,6 +44,9 @@ namespace indentsim::solver
     std::vector<Tensor<3, 3>>              Ag;                  // [i] g_iJ A_cJdL
     std::vector<double>                    c, beta;             // [a]
     std::vector<std::array<double, 4>>     X, Y;                // [a] F-bar product factors
+    // Upper node blocks (j >= i) of the symmetric quadrature points' contributions, mirrored
+    // into the tangent once per element (row-major n_dofs x n_dofs).
+    std::vector<double>                    K_symmetric;
   };
 
   // F = 1 + sum_i u_i (x) g_i at quadrature point q (q = n_q_points: the element centre).

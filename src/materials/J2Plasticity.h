@@ -77,6 +77,9 @@ namespace indentsim::materials
       return measure == YieldStressMeasure::kirchhoff;
     }
 
+    // A return mapping (about 9 us with its tangent) against an elastic point (about 5 us).
+    double relative_plastic_cost() const override { return 3.0; }
+
     // C_p^-1 stored in a state.
     static dealii::SymmetricTensor<2, 3> plastic_metric_inverse(std::span<const double> state);
 

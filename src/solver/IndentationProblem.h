@@ -125,6 +125,9 @@ namespace indentsim::solver
       double                  bottom_reaction = 0; // z reaction on the bottom face [mN]
     };
     AssemblyResult assemble(bool with_matrix);
+    // With several MPI ranks: repartitions the mesh with the expected plastic zone's cells
+    // weighted by the material's relative plastic cost.
+    void balance_plastic_zone();
     // Number of constrained dofs owned by this rank, summed over ranks.
     unsigned int count_owned_constraints(const dealii::AffineConstraints<double> &constraints) const;
     std::span<const double> cell_state(const std::vector<double>                        &states,

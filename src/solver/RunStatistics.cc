@@ -25,6 +25,8 @@ namespace indentsim::solver
     const double memory = peak_memory_mib();
     const double memory_max = dealii::Utilities::MPI::max(memory, communicator);
     const double memory_sum = dealii::Utilities::MPI::sum(memory, communicator);
+    const double cell_loop_min = dealii::Utilities::MPI::min(s.cell_loop, communicator);
+    const double cell_loop_max = dealii::Utilities::MPI::max(s.cell_loop, communicator);
     if (dealii::Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
     std::ofstream out(path);
@@ -51,6 +53,8 @@ namespace indentsim::solver
         << "  \"linear_iterations\": " << s.linear_iterations << ",\n"
         << "  \"time_setup_s\": " << s.setup << ",\n"
         << "  \"time_assembly_s\": " << s.assembly << ",\n"
+        << "  \"time_cell_loop_min_rank_s\": " << cell_loop_min << ",\n"
+        << "  \"time_cell_loop_max_rank_s\": " << cell_loop_max << ",\n"
         << "  \"time_contact_s\": " << s.contact << ",\n"
         << "  \"time_linear_solve_s\": " << s.linear_solve << ",\n"
         << "  \"time_output_s\": " << s.output << ",\n"

@@ -16,6 +16,8 @@ namespace indentsim::solver
     // Wall time per phase [s] (rank 0's clock; the phases are collective).
     double setup = 0;           // mesh, DoFs, constraints, sparsity, history
     double assembly = 0;        // element loop: material updates, element kernels, scatter
+    double cell_loop = 0;       // this rank's own cells, up to the exchange (part of assembly):
+                                // its spread over ranks is the load imbalance
     double contact = 0;         // contact search, augmentation and its assembly
     double linear_solve = 0;    // factorization or preconditioner setup and Krylov iterations
     double output = 0;          // VTU, pile-up snapshots and analysis, CSV

@@ -243,7 +243,10 @@ namespace indentsim::solver
       local_force += contribution.sums[0];
       local_volume += contribution.sums[1];
     };
-    run_on_owned_cells(dof_handler_, n_q_points_, worker, copier);
+    {
+      const RunStatistics::Scope cell_loop_timer(statistics_.cell_loop);
+      run_on_owned_cells(dof_handler_, n_q_points_, worker, copier);
+    }
     matrix_.compress(VectorOperation::add);
     rhs_.compress(VectorOperation::add);
 

@@ -192,6 +192,74 @@ namespace indentsim::materials
       return result;
     }
 
+    // Newton's method as solve(), for a model that supplies its own Jacobian (hand-derived, or
+    // AD of a part only): evaluate(x, R, dR_dx) fills R, and dR/dx too unless dR_dx is null.
+    // Line-search trials ask for R alone, so a rejected step costs no Jacobian. On return,
+    // `jacobian` holds dR/dx at the last point where it was evaluated (not necessarily x).
+    template <typename Evaluate>
+    static LocalNewtonResult
+    solve_with_jacobian(const Evaluate                                         &evaluate,
+                        Unknowns                                               &x,
+                        std::array<std::array<double, n_unknowns>, n_unknowns> &jacobian,
+                        const LocalNewtonSettings &settings = LocalNewtonSettings())
+    {
+      const auto euclidean_norm = [](const Unknowns &v) {
+        double sum = 0.0;
+        for (const double a : v)
+          sum += a * a;
+        return std::isfinite(sum) ? std::sqrt(sum) : std::numeric_limits<double>::infinity();
+      };
+
+      LocalNewtonResult result;
+      Unknowns          R;
+      evaluate(x, R, &jacobian);
+      result.residual_norm = internal::max_norm<n_unknowns>(R);
+      for (; result.n_iterations < settings.max_iterations; ++result.n_iterations)
+        {
+          if (!std::isfinite(result.residual_norm))
+            return result;
+          if (result.residual_norm <= settings.tolerance)
+            {
+              result.converged = true;
+              return result;
+            }
+
+          std::array<std::array<double, 1>, n_unknowns> step;
+          for (int i = 0; i < n_unknowns; ++i)
+            step[i][0] = -R[i];
+          auto factorised = jacobian;
+          if (!internal::solve_dense<n_unknowns, 1>(factorised, step))
+            return result;
+
+          const double   old_norm = euclidean_norm(R);
+          const Unknowns x_old = x;
+          double         alpha = 1.0;
+          bool           accepted = false;
+          for (unsigned int ls = 0; ls <= settings.max_line_search_steps; ++ls, alpha *= 0.5)
+            {
+              for (int i = 0; i < n_unknowns; ++i)
+                x[i] = x_old[i] + alpha * step[i][0];
+              evaluate(x, R, nullptr);
+              if (euclidean_norm(R) <= (1.0 - 1e-4 * alpha) * old_norm)
+                {
+                  accepted = true;
+                  break;
+                }
+            }
+          result.residual_norm = internal::max_norm<n_unknowns>(R);
+          if (!accepted)
+            {
+              result.n_iterations += 1;
+              result.converged = result.residual_norm <= settings.stagnation_tolerance;
+              return result;
+            }
+          if (std::isfinite(result.residual_norm) && result.residual_norm > settings.tolerance)
+            evaluate(x, R, &jacobian);
+        }
+      result.converged = result.residual_norm <= settings.tolerance;
+      return result;
+    }
+
     // dx/dp at a solution x of R(x; p) = 0 (one residual evaluation with derivatives with
     // respect to x and p together, then one LU solve with n_parameters right-hand sides).
     // Returns false if dR/dx is singular.

@@ -302,92 +302,255 @@ namespace indentsim::materials
       return law.theta1 * (1.0 - e_n * exp(-x)) + (law.tau1 + law.theta1 * Gamma_n) * e_n * k * phi;
     }
 
-    // The local problem of one increment: unknowns E_e (6), Delta lambda / tau0, tau_c^r / tau0;
-    // parameters C_e^tr (6, unrolled). All residuals in strain units (stresses divided by C44).
+    // S = L^e : E (eq. 11), cubic St-Venant-Kirchhoff in the lattice frame.
+    Matrix<double> elastic_stress(const SlipLawData &law, const Matrix<double> &E)
+    {
+      Matrix<double> S;
+      const double   trace_E = E[0][0] + E[1][1] + E[2][2];
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          S[i][i] = (law.C11 - law.C12) * E[i][i] + law.C12 * trace_E;
+          for (unsigned int j = i + 1; j < 3; ++j)
+            {
+              S[i][j] = 2.0 * law.C44 * E[i][j];
+              S[j][i] = S[i][j];
+            }
+        }
+      return S;
+    }
+
+    // The local problem of one increment: unknowns x = (E_e (6), Delta lambda / tau0,
+    // tau_c^r / tau0), residuals of the header in strain units (stresses divided by C44), and
+    // their Jacobian written out by the chain rule in plain doubles. Only the matrix exponential
+    // is differentiated by AD, with respect to its 9 entries (not the 19 unknowns):
+    //   dR_E/dx = I_E - 1/2 dC_e/dDelta gamma . dDelta gamma/dx,
+    //   dC_e/dDelta gamma^r = -sum_ab dC_e/dX_ab (m_0^r (x) n_0^r)_ab, X = -Delta L_p,
+    //   dDelta gamma^r = g_r/tau_c^r dlambda - lambda g_r/tau_c^r^2 dtau_c^r
+    //                    + lambda w_r/(tau_c^r Phi) (drho_r - d_r dPhi),
+    // with rho_r = tau^r/tau_c^r, d_r = rho_r/Phi, g_r = d_r^(2n-1) = dPhi/drho_r,
+    // w_r = (2n-1) d_r^(2n-2) (all scaled by tau0 as the unknowns are).
     template <int n_slip>
-    struct CrystalResidual
+    struct CrystalLocalProblem
     {
       static constexpr int n_unknowns = 7 + n_slip;
-      static constexpr int n_parameters = 6;
       static constexpr int lambda_index = 6;
       static constexpr int tau_c_index = 7;
+      using Unknowns = std::array<double, n_unknowns>;
+      using Jacobian = std::array<std::array<double, n_unknowns>, n_unknowns>;
+      using ExpDerivative = Sacado::Fad::SFad<double, 9>;
 
       SlipLawData                  law;
       const ExtendedVoceHardening *hardening;
       double                       Gamma_n;
       const double                *tau_c_n; // n_slip [GPa]
+      Matrix<double>               C_e_trial;
 
-      template <typename Number>
-      void operator()(const std::array<Number, n_unknowns>   &x,
-                      const std::array<Number, n_parameters> &p,
-                      std::array<Number, n_unknowns>         &R) const
+      // Filled by each evaluation with a Jacobian; the consistent tangent reuses them.
+      SlipResponse<n_slip, double>                       slip;
+      Matrix<double>                                     A;        // exp(-Delta L_p)
+      std::array<Matrix<double>, 9>                      dA_dX;    // dA/dX_ab, row-major ab
+      std::array<std::array<double, n_unknowns>, n_slip> ddelta_gamma_dx;
+
+      Matrix<double> minus_delta_L_p() const
       {
-        SlipResponse<n_slip, Number> slip;
-        slip_response<n_slip, Number>(law, &x[0], &x[tau_c_index], x[lambda_index], slip);
-
-        // A = exp(-Delta L_p), Delta L_p = sum_r Delta gamma^r m_0^r (x) n_0^r (eqs 12-13).
-        Matrix<Number> minus_delta_L_p;
+        Matrix<double> X;
         for (unsigned int i = 0; i < 3; ++i)
           for (unsigned int j = 0; j < 3; ++j)
             {
-              Number sum = 0.0;
+              double sum = 0.0;
               for (int r = 0; r < n_slip; ++r)
                 if (law.schmid[r][i][j] != 0.0)
                   sum -= slip.delta_gamma[r] * law.schmid[r][i][j];
-              minus_delta_L_p[i][j] = sum;
+              X[i][j] = sum;
             }
-        const Matrix<Number> A = exp_matrix(minus_delta_L_p);
-        Matrix<Number>       C_e_trial;
-        for (unsigned int k = 0; k < 6; ++k)
+        return X;
+      }
+
+      void operator()(const Unknowns &x, Unknowns &R, Jacobian *jacobian)
+      {
+        slip_response<n_slip, double>(law, &x[0], &x[tau_c_index], x[lambda_index], slip);
+
+        // A = exp(-Delta L_p) (eqs 12-13), with dA/dX when the Jacobian is wanted.
+        const Matrix<double> X = minus_delta_L_p();
+        Matrix<double>       C_e;
+        std::array<std::array<double, 9>, 6> dC_e_dX; // unrolled C_e by X_ab
+        if (jacobian)
           {
-            C_e_trial[sym_i[k]][sym_j[k]] = p[k];
-            C_e_trial[sym_j[k]][sym_i[k]] = p[k];
+            Matrix<ExpDerivative> X_ad;
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                X_ad[i][j] = ExpDerivative(9, 3 * i + j, X[i][j]);
+            const Matrix<ExpDerivative> A_ad = exp_matrix(X_ad);
+            const auto C_e_ad = multiply_transposed_first(A_ad, multiply(C_e_trial, A_ad));
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                {
+                  A[i][j] = A_ad[i][j].val();
+                  C_e[i][j] = C_e_ad[i][j].val();
+                  for (unsigned int ab = 0; ab < 9; ++ab)
+                    dA_dX[ab][i][j] = A_ad[i][j].fastAccessDx(ab);
+                }
+            for (unsigned int k = 0; k < 6; ++k)
+              for (unsigned int ab = 0; ab < 9; ++ab)
+                dC_e_dX[k][ab] = C_e_ad[sym_i[k]][sym_j[k]].fastAccessDx(ab);
           }
-        const auto C_e = multiply_transposed_first(A, multiply(C_e_trial, A));
+        else
+          {
+            A = exp_matrix(X);
+            C_e = multiply_transposed_first(A, multiply(C_e_trial, A));
+          }
         for (unsigned int k = 0; k < 6; ++k)
           R[k] = x[k] - 0.5 * (C_e[sym_i[k]][sym_j[k]] - (k < 3 ? 1.0 : 0.0));
 
         R[lambda_index] = (slip.Phi - 1.0) * (law.tau0 / law.C44);
 
-        Number delta_Gamma = 0.0;
-        std::array<Number, n_slip> abs_delta_gamma;
+        // Secant hardening Hbar(Delta Gamma) and its derivative (one AD direction).
+        double                   delta_Gamma = 0.0;
+        std::array<double, n_slip> abs_delta_gamma;
         for (int r = 0; r < n_slip; ++r)
           {
-            abs_delta_gamma[r] =
-              scalar_value(slip.delta_gamma[r]) >= 0 ? slip.delta_gamma[r] : Number(-slip.delta_gamma[r]);
+            abs_delta_gamma[r] = slip.delta_gamma[r] >= 0 ? slip.delta_gamma[r] : -slip.delta_gamma[r];
             delta_Gamma += abs_delta_gamma[r];
           }
-        const Number H_bar = voce_secant_modulus(*hardening, Gamma_n, delta_Gamma);
+        using SecantDerivative = Sacado::Fad::SFad<double, 1>;
+        const SecantDerivative H_bar_ad =
+          voce_secant_modulus(*hardening, Gamma_n, SecantDerivative(1, 0, delta_Gamma));
+        const double H_bar = H_bar_ad.val();
         const double q = hardening->q;
         for (int r = 0; r < n_slip; ++r)
           R[tau_c_index + r] = (law.tau0 * x[tau_c_index + r] - tau_c_n[r] -
                                 H_bar * (q * delta_Gamma + (1.0 - q) * abs_delta_gamma[r])) /
                                law.C44;
+        if (!jacobian)
+          return;
+
+        Jacobian &J = *jacobian;
+        const double lambda = x[lambda_index];
+        const double *tau_c = &x[tau_c_index];
+
+        // drho_r/dE_k = (m_0^r (x) n_0^r) : dM_e/dE_k / (tau0 tau_c^r),
+        // dM_e = 2 dE S_e + C_e (L^e : dE) (eq. 10).
+        Matrix<double> C_e_of_E = identity_matrix<double>();
+        for (unsigned int k = 0; k < 6; ++k)
+          {
+            C_e_of_E[sym_i[k]][sym_j[k]] += 2.0 * x[k];
+            if (k >= 3)
+              C_e_of_E[sym_j[k]][sym_i[k]] += 2.0 * x[k];
+          }
+        std::array<Matrix<double>, 6> dM_dE;
+        for (unsigned int k = 0; k < 6; ++k)
+          {
+            Matrix<double> dE{};
+            dE[sym_i[k]][sym_j[k]] = 1.0;
+            dE[sym_j[k]][sym_i[k]] = 1.0;
+            const Matrix<double> dS = elastic_stress(law, dE);
+            const Matrix<double> first = multiply(dE, slip.S_e);
+            const Matrix<double> second = multiply(C_e_of_E, dS);
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                dM_dE[k][i][j] = 2.0 * first[i][j] + second[i][j];
+          }
+
+        std::array<double, n_unknowns> dPhi_dx{};
+        std::array<std::array<double, 6>, n_slip> drho_dE;
+        std::array<double, n_slip> g, w, d;
+        const bool yielding = slip.Phi != 0.0;
+        for (int r = 0; r < n_slip; ++r)
+          {
+            const double scale = 1.0 / (law.tau0 * tau_c[r]);
+            for (unsigned int k = 0; k < 6; ++k)
+              {
+                double sum = 0.0;
+                for (unsigned int i = 0; i < 3; ++i)
+                  for (unsigned int j = 0; j < 3; ++j)
+                    if (law.schmid[r][i][j] != 0.0)
+                      sum += dM_dE[k][i][j] * law.schmid[r][i][j];
+                drho_dE[r][k] = sum * scale;
+              }
+            if (yielding)
+              {
+                d[r] = slip.ratio[r] / slip.Phi;
+                const double power = real_power(d[r] * d[r], law.n - 1.0);
+                g[r] = d[r] * power;
+                w[r] = (2.0 * law.n - 1.0) * power;
+              }
+            else
+              d[r] = g[r] = w[r] = 0.0;
+            for (unsigned int k = 0; k < 6; ++k)
+              dPhi_dx[k] += g[r] * drho_dE[r][k];
+            // drho_r/dtau_c^r = -rho_r / tau_c^r
+            dPhi_dx[tau_c_index + r] = -g[r] * slip.ratio[r] / tau_c[r];
+          }
+
+        for (int r = 0; r < n_slip; ++r)
+          {
+            auto        &row = ddelta_gamma_dx[r];
+            const double c = yielding ? lambda * w[r] / (tau_c[r] * slip.Phi) : 0.0;
+            for (unsigned int k = 0; k < 6; ++k)
+              row[k] = c * (drho_dE[r][k] - d[r] * dPhi_dx[k]);
+            row[lambda_index] = g[r] / tau_c[r];
+            for (int s = 0; s < n_slip; ++s)
+              row[tau_c_index + s] = -c * d[r] * dPhi_dx[tau_c_index + s];
+            row[tau_c_index + r] += -c * slip.ratio[r] / tau_c[r] - lambda * g[r] / (tau_c[r] * tau_c[r]);
+          }
+
+        // R_E rows.
+        std::array<std::array<double, n_slip>, 6> dC_e_ddelta_gamma;
+        for (unsigned int k = 0; k < 6; ++k)
+          for (int r = 0; r < n_slip; ++r)
+            {
+              double sum = 0.0;
+              for (unsigned int ab = 0; ab < 9; ++ab)
+                if (law.schmid[r][ab / 3][ab % 3] != 0.0)
+                  sum -= dC_e_dX[k][ab] * law.schmid[r][ab / 3][ab % 3];
+              dC_e_ddelta_gamma[k][r] = sum;
+            }
+        for (unsigned int k = 0; k < 6; ++k)
+          for (int j = 0; j < n_unknowns; ++j)
+            {
+              double sum = 0.0;
+              for (int r = 0; r < n_slip; ++r)
+                sum += dC_e_ddelta_gamma[k][r] * ddelta_gamma_dx[r][j];
+              J[k][j] = (j == int(k) ? 1.0 : 0.0) - 0.5 * sum;
+            }
+
+        // R_f row.
+        for (int j = 0; j < n_unknowns; ++j)
+          J[lambda_index][j] = dPhi_dx[j] * (law.tau0 / law.C44);
+
+        // R_tc rows: d(Hbar (q Delta Gamma + (1 - q) |Delta gamma^r|)).
+        std::array<double, n_unknowns> ddelta_Gamma_dx{};
+        for (int r = 0; r < n_slip; ++r)
+          {
+            const double sign = slip.delta_gamma[r] >= 0 ? 1.0 : -1.0;
+            for (int j = 0; j < n_unknowns; ++j)
+              ddelta_Gamma_dx[j] += sign * ddelta_gamma_dx[r][j];
+          }
+        const double dH_bar = H_bar_ad.fastAccessDx(0);
+        for (int r = 0; r < n_slip; ++r)
+          {
+            const double sign = slip.delta_gamma[r] >= 0 ? 1.0 : -1.0;
+            const double a = dH_bar * (q * delta_Gamma + (1.0 - q) * abs_delta_gamma[r]) + H_bar * q;
+            const double b = H_bar * (1.0 - q) * sign;
+            auto        &row = J[tau_c_index + r];
+            for (int j = 0; j < n_unknowns; ++j)
+              row[j] = -(a * ddelta_Gamma_dx[j] + b * ddelta_gamma_dx[r][j]) / law.C44;
+            row[tau_c_index + r] += law.tau0 / law.C44;
+          }
       }
     };
 
-    using ADNumberF = Sacado::Fad::SFad<double, 9>;
-
-    // P = F_e S_e F_p^-T and its AD derivatives, with F_e = F F_p^-1.
-    template <typename Number, typename NumberP>
-    void write_response(const Matrix<Number>  &F_e,
-                        const Matrix<Number>  &S_e,
-                        const Matrix<NumberP> &F_p_inverse,
-                        const Tensor<2, 3>    &F,
-                        MaterialPointResponse &response,
-                        const bool             with_tangent)
+    // P = F_e S_e F_p^-T and the Kirchhoff stress tau = P F^T.
+    void write_stress(const Matrix<double> &F_e,
+                      const Matrix<double> &S_e,
+                      const Matrix<double> &F_p_inverse,
+                      const Tensor<2, 3>   &F,
+                      MaterialPointResponse &response)
     {
       const auto P = multiply_transposed_second(multiply(F_e, S_e), F_p_inverse);
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int J = 0; J < 3; ++J)
-          {
-            response.P[i][J] = scalar_value(P[i][J]);
-            if constexpr (!std::is_same_v<Number, double>)
-              if (with_tangent)
-                for (unsigned int k = 0; k < 3; ++k)
-                  for (unsigned int L = 0; L < 3; ++L)
-                    response.dP_dF[i][J][k][L] = P[i][J].dx(3 * k + L);
-          }
+          response.P[i][J] = P[i][J];
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int j = 0; j < 3; ++j)
           {
@@ -529,8 +692,9 @@ namespace indentsim::materials
                                               std::span<double>       state_new,
                                               const bool              compute_tangent) const
   {
-    using Residual = CrystalResidual<n_slip>;
-    using LocalProblem = ImplicitLocalProblem<Residual::n_unknowns, Residual::n_parameters>;
+    using LocalProblem = CrystalLocalProblem<n_slip>;
+    constexpr int n_unknowns = LocalProblem::n_unknowns;
+    using Newton = ImplicitLocalProblem<n_unknowns, 6>;
 
     double J_minus_one = 0.0;
     if (!admissible_deformation(F, J_minus_one))
@@ -546,13 +710,9 @@ namespace indentsim::materials
     // Elastic trial: C_e^tr = F_p,n^-T C F_p,n^-1 and E_e^tr.
     const Matrix<double> F_e_trial = multiply(F_matrix, F_p_n_inverse);
     const auto           C_e_trial = multiply_transposed_first(F_e_trial, F_e_trial);
-    typename LocalProblem::Parameters parameters;
-    std::array<double, 6>             E_trial;
+    std::array<double, 6> E_trial;
     for (unsigned int k = 0; k < 6; ++k)
-      {
-        parameters[k] = C_e_trial[sym_i[k]][sym_j[k]];
-        E_trial[k] = 0.5 * (parameters[k] - (k < 3 ? 1.0 : 0.0));
-      }
+      E_trial[k] = 0.5 * (C_e_trial[sym_i[k]][sym_j[k]] - (k < 3 ? 1.0 : 0.0));
     std::array<double, n_slip> tau_c_n_scaled;
     for (int r = 0; r < n_slip; ++r)
       tau_c_n_scaled[r] = tau_c_n[r] / hardening.tau0;
@@ -562,28 +722,34 @@ namespace indentsim::materials
     if (!std::isfinite(trial.Phi))
       return UpdateStatus::invalid_deformation;
 
+    // Elastic step, P = F_e S_e F_p,n^-T with F_e = F F_p,n^-1 (G = F_p,n^-1). Its tangent in
+    // closed form: dE_e = sym(F_e^T dF G), dP = dF G S_e G^T + F_e (L^e : dE_e) G^T.
     const auto elastic_step = [&]() {
+      write_stress(F_e_trial, trial.S_e, F_p_n_inverse, F, response);
       if (compute_tangent)
         {
-          Matrix<ADNumberF> F_ad;
+          const Matrix<double> S_G = multiply_transposed_second(trial.S_e, F_p_n_inverse);
           for (unsigned int k = 0; k < 3; ++k)
             for (unsigned int L = 0; L < 3; ++L)
-              F_ad[k][L] = ADNumberF(9, 3 * k + L, F[k][L]);
-          const auto F_e = multiply(F_ad, F_p_n_inverse);
-          const auto C_e = multiply_transposed_first(F_e, F_e);
-          std::array<ADNumberF, 6> E;
-          for (unsigned int k = 0; k < 6; ++k)
-            E[k] = 0.5 * (C_e[sym_i[k]][sym_j[k]] - (k < 3 ? 1.0 : 0.0));
-          // E's values from the trial (same numbers; C - I formed once).
-          std::array<ADNumberF, n_slip> unit;
-          for (auto &u : unit)
-            u = 1.0;
-          SlipResponse<n_slip, ADNumberF> slip;
-          slip_response<n_slip, ADNumberF>(law, E.data(), unit.data(), ADNumberF(0.0), slip);
-          write_response(F_e, slip.S_e, F_p_n_inverse, F, response, true);
+              {
+                const auto   &G_L = F_p_n_inverse[L]; // dF G has the single row k = G_L
+                Matrix<double> dE;
+                for (unsigned int i = 0; i < 3; ++i)
+                  for (unsigned int j = 0; j < 3; ++j)
+                    dE[i][j] = 0.5 * (F_e_trial[k][i] * G_L[j] + G_L[i] * F_e_trial[k][j]);
+                const auto dP_material =
+                  multiply_transposed_second(multiply(F_e_trial, elastic_stress(law, dE)), F_p_n_inverse);
+                for (unsigned int i = 0; i < 3; ++i)
+                  for (unsigned int J = 0; J < 3; ++J)
+                    {
+                      double dP = dP_material[i][J];
+                      if (i == k)
+                        for (unsigned int m = 0; m < 3; ++m)
+                          dP += G_L[m] * S_G[m][J];
+                      response.dP_dF[i][J][k][L] = dP;
+                    }
+              }
         }
-      else
-        write_response(F_e_trial, trial.S_e, F_p_n_inverse, F, response, false);
       std::copy(state_old.begin(), state_old.end(), state_new.begin());
       return UpdateStatus::success;
     };
@@ -593,8 +759,8 @@ namespace indentsim::materials
       return elastic_step();
 
     // Plastic corrector: the local Newton from the elastic trial.
-    const Residual residual{law, &hardening, Gamma_n, tau_c_n};
-    typename LocalProblem::Unknowns unknowns;
+    LocalProblem problem{law, &hardening, Gamma_n, tau_c_n, C_e_trial};
+    std::array<double, n_unknowns> unknowns;
     double strain_scale = hardening.tau0 / elasticity.C44;
     for (unsigned int k = 0; k < 6; ++k)
       strain_scale = std::max(strain_scale, std::abs(E_trial[k]));
@@ -607,11 +773,12 @@ namespace indentsim::materials
 
     for (unsigned int k = 0; k < 6; ++k)
       unknowns[k] = E_trial[k];
-    unknowns[Residual::lambda_index] = 0.0;
+    unknowns[LocalProblem::lambda_index] = 0.0;
     for (int r = 0; r < n_slip; ++r)
-      unknowns[Residual::tau_c_index + r] = tau_c_n_scaled[r];
-    const LocalNewtonResult newton = LocalProblem::solve(residual, parameters, unknowns, settings);
-    const double lambda_scaled = unknowns[Residual::lambda_index];
+      unknowns[LocalProblem::tau_c_index + r] = tau_c_n_scaled[r];
+    typename LocalProblem::Jacobian jacobian;
+    const LocalNewtonResult newton = Newton::solve_with_jacobian(problem, unknowns, jacobian, settings);
+    const double lambda_scaled = unknowns[LocalProblem::lambda_index];
     if (!newton.converged || !(lambda_scaled >= 0.0))
       {
         // A trial state on the yield surface to round-off returns Delta lambda = 0 (+- round-off).
@@ -621,13 +788,12 @@ namespace indentsim::materials
         return UpdateStatus::local_newton_failed;
       }
 
-    // Converged slip increments and the new plastic state.
-    SlipResponse<n_slip, double> slip;
-    slip_response<n_slip, double>(law,
-                                  &unknowns[0],
-                                  &unknowns[Residual::tau_c_index],
-                                  unknowns[Residual::lambda_index],
-                                  slip);
+    // The converged slip increments, A = exp(-Delta L_p) and (with the tangent) the Jacobian at
+    // the solution.
+    std::array<double, n_unknowns> residual;
+    problem(unknowns, residual, compute_tangent ? &jacobian : nullptr);
+    const SlipResponse<n_slip, double> &slip = problem.slip;
+    const Matrix<double>               &A = problem.A;
     Matrix<double> delta_L_p{};
     double         delta_Gamma = 0.0;
     for (int r = 0; r < n_slip; ++r)
@@ -637,58 +803,103 @@ namespace indentsim::materials
           for (unsigned int j = 0; j < 3; ++j)
             delta_L_p[i][j] += slip.delta_gamma[r] * schmid[r][i][j];
       }
-    Matrix<double> minus_delta_L_p = delta_L_p;
-    for (auto &row : minus_delta_L_p)
-      for (auto &a : row)
-        a = -a;
     const Matrix<double> F_p_new = multiply(exp_matrix(delta_L_p), to_matrix(plastic_deformation(state_old)));
-    const Matrix<double> A = exp_matrix(minus_delta_L_p);
     const Matrix<double> F_p_new_inverse = multiply(F_p_n_inverse, A);
+    const Matrix<double> F_e = multiply(F_e_trial, A);
+    write_stress(F_e, slip.S_e, F_p_new_inverse, F, response);
 
     if (compute_tangent)
       {
-        typename LocalProblem::Sensitivity dx_dp;
-        if (!LocalProblem::sensitivity(residual, parameters, unknowns, dx_dp))
+        // Implicit function theorem: dx/dC_e^tr = -(dR/dx)^-1 dR/dC_e^tr, where only R_E depends
+        // on C_e^tr: dR_E/dC_e^tr_m = -1/2 A^T U_m A (U_m the unit symmetric tensor of entry m).
+        std::array<std::array<double, 6>, n_unknowns> dx_dp{};
+        for (unsigned int m = 0; m < 6; ++m)
+          {
+            Matrix<double> U{};
+            U[sym_i[m]][sym_j[m]] = 1.0;
+            U[sym_j[m]][sym_i[m]] = 1.0;
+            const auto AUA = multiply_transposed_first(A, multiply(U, A));
+            for (unsigned int k = 0; k < 6; ++k)
+              dx_dp[k][m] = 0.5 * AUA[sym_i[k]][sym_j[k]];
+          }
+        if (!internal::solve_dense<n_unknowns, 6>(jacobian, dx_dp))
           {
             std::copy(state_old.begin(), state_old.end(), state_new.begin());
             return UpdateStatus::local_newton_failed;
           }
-        Matrix<ADNumberF> F_ad;
+        // dDelta gamma/dC_e^tr
+        std::array<std::array<double, 6>, n_slip> ddelta_gamma_dp;
+        for (int r = 0; r < n_slip; ++r)
+          for (unsigned int m = 0; m < 6; ++m)
+            {
+              double sum = 0.0;
+              for (int j = 0; j < n_unknowns; ++j)
+                sum += problem.ddelta_gamma_dx[r][j] * dx_dp[j][m];
+              ddelta_gamma_dp[r][m] = sum;
+            }
+
+        // P = F_e S_e F_p^-T with F_e = F G A, F_p^-1 = G A (G = F_p,n^-1):
+        //   dP = (dF G A + F G dA) S_e F_p^-T + F_e (L^e : dE_e) F_p^-T + F_e S_e (G dA)^T.
+        const Matrix<double> S_F_p_inverse_T = multiply_transposed_second(slip.S_e, F_p_new_inverse);
+        const Matrix<double> F_e_S = multiply(F_e, slip.S_e);
+        const Matrix<double> G_A = F_p_new_inverse;
         for (unsigned int k = 0; k < 3; ++k)
           for (unsigned int L = 0; L < 3; ++L)
-            F_ad[k][L] = ADNumberF(9, 3 * k + L, F[k][L]);
-        const auto F_e_trial_ad = multiply(F_ad, F_p_n_inverse);
-        const auto C_e_trial_ad = multiply_transposed_first(F_e_trial_ad, F_e_trial_ad);
-        std::array<ADNumberF, 6> parameters_ad;
-        for (unsigned int k = 0; k < 6; ++k)
-          parameters_ad[k] = C_e_trial_ad[sym_i[k]][sym_j[k]];
-        const auto x_ad = LocalProblem::linearized_solution(unknowns, dx_dp, parameters_ad);
-        SlipResponse<n_slip, ADNumberF> slip_ad;
-        slip_response<n_slip, ADNumberF>(
-          law, &x_ad[0], &x_ad[Residual::tau_c_index], x_ad[Residual::lambda_index], slip_ad);
-        Matrix<ADNumberF> minus_delta_L_p_ad;
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int j = 0; j < 3; ++j)
             {
-              ADNumberF sum = 0.0;
+              const auto &G_L = F_p_n_inverse[L]; // dF G has the single row k = G_L
+              std::array<double, 6> dp;
+              for (unsigned int m = 0; m < 6; ++m)
+                {
+                  const unsigned int i = sym_i[m], j = sym_j[m];
+                  dp[m] = G_L[i] * F_e_trial[k][j] + F_e_trial[k][i] * G_L[j];
+                }
+              Matrix<double> dE;
+              for (unsigned int m = 0; m < 6; ++m)
+                {
+                  double sum = 0.0;
+                  for (unsigned int a = 0; a < 6; ++a)
+                    sum += dx_dp[m][a] * dp[a];
+                  dE[sym_i[m]][sym_j[m]] = sum;
+                  dE[sym_j[m]][sym_i[m]] = sum;
+                }
+              // dX = -sum_r dDelta gamma^r m_0^r (x) n_0^r, dA = dA/dX : dX
+              Matrix<double> dX{};
               for (int r = 0; r < n_slip; ++r)
-                if (schmid[r][i][j] != 0.0)
-                  sum -= slip_ad.delta_gamma[r] * schmid[r][i][j];
-              minus_delta_L_p_ad[i][j] = sum;
+                {
+                  double d_gamma = 0.0;
+                  for (unsigned int a = 0; a < 6; ++a)
+                    d_gamma += ddelta_gamma_dp[r][a] * dp[a];
+                  for (unsigned int i = 0; i < 3; ++i)
+                    for (unsigned int j = 0; j < 3; ++j)
+                      if (schmid[r][i][j] != 0.0)
+                        dX[i][j] -= d_gamma * schmid[r][i][j];
+                }
+              Matrix<double> dA{};
+              for (unsigned int ab = 0; ab < 9; ++ab)
+                {
+                  const double dX_ab = dX[ab / 3][ab % 3];
+                  for (unsigned int i = 0; i < 3; ++i)
+                    for (unsigned int j = 0; j < 3; ++j)
+                      dA[i][j] += problem.dA_dX[ab][i][j] * dX_ab;
+                }
+              Matrix<double> dF_e = multiply(F_e_trial, dA);
+              for (unsigned int j = 0; j < 3; ++j)
+                for (unsigned int m = 0; m < 3; ++m)
+                  dF_e[k][j] += G_L[m] * A[m][j];
+              const auto dP_1 = multiply(dF_e, S_F_p_inverse_T);
+              const auto dP_2 = multiply_transposed_second(multiply(F_e, elastic_stress(law, dE)), G_A);
+              const auto dP_3 = multiply_transposed_second(F_e_S, multiply(F_p_n_inverse, dA));
+              for (unsigned int i = 0; i < 3; ++i)
+                for (unsigned int J = 0; J < 3; ++J)
+                  response.dP_dF[i][J][k][L] = dP_1[i][J] + dP_2[i][J] + dP_3[i][J];
             }
-        const auto A_ad = exp_matrix(minus_delta_L_p_ad);
-        const auto F_p_inverse_ad = multiply(F_p_n_inverse, A_ad);
-        const auto F_e_ad = multiply(F_e_trial_ad, A_ad);
-        write_response(F_e_ad, slip_ad.S_e, F_p_inverse_ad, F, response, true);
       }
-    else
-      write_response(multiply(F_e_trial, A), slip.S_e, F_p_new_inverse, F, response, false);
 
     for (unsigned int i = 0; i < 3; ++i)
       for (unsigned int j = 0; j < 3; ++j)
         state_new[3 * i + j] = F_p_new[i][j];
     for (int r = 0; r < n_slip; ++r)
-      state_new[9 + r] = hardening.tau0 * unknowns[Residual::tau_c_index + r];
+      state_new[9 + r] = hardening.tau0 * unknowns[LocalProblem::tau_c_index + r];
     state_new[9 + n_slip] = Gamma_n + delta_Gamma;
     for (const double v : state_new)
       if (!std::isfinite(v))

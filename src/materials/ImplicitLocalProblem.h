@@ -198,7 +198,7 @@ namespace indentsim::materials
     // `jacobian` holds dR/dx at the last point where it was evaluated (not necessarily x).
     template <typename Evaluate>
     static LocalNewtonResult
-    solve_with_jacobian(const Evaluate                                         &evaluate,
+    solve_with_jacobian(Evaluate                                               &evaluate,
                         Unknowns                                               &x,
                         std::array<std::array<double, n_unknowns>, n_unknowns> &jacobian,
                         const LocalNewtonSettings &settings = LocalNewtonSettings())

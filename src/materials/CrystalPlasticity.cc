@@ -197,6 +197,7 @@ namespace indentsim::materials
       std::array<Number, n_slip>   ratio;       // tau^r / tau_c^r
       Number                       Phi;
       std::array<Number, n_slip>   delta_gamma; // Delta gamma^r
+      std::array<Number, n_slip>   flow_power;  // (tau^r / (Phi tau_c^r))^(2n-2)
     };
 
     template <int n_slip, typename Number>
@@ -249,23 +250,27 @@ namespace indentsim::materials
         {
           out.Phi = 0.0;
           for (int r = 0; r < n_slip; ++r)
-            out.delta_gamma[r] = 0.0;
+            out.delta_gamma[r] = out.flow_power[r] = 0.0;
           return;
         }
       const Number abs_largest = largest_value > 0 ? out.ratio[largest] : Number(-out.ratio[largest]);
-      Number       sum = 0.0;
+      // (rho_r / Phi)^(2n-2) = (rho_r / rho_max)^(2n-2) sum^(-(n-1)/n): one power per system
+      // serves Phi and the flow direction.
+      Number sum = 0.0;
       for (int r = 0; r < n_slip; ++r)
         {
           const Number relative = out.ratio[r] / abs_largest;
-          sum += real_power(Number(relative * relative), law.n);
+          const Number relative_squared = relative * relative;
+          out.flow_power[r] = real_power(relative_squared, law.n - 1.0);
+          sum += relative_squared * out.flow_power[r];
         }
       using std::pow;
       out.Phi = abs_largest * pow(sum, 1.0 / (2.0 * law.n));
+      const Number power_scale = pow(sum, (1.0 - law.n) / law.n);
       for (int r = 0; r < n_slip; ++r)
         {
-          const Number direction = out.ratio[r] / out.Phi;
-          out.delta_gamma[r] = lambda_scaled / tau_c_scaled[r] * direction *
-                               real_power(Number(direction * direction), law.n - 1.0);
+          out.flow_power[r] *= power_scale;
+          out.delta_gamma[r] = lambda_scaled / tau_c_scaled[r] * (out.ratio[r] / out.Phi) * out.flow_power[r];
         }
     }
 
@@ -470,9 +475,8 @@ namespace indentsim::materials
             if (yielding)
               {
                 d[r] = slip.ratio[r] / slip.Phi;
-                const double power = real_power(d[r] * d[r], law.n - 1.0);
-                g[r] = d[r] * power;
-                w[r] = (2.0 * law.n - 1.0) * power;
+                g[r] = d[r] * slip.flow_power[r];
+                w[r] = (2.0 * law.n - 1.0) * slip.flow_power[r];
               }
             else
               d[r] = g[r] = w[r] = 0.0;
@@ -788,10 +792,13 @@ namespace indentsim::materials
         return UpdateStatus::local_newton_failed;
       }
 
-    // The converged slip increments, A = exp(-Delta L_p) and (with the tangent) the Jacobian at
-    // the solution.
-    std::array<double, n_unknowns> residual;
-    problem(unknowns, residual, compute_tangent ? &jacobian : nullptr);
+    // The converged slip increments and A = exp(-Delta L_p) are those of the last evaluation;
+    // the tangent needs the Jacobian there too.
+    if (compute_tangent && !newton.jacobian_at_solution)
+      {
+        std::array<double, n_unknowns> residual;
+        problem(unknowns, residual, &jacobian);
+      }
     const SlipResponse<n_slip, double> &slip = problem.slip;
     const Matrix<double>               &A = problem.A;
     Matrix<double> delta_L_p{};

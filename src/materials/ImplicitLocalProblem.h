@@ -39,6 +39,8 @@ namespace indentsim::materials
     bool         converged = false;
     unsigned int n_iterations = 0;
     double       residual_norm = 0.0; // max-norm at exit
+    // solve_with_jacobian only: the Jacobian it returns was evaluated at the returned x.
+    bool         jacobian_at_solution = false;
   };
 
   namespace internal
@@ -194,8 +196,10 @@ namespace indentsim::materials
 
     // Newton's method as solve(), for a model that supplies its own Jacobian (hand-derived, or
     // AD of a part only): evaluate(x, R, dR_dx) fills R, and dR/dx too unless dR_dx is null.
-    // Line-search trials ask for R alone, so a rejected step costs no Jacobian. On return,
-    // `jacobian` holds dR/dx at the last point where it was evaluated (not necessarily x).
+    // The full Newton step is evaluated with its Jacobian (it is nearly always accepted);
+    // shorter line-search trials ask for R alone. On return, `jacobian` holds dR/dx at the last
+    // point where it was evaluated, which is x when result.jacobian_at_solution. The last call
+    // of evaluate is always at the returned x.
     template <typename Evaluate>
     static LocalNewtonResult
     solve_with_jacobian(Evaluate                                               &evaluate,
@@ -213,6 +217,7 @@ namespace indentsim::materials
       LocalNewtonResult result;
       Unknowns          R;
       evaluate(x, R, &jacobian);
+      result.jacobian_at_solution = true;
       result.residual_norm = internal::max_norm<n_unknowns>(R);
       for (; result.n_iterations < settings.max_iterations; ++result.n_iterations)
         {
@@ -239,7 +244,8 @@ namespace indentsim::materials
             {
               for (int i = 0; i < n_unknowns; ++i)
                 x[i] = x_old[i] + alpha * step[i][0];
-              evaluate(x, R, nullptr);
+              evaluate(x, R, ls == 0 ? &jacobian : nullptr);
+              result.jacobian_at_solution = ls == 0;
               if (euclidean_norm(R) <= (1.0 - 1e-4 * alpha) * old_norm)
                 {
                   accepted = true;
@@ -253,8 +259,12 @@ namespace indentsim::materials
               result.converged = result.residual_norm <= settings.stagnation_tolerance;
               return result;
             }
-          if (std::isfinite(result.residual_norm) && result.residual_norm > settings.tolerance)
-            evaluate(x, R, &jacobian);
+          if (!result.jacobian_at_solution && std::isfinite(result.residual_norm) &&
+              result.residual_norm > settings.tolerance)
+            {
+              evaluate(x, R, &jacobian);
+              result.jacobian_at_solution = true;
+            }
         }
       result.converged = result.residual_norm <= settings.tolerance;
       return result;

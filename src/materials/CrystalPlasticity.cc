@@ -355,6 +355,9 @@ namespace indentsim::materials
       Matrix<double>                                     A;        // exp(-Delta L_p)
       std::array<Matrix<double>, 9>                      dA_dX;    // dA/dX_ab, row-major ab
       std::array<std::array<double, n_unknowns>, n_slip> ddelta_gamma_dx;
+      // dR_tc/dtau_c = diag(tau_c_diagonal) - low_rank_P low_rank_Q^T (see solve_linearized).
+      std::array<double, n_slip>                         tau_c_diagonal;
+      std::array<std::array<double, 2>, n_slip>          low_rank_P, low_rank_Q;
 
       Matrix<double> minus_delta_L_p() const
       {
@@ -468,8 +471,7 @@ namespace indentsim::materials
                 double sum = 0.0;
                 for (unsigned int i = 0; i < 3; ++i)
                   for (unsigned int j = 0; j < 3; ++j)
-                    if (law.schmid[r][i][j] != 0.0)
-                      sum += dM_dE[k][i][j] * law.schmid[r][i][j];
+                    sum += dM_dE[k][i][j] * law.schmid[r][i][j];
                 drho_dE[r][k] = sum * scale;
               }
             if (yielding)
@@ -504,9 +506,9 @@ namespace indentsim::materials
           for (int r = 0; r < n_slip; ++r)
             {
               double sum = 0.0;
-              for (unsigned int ab = 0; ab < 9; ++ab)
-                if (law.schmid[r][ab / 3][ab % 3] != 0.0)
-                  sum -= dC_e_dX[k][ab] * law.schmid[r][ab / 3][ab % 3];
+              for (unsigned int a = 0; a < 3; ++a)
+                for (unsigned int b = 0; b < 3; ++b)
+                  sum -= dC_e_dX[k][3 * a + b] * law.schmid[r][a][b];
               dC_e_ddelta_gamma[k][r] = sum;
             }
         for (unsigned int k = 0; k < 6; ++k)
@@ -540,7 +542,110 @@ namespace indentsim::materials
             for (int j = 0; j < n_unknowns; ++j)
               row[j] = -(a * ddelta_Gamma_dx[j] + b * ddelta_gamma_dx[r][j]) / law.C44;
             row[tau_c_index + r] += law.tau0 / law.C44;
+
+            // dDelta gamma^r/dtau_c^s = delta_rs D_r + u_r v_s, so that
+            // dR_tc^r/dtau_c^s = delta_rs (tau0 - b_r D_r)/C44 - (a_r e_s + b_r u_r v_s)/C44,
+            // e = dDelta Gamma/dtau_c.
+            const double D = -(yielding ? lambda * w[r] / (tau_c[r] * slip.Phi) : 0.0) *
+                               slip.ratio[r] / tau_c[r] -
+                             lambda * g[r] / (tau_c[r] * tau_c[r]);
+            const double u = (yielding ? lambda * w[r] / (tau_c[r] * slip.Phi) : 0.0) * d[r];
+            tau_c_diagonal[r] = (law.tau0 - b * D) / law.C44;
+            low_rank_P[r] = {{a / law.C44, b * u / law.C44}};
+            low_rank_Q[r] = {{ddelta_Gamma_dx[tau_c_index + r], -dPhi_dx[tau_c_index + r]}};
           }
+      }
+
+      // Solves J X = B, J from the last evaluation with a Jacobian, by eliminating the critical
+      // shears: with y = (E_e, Delta lambda), t = tau_c,
+      //   Z = J_tt^-1 [J_ty | B_t],  (J_yy - J_yt Z_y) X_y = B_y - J_yt Z_B,  X_t = Z_B - Z_y X_y,
+      // where J_tt = D - P Q^T (diagonal plus rank 2, the latent hardening and the shared Phi)
+      // is inverted by the Sherman-Morrison-Woodbury formula
+      //   J_tt^-1 = D^-1 + D^-1 P (I - Q^T D^-1 P)^-1 Q^T D^-1.
+      // That needs D and the 2x2 capacitance away from singular: for large increments with
+      // q > 1, D_r = (tau0 - b_r D_r)/C44 can approach zero while J itself is regular, so those
+      // cases fall back to the dense LU of J.
+      template <int n_rhs>
+      bool solve_linearized(const Jacobian &J, std::array<std::array<double, n_rhs>, n_unknowns> &B) const
+      {
+        constexpr int n_y = tau_c_index, n_columns = n_y + n_rhs;
+        const auto    dense = [&]() {
+          auto copy = J;
+          return internal::solve_dense<n_unknowns, n_rhs>(copy, B);
+        };
+        const double diagonal_floor = 0.1 * law.tau0 / law.C44;
+        for (int r = 0; r < n_slip; ++r)
+          if (!(std::abs(tau_c_diagonal[r]) >= diagonal_floor))
+            return dense();
+        std::array<double, 2>                 capacitance_rows[2] = {{{1.0, 0.0}}, {{0.0, 1.0}}};
+        for (int r = 0; r < n_slip; ++r)
+          for (unsigned int i = 0; i < 2; ++i)
+            for (unsigned int j = 0; j < 2; ++j)
+              capacitance_rows[i][j] -= low_rank_Q[r][i] * low_rank_P[r][j] / tau_c_diagonal[r];
+        const double determinant = capacitance_rows[0][0] * capacitance_rows[1][1] -
+                                   capacitance_rows[0][1] * capacitance_rows[1][0];
+        if (!(std::abs(determinant) >= 1e-3))
+          return dense();
+
+        // Z = J_tt^-1 [J_ty | B_t]
+        std::array<std::array<double, n_columns>, n_slip> Z;
+        std::array<double, n_columns>                     W0{}, W1{};
+        for (int r = 0; r < n_slip; ++r)
+          {
+            const double inverse_diagonal = 1.0 / tau_c_diagonal[r];
+            for (int c = 0; c < n_columns; ++c)
+              {
+                Z[r][c] = (c < n_y ? J[n_y + r][c] : B[n_y + r][c - n_y]) * inverse_diagonal;
+                W0[c] += low_rank_Q[r][0] * Z[r][c];
+                W1[c] += low_rank_Q[r][1] * Z[r][c];
+              }
+          }
+        for (int c = 0; c < n_columns; ++c)
+          {
+            const double k0 = (capacitance_rows[1][1] * W0[c] - capacitance_rows[0][1] * W1[c]) / determinant;
+            const double k1 = (capacitance_rows[0][0] * W1[c] - capacitance_rows[1][0] * W0[c]) / determinant;
+            W0[c] = k0;
+            W1[c] = k1;
+          }
+        for (int r = 0; r < n_slip; ++r)
+          {
+            const double p0 = low_rank_P[r][0] / tau_c_diagonal[r],
+                         p1 = low_rank_P[r][1] / tau_c_diagonal[r];
+            for (int c = 0; c < n_columns; ++c)
+              Z[r][c] += p0 * W0[c] + p1 * W1[c];
+          }
+
+        // Schur complement on y.
+        std::array<std::array<double, n_y>, n_y>   schur;
+        std::array<std::array<double, n_rhs>, n_y> X_y;
+        for (int i = 0; i < n_y; ++i)
+          {
+            for (int c = 0; c < n_y; ++c)
+              schur[i][c] = J[i][c];
+            for (int c = 0; c < n_rhs; ++c)
+              X_y[i][c] = B[i][c];
+            for (int r = 0; r < n_slip; ++r)
+              {
+                const double J_yt = J[i][n_y + r];
+                for (int c = 0; c < n_y; ++c)
+                  schur[i][c] -= J_yt * Z[r][c];
+                for (int c = 0; c < n_rhs; ++c)
+                  X_y[i][c] -= J_yt * Z[r][n_y + c];
+              }
+          }
+        if (!internal::solve_dense<n_y, n_rhs>(schur, X_y))
+          return dense();
+        for (int r = 0; r < n_slip; ++r)
+          for (int c = 0; c < n_rhs; ++c)
+            {
+              double sum = Z[r][n_y + c];
+              for (int j = 0; j < n_y; ++j)
+                sum -= Z[r][j] * X_y[j][c];
+              B[n_y + r][c] = sum;
+            }
+        for (int i = 0; i < n_y; ++i)
+          B[i] = X_y[i];
+        return true;
       }
     };
 
@@ -829,7 +934,7 @@ namespace indentsim::materials
             for (unsigned int k = 0; k < 6; ++k)
               dx_dp[k][m] = 0.5 * AUA[sym_i[k]][sym_j[k]];
           }
-        if (!internal::solve_dense<n_unknowns, 6>(jacobian, dx_dp))
+        if (!problem.template solve_linearized<6>(jacobian, dx_dp))
           {
             std::copy(state_old.begin(), state_old.end(), state_new.begin());
             return UpdateStatus::local_newton_failed;

@@ -196,7 +196,9 @@ namespace indentsim::materials
 
     // Newton's method as solve(), for a model that supplies its own Jacobian (hand-derived, or
     // AD of a part only): evaluate(x, R, dR_dx) fills R, and dR/dx too unless dR_dx is null.
-    // The full Newton step is evaluated with its Jacobian (it is nearly always accepted);
+    // A model that knows the structure of its Jacobian may provide
+    // evaluate.solve_linearized<n_rhs>(dR_dx, B) (B := dR_dx^-1 B, false if singular), used
+    // instead of the dense LU. The full Newton step is evaluated with its Jacobian (it is nearly always accepted);
     // shorter line-search trials ask for R alone. On return, `jacobian` holds dR/dx at the last
     // point where it was evaluated, which is x when result.jacobian_at_solution. The last call
     // of evaluate is always at the returned x.
@@ -232,9 +234,17 @@ namespace indentsim::materials
           std::array<std::array<double, 1>, n_unknowns> step;
           for (int i = 0; i < n_unknowns; ++i)
             step[i][0] = -R[i];
-          auto factorised = jacobian;
-          if (!internal::solve_dense<n_unknowns, 1>(factorised, step))
-            return result;
+          if constexpr (requires { evaluate.template solve_linearized<1>(jacobian, step); })
+            {
+              if (!evaluate.template solve_linearized<1>(jacobian, step))
+                return result;
+            }
+          else
+            {
+              auto factorised = jacobian;
+              if (!internal::solve_dense<n_unknowns, 1>(factorised, step))
+                return result;
+            }
 
           const double   old_norm = euclidean_norm(R);
           const Unknowns x_old = x;

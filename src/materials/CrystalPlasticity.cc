@@ -488,6 +488,9 @@ namespace indentsim::materials
             dPhi_dx[tau_c_index + r] = -g[r] * slip.ratio[r] / tau_c[r];
           }
 
+        // dDelta gamma^r/dtau_c^s = delta_rs D_r + u_r v_s (the critical shear of the system
+        // itself, and every tau_c through Phi).
+        std::array<double, n_slip> D, u, v;
         for (int r = 0; r < n_slip; ++r)
           {
             auto        &row = ddelta_gamma_dx[r];
@@ -495,12 +498,15 @@ namespace indentsim::materials
             for (unsigned int k = 0; k < 6; ++k)
               row[k] = c * (drho_dE[r][k] - d[r] * dPhi_dx[k]);
             row[lambda_index] = g[r] / tau_c[r];
-            for (int s = 0; s < n_slip; ++s)
-              row[tau_c_index + s] = -c * d[r] * dPhi_dx[tau_c_index + s];
-            row[tau_c_index + r] += -c * slip.ratio[r] / tau_c[r] - lambda * g[r] / (tau_c[r] * tau_c[r]);
+            D[r] = -c * slip.ratio[r] / tau_c[r] - lambda * g[r] / (tau_c[r] * tau_c[r]);
+            u[r] = c * d[r];
+            v[r] = -dPhi_dx[tau_c_index + r];
           }
+        for (int r = 0; r < n_slip; ++r)
+          for (int s = 0; s < n_slip; ++s)
+            ddelta_gamma_dx[r][tau_c_index + s] = u[r] * v[s] + (r == s ? D[r] : 0.0);
 
-        // R_E rows.
+        // R_E rows: dR_E/dx = I_E - 1/2 dC_e/dDelta gamma dDelta gamma/dx.
         std::array<std::array<double, n_slip>, 6> dC_e_ddelta_gamma;
         for (unsigned int k = 0; k < 6; ++k)
           for (int r = 0; r < n_slip; ++r)
@@ -512,47 +518,62 @@ namespace indentsim::materials
               dC_e_ddelta_gamma[k][r] = sum;
             }
         for (unsigned int k = 0; k < 6; ++k)
-          for (int j = 0; j < n_unknowns; ++j)
-            {
-              double sum = 0.0;
-              for (int r = 0; r < n_slip; ++r)
-                sum += dC_e_ddelta_gamma[k][r] * ddelta_gamma_dx[r][j];
-              J[k][j] = (j == int(k) ? 1.0 : 0.0) - 0.5 * sum;
-            }
+          {
+            auto  &row = J[k];
+            double dC_e_u = 0.0;
+            for (int j = 0; j < tau_c_index; ++j)
+              row[j] = 0.0;
+            for (int r = 0; r < n_slip; ++r)
+              {
+                const double dC = -0.5 * dC_e_ddelta_gamma[k][r];
+                for (int j = 0; j < tau_c_index; ++j)
+                  row[j] += dC * ddelta_gamma_dx[r][j];
+                dC_e_u += dC * u[r];
+              }
+            row[k] += 1.0;
+            for (int s = 0; s < n_slip; ++s)
+              row[tau_c_index + s] = -0.5 * dC_e_ddelta_gamma[k][s] * D[s] + dC_e_u * v[s];
+          }
 
         // R_f row.
         for (int j = 0; j < n_unknowns; ++j)
           J[lambda_index][j] = dPhi_dx[j] * (law.tau0 / law.C44);
 
-        // R_tc rows: d(Hbar (q Delta Gamma + (1 - q) |Delta gamma^r|)).
+        // R_tc rows: d(Hbar (q Delta Gamma + (1 - q) |Delta gamma^r|)), with
+        // dR_tc^r/dtau_c^s = delta_rs (tau0 - b_r D_r)/C44 - (a_r e_s + b_r u_r v_s)/C44,
+        // e = dDelta Gamma/dtau_c: diagonal minus rank 2, kept for solve_linearized.
         std::array<double, n_unknowns> ddelta_Gamma_dx{};
+        double                         sign_u = 0.0;
+        std::array<double, n_slip>     sign;
         for (int r = 0; r < n_slip; ++r)
           {
-            const double sign = slip.delta_gamma[r] >= 0 ? 1.0 : -1.0;
-            for (int j = 0; j < n_unknowns; ++j)
-              ddelta_Gamma_dx[j] += sign * ddelta_gamma_dx[r][j];
+            sign[r] = slip.delta_gamma[r] >= 0 ? 1.0 : -1.0;
+            for (int j = 0; j < tau_c_index; ++j)
+              ddelta_Gamma_dx[j] += sign[r] * ddelta_gamma_dx[r][j];
+            sign_u += sign[r] * u[r];
           }
+        for (int s = 0; s < n_slip; ++s)
+          ddelta_Gamma_dx[tau_c_index + s] = sign[s] * D[s] + sign_u * v[s];
         const double dH_bar = H_bar_ad.fastAccessDx(0);
         for (int r = 0; r < n_slip; ++r)
           {
-            const double sign = slip.delta_gamma[r] >= 0 ? 1.0 : -1.0;
             const double a = dH_bar * (q * delta_Gamma + (1.0 - q) * abs_delta_gamma[r]) + H_bar * q;
-            const double b = H_bar * (1.0 - q) * sign;
-            auto        &row = J[tau_c_index + r];
-            for (int j = 0; j < n_unknowns; ++j)
-              row[j] = -(a * ddelta_Gamma_dx[j] + b * ddelta_gamma_dx[r][j]) / law.C44;
-            row[tau_c_index + r] += law.tau0 / law.C44;
-
-            // dDelta gamma^r/dtau_c^s = delta_rs D_r + u_r v_s, so that
-            // dR_tc^r/dtau_c^s = delta_rs (tau0 - b_r D_r)/C44 - (a_r e_s + b_r u_r v_s)/C44,
-            // e = dDelta Gamma/dtau_c.
-            const double D = -(yielding ? lambda * w[r] / (tau_c[r] * slip.Phi) : 0.0) *
-                               slip.ratio[r] / tau_c[r] -
-                             lambda * g[r] / (tau_c[r] * tau_c[r]);
-            const double u = (yielding ? lambda * w[r] / (tau_c[r] * slip.Phi) : 0.0) * d[r];
-            tau_c_diagonal[r] = (law.tau0 - b * D) / law.C44;
-            low_rank_P[r] = {{a / law.C44, b * u / law.C44}};
-            low_rank_Q[r] = {{ddelta_Gamma_dx[tau_c_index + r], -dPhi_dx[tau_c_index + r]}};
+            const double b = H_bar * (1.0 - q) * sign[r];
+            tau_c_diagonal[r] = (law.tau0 - b * D[r]) / law.C44;
+            low_rank_P[r] = {{a / law.C44, b * u[r] / law.C44}};
+            low_rank_Q[r] = {{ddelta_Gamma_dx[tau_c_index + r], v[r]}};
+          }
+        for (int r = 0; r < n_slip; ++r)
+          {
+            auto &row = J[tau_c_index + r];
+            for (int j = 0; j < tau_c_index; ++j)
+              row[j] = -(low_rank_P[r][0] * law.C44 * ddelta_Gamma_dx[j] +
+                         (1.0 - q) * H_bar * sign[r] * ddelta_gamma_dx[r][j]) /
+                       law.C44;
+            for (int s = 0; s < n_slip; ++s)
+              row[tau_c_index + s] =
+                -(low_rank_P[r][0] * low_rank_Q[s][0] + low_rank_P[r][1] * low_rank_Q[s][1]) +
+                (r == s ? tau_c_diagonal[r] : 0.0);
           }
       }
 

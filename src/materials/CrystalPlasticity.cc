@@ -421,8 +421,8 @@ namespace indentsim::materials
 
     // The local problem of one increment: unknowns x = (E_e (6), Delta lambda / tau0,
     // tau_c^r / tau0), residuals of the header in strain units (stresses divided by C44), and
-    // their Jacobian written out by the chain rule in plain doubles. Only the matrix exponential
-    // is differentiated by AD, with respect to its 9 entries (not the 19 unknowns):
+    // their Jacobian written out by the chain rule in plain doubles (dexp(X)/dX from the series,
+    // exp_matrix_and_derivative; the secant Hbar'(Delta Gamma) by one AD direction):
     //   dR_E/dx = I_E - 1/2 dC_e/dDelta gamma . dDelta gamma/dx,
     //   dC_e/dDelta gamma^r = -sum_ab dC_e/dX_ab (m_0^r (x) n_0^r)_ab, X = -Delta L_p,
     //   dDelta gamma^r = g_r/tau_c^r dlambda - lambda g_r/tau_c^r^2 dtau_c^r
@@ -444,7 +444,8 @@ namespace indentsim::materials
       const double                *tau_c_n; // n_slip [GPa]
       Matrix<double>               C_e_trial;
 
-      // Filled by each evaluation with a Jacobian; the consistent tangent reuses them.
+      // slip and A are written by every evaluation, the rest by those with a Jacobian; the
+      // state update and the consistent tangent reuse them.
       SlipResponse<n_slip, double>                       slip;
       Matrix<double>                                     A;        // exp(-Delta L_p)
       std::array<Matrix<double>, 9>                      dA_dX;    // dA/dX_ab, row-major ab
@@ -976,7 +977,12 @@ namespace indentsim::materials
       return elastic_step();
 
     // Plastic corrector: the local Newton from the elastic trial.
-    LocalProblem problem{law, &hardening, Gamma_n, tau_c_n, C_e_trial};
+    LocalProblem problem; // the workspace members are written before they are read
+    problem.law = law;
+    problem.hardening = &hardening;
+    problem.Gamma_n = Gamma_n;
+    problem.tau_c_n = tau_c_n;
+    problem.C_e_trial = C_e_trial;
     std::array<double, n_unknowns> unknowns;
     double strain_scale = hardening.tau0 / elasticity.C44;
     for (unsigned int k = 0; k < 6; ++k)

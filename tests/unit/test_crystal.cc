@@ -378,7 +378,7 @@ namespace
     std::mt19937            generator(17);
     double                  worst_P = 0, worst_state = 0, worst_tangent = 0;
     unsigned int            n_plastic = 0;
-    for (unsigned int sample = 0; sample < 24; ++sample)
+    for (unsigned int sample = 0; sample < 40; ++sample)
       {
         auto state = oriented_state(model, random_rotation(generator));
         // A history of 0 to 3 plastic increments, then the increment compared.
@@ -397,7 +397,9 @@ namespace
                       UpdateStatus::success);
             state = state_new;
           }
-        const double amplitude = (sample % 3 == 0 ? 1e-3 : sample % 3 == 1 ? 0.02 : 0.08);
+        // Up to 0.5: increments large enough for dR_tc/dtau_c to lose its diagonal and the solve
+        // to fall back to the dense LU.
+        const double amplitude = std::array<double, 5>{{1e-3, 0.02, 0.08, 0.2, 0.5}}[sample % 5];
         const Tensor<2, 3> F =
           (n_history > 0 ? F_history : identity()) + (random_deformation(generator, amplitude) - identity());
         for (const bool tangent : {false, true})
@@ -407,9 +409,10 @@ namespace
             const UpdateStatus    status_slow =
               reference::update(model, F, state, slow, state_slow, tangent);
             const UpdateStatus status_fast = model.update(F, state, fast, state_fast, tangent);
-            ASSERT_EQ(status_fast, status_slow) << "sample " << sample;
+            // Where the reference Newton fails, round-off may let the fast one succeed.
             if (status_slow != UpdateStatus::success)
               continue;
+            ASSERT_EQ(status_fast, UpdateStatus::success) << "sample " << sample;
             if (state_slow[21] > state[21])
               n_plastic += tangent;
             const double error_P = (fast.P - slow.P).norm() / slow.P.norm();

@@ -182,9 +182,9 @@ namespace indentsim::materials
     // numbers) and its derivative dA/dX_ab. With the scaled Y = 2^-s X and the terms
     // T_j = Y^j / j! of the series A_Y = sum_{k<=K} T_k, the derivative of the truncated series is
     //   dA_Y/dY_ab = sum_{k=1..K} 1/k! sum_{j+m=k-1} Y^j e_a e_b^T Y^m
-    //             = sum_j T_j e_a (G_j e_b)^T,   G_j^T = sum_{m<=K-1-j} j! m!/(j+m+1)! T_m^T,
-    // then each squaring A <- A A carries dA <- dA A + A dA. The derivatives that forward AD
-    // through exp_matrix would give, at a quarter of the cost.
+    //             = sum_j T_j e_a e_b^T G_j,   G_j = sum_{m<=K-1-j} j! m!/(j+m+1)! T_m,
+    // then each squaring A <- A A carries dA <- dA A + A dA: the derivatives that forward AD
+    // through exp_matrix gives, without carrying 9 derivatives through every product.
     void exp_matrix_and_derivative(const Matrix<double>          &X,
                                    Matrix<double>                &A,
                                    std::array<Matrix<double>, 9> &dA_dX)

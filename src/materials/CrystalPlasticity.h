@@ -48,7 +48,7 @@
 //   drho_r = (m_0^r (x) n_0^r) : (2 dE_e S_e + C_e (L^e : dE_e)) / tau_c^r - rho_r dtau_c^r/tau_c^r,
 //   dR_E = dE_e - 1/2 sum_r dC_e/dDelta gamma^r dDelta gamma^r,  C_e = A^T C_e^tr A,
 // where dA/dX (X = -Delta L_p) comes from the terms T_j = X^j/j! already formed for exp(X):
-//   dexp(X)/dX_ab = sum_j T_j e_a (G_j e_b)^T,  G_j = sum_m j! m!/(j+m+1)! T_m
+//   dexp(X)/dX_ab = sum_j T_j e_a e_b^T G_j,  G_j = sum_m j! m!/(j+m+1)! T_m
 // (through the squarings by the product rule), and Hbar'(Delta Gamma) by one AD direction.
 // The critical shears are then eliminated from each Newton system: dDelta gamma/dtau_c is
 // diagonal plus rank one (each system's own tau_c, and all of them through Phi), so with the

@@ -200,10 +200,11 @@ namespace indentsim::materials
     // AD of a part only): evaluate(x, R, dR_dx) fills R, and dR/dx too unless dR_dx is null.
     // A model that knows the structure of its Jacobian may provide
     // evaluate.solve_linearized<n_rhs>(dR_dx, B) (B := dR_dx^-1 B, false if singular), used
-    // instead of the dense LU. The full Newton step is evaluated with its Jacobian (it is nearly always accepted);
-    // shorter line-search trials ask for R alone. On return, `jacobian` holds dR/dx at the last
-    // point where it was evaluated, which is x when result.jacobian_at_solution. The last call
-    // of evaluate is always at the returned x.
+    // instead of the dense LU. Line-search trials ask for R alone, and dR/dx is evaluated once
+    // a trial is accepted and not yet converged, so no Jacobian is spent on a rejected step or
+    // on the converged point. On return, `jacobian` holds dR/dx at the last point where it was
+    // evaluated, which is x only when result.jacobian_at_solution; the last call of evaluate is
+    // always at the returned x.
     template <typename Evaluate>
     static LocalNewtonResult
     solve_with_jacobian(Evaluate                                               &evaluate,
@@ -252,12 +253,12 @@ namespace indentsim::materials
           const Unknowns x_old = x;
           double         alpha = 1.0;
           bool           accepted = false;
+          result.jacobian_at_solution = false;
           for (unsigned int ls = 0; ls <= settings.max_line_search_steps; ++ls, alpha *= 0.5)
             {
               for (int i = 0; i < n_unknowns; ++i)
                 x[i] = x_old[i] + alpha * step[i][0];
-              evaluate(x, R, ls == 0 ? &jacobian : nullptr);
-              result.jacobian_at_solution = ls == 0;
+              evaluate(x, R, nullptr);
               if (euclidean_norm(R) <= (1.0 - 1e-4 * alpha) * old_norm)
                 {
                   accepted = true;
@@ -271,8 +272,7 @@ namespace indentsim::materials
               result.converged = result.residual_norm <= settings.stagnation_tolerance;
               return result;
             }
-          if (!result.jacobian_at_solution && std::isfinite(result.residual_norm) &&
-              result.residual_norm > settings.tolerance)
+          if (std::isfinite(result.residual_norm) && result.residual_norm > settings.tolerance)
             {
               evaluate(x, R, &jacobian);
               result.jacobian_at_solution = true;

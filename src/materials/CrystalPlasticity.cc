@@ -419,6 +419,84 @@ namespace indentsim::materials
       return S;
     }
 
+    // A trial state is certainly elastic when Phi <= n_slip^(1/2n) max_r |rho_r| (eq. 14) is
+    // below 1: most points of an indentation are, and the powers of Phi are then not needed.
+    // S_e as slip_response computes it.
+    template <int n_slip>
+    bool certainly_elastic(const SlipLawData           &law,
+                           const std::array<double, 6> &E_e,
+                           const double                *tau_c_scaled,
+                           const double                 bound_factor,
+                           Matrix<double>              &S_e)
+    {
+      Matrix<double> E, C_e;
+      for (unsigned int k = 0; k < 6; ++k)
+        {
+          E[sym_i[k]][sym_j[k]] = E_e[k];
+          E[sym_j[k]][sym_i[k]] = E_e[k];
+        }
+      S_e = elastic_stress(law, E);
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          C_e[i][j] = 2.0 * E[i][j] + (i == j ? 1.0 : 0.0);
+      const Matrix<double> M_e = multiply(C_e, S_e);
+      // |rho_r| < 1 / bound_factor, with a margin far above the round-off of rho_r
+      const double limit = law.tau0 * (1.0 - 1e-10) / bound_factor;
+      for (int r = 0; r < n_slip; ++r)
+        {
+          double tau = 0.0;
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
+              tau += M_e[i][j] * law.schmid[r][i][j];
+          if (!(std::abs(tau) < limit * tau_c_scaled[r]))
+            return false;
+        }
+      return true;
+    }
+
+    // dP/dF of P = F G S_e G^T, S_e = L^e : E_e, E_e = 1/2 (G^T F^T F G - I), for the cubic
+    // L^e_abcd = C12 d_ab d_cd + C44 (d_ac d_bd + d_ad d_bc) + (C11 - C12 - 2 C44) d_abcd:
+    //   dP_iJ/dF_kL = d_ik (G S_e G^T)_LJ + C12 M_iJ M_kL + C44 ((H H^T)_ik (G G^T)_JL + M_iL M_kJ)
+    //                 + (C11 - C12 - 2 C44) sum_p H_ip G_Jp H_kp G_Lp,
+    // H = F G = F_e, M = H G^T.
+    void elastic_tangent(const SlipLawData    &law,
+                         const Matrix<double> &H,
+                         const Matrix<double> &G,
+                         const Matrix<double> &S_e,
+                         Tensor<4, 3>         &dP_dF)
+    {
+      const Matrix<double> Q = multiply_transposed_second(multiply(G, S_e), G);
+      const Matrix<double> M = multiply_transposed_second(H, G);
+      const Matrix<double> HH = multiply_transposed_second(H, H);
+      const Matrix<double> GG = multiply_transposed_second(G, G);
+      const double         anisotropy = law.C11 - law.C12 - 2.0 * law.C44;
+      // the factors of the C44 and cubic terms that depend on (i, k) and on (J, L) only
+      std::array<std::array<std::array<double, 4>, 3>, 3> left, right;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            left[i][k][3] = law.C44 * HH[i][k];
+            right[i][k][3] = GG[i][k];
+            for (unsigned int p = 0; p < 3; ++p)
+              {
+                left[i][k][p] = anisotropy * H[i][p] * H[k][p];
+                right[i][k][p] = G[i][p] * G[k][p];
+              }
+          }
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int J = 0; J < 3; ++J)
+          for (unsigned int k = 0; k < 3; ++k)
+            for (unsigned int L = 0; L < 3; ++L)
+              {
+                const auto &a = left[i][k], &b = right[J][L];
+                double      value = law.C12 * M[i][J] * M[k][L] + law.C44 * M[i][L] * M[k][J] +
+                               a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
+                if (i == k)
+                  value += Q[L][J];
+                dP_dF[i][J][k][L] = value;
+              }
+    }
+
     // The local problem of one increment: unknowns x = (E_e (6), Delta lambda / tau0,
     // tau_c^r / tau0), residuals of the header in strain units (stresses divided by C44), and
     // their Jacobian written out by the chain rule in plain doubles (dexp(X)/dX from the series,
@@ -822,6 +900,7 @@ namespace indentsim::materials
     require(n >= 1 && n <= 50, "yield_exponent_n must lie in [1, 50]");
     for (unsigned int r = 0; r < n_systems; ++r)
       schmid.push_back(to_matrix(systems.schmid_tensor(r)));
+    yield_bound_factor = std::pow(double(n_systems), 1.0 / (2.0 * n));
   }
 
   double CrystalPlasticity::reference_modulus() const
@@ -935,46 +1014,26 @@ namespace indentsim::materials
     for (int r = 0; r < n_slip; ++r)
       tau_c_n_scaled[r] = tau_c_n[r] / hardening.tau0;
 
+    // Elastic step, P = F_e S_e F_p,n^-T with F_e = F F_p,n^-1.
+    const auto elastic_step = [&](const Matrix<double> &S_e) {
+      write_stress(F_e_trial, S_e, F_p_n_inverse, F, response);
+      if (compute_tangent)
+        elastic_tangent(law, F_e_trial, F_p_n_inverse, S_e, response.dP_dF);
+      std::copy(state_old.begin(), state_old.end(), state_new.begin());
+      return UpdateStatus::success;
+    };
+
+    Matrix<double> S_e_trial;
+    if (certainly_elastic<n_slip>(law, E_trial, tau_c_n_scaled.data(), yield_bound_factor, S_e_trial))
+      return elastic_step(S_e_trial);
     SlipResponse<n_slip, double> trial;
     slip_response<n_slip, double>(law, E_trial.data(), tau_c_n_scaled.data(), 0.0, trial);
     if (!std::isfinite(trial.Phi))
       return UpdateStatus::invalid_deformation;
 
-    // Elastic step, P = F_e S_e F_p,n^-T with F_e = F F_p,n^-1 (G = F_p,n^-1). Its tangent in
-    // closed form: dE_e = sym(F_e^T dF G), dP = dF G S_e G^T + F_e (L^e : dE_e) G^T.
-    const auto elastic_step = [&]() {
-      write_stress(F_e_trial, trial.S_e, F_p_n_inverse, F, response);
-      if (compute_tangent)
-        {
-          const Matrix<double> S_G = multiply_transposed_second(trial.S_e, F_p_n_inverse);
-          for (unsigned int k = 0; k < 3; ++k)
-            for (unsigned int L = 0; L < 3; ++L)
-              {
-                const auto   &G_L = F_p_n_inverse[L]; // dF G has the single row k = G_L
-                Matrix<double> dE;
-                for (unsigned int i = 0; i < 3; ++i)
-                  for (unsigned int j = 0; j < 3; ++j)
-                    dE[i][j] = 0.5 * (F_e_trial[k][i] * G_L[j] + G_L[i] * F_e_trial[k][j]);
-                const auto dP_material =
-                  multiply_transposed_second(multiply(F_e_trial, elastic_stress(law, dE)), F_p_n_inverse);
-                for (unsigned int i = 0; i < 3; ++i)
-                  for (unsigned int J = 0; J < 3; ++J)
-                    {
-                      double dP = dP_material[i][J];
-                      if (i == k)
-                        for (unsigned int m = 0; m < 3; ++m)
-                          dP += G_L[m] * S_G[m][J];
-                      response.dP_dF[i][J][k][L] = dP;
-                    }
-              }
-        }
-      std::copy(state_old.begin(), state_old.end(), state_new.begin());
-      return UpdateStatus::success;
-    };
-
     // KKT (eq. 8): no plastic flow while Phi <= 1.
     if (trial.Phi <= 1.0)
-      return elastic_step();
+      return elastic_step(trial.S_e);
 
     // Plastic corrector: the local Newton from the elastic trial.
     LocalProblem problem; // the workspace members are written before they are read
@@ -1006,7 +1065,7 @@ namespace indentsim::materials
       {
         // A trial state on the yield surface to round-off returns Delta lambda = 0 (+- round-off).
         if (newton.converged && std::abs(lambda_scaled) <= 1e-12 * strain_scale)
-          return elastic_step();
+          return elastic_step(trial.S_e);
         std::copy(state_old.begin(), state_old.end(), state_new.begin());
         return UpdateStatus::local_newton_failed;
       }

@@ -166,5 +166,6 @@ namespace indentsim::materials
     ExtendedVoceHardening hardening;
     double                n; // yield exponent (the surface uses 2n)
     std::vector<std::array<std::array<double, 3>, 3>> schmid; // m_0^r (x) n_0^r
+    double yield_bound_factor; // n_systems^(1/2n) >= Phi / max_r |tau^r / tau_c^r|
   };
 } // namespace indentsim::materials

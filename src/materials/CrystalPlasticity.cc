@@ -454,47 +454,48 @@ namespace indentsim::materials
       return true;
     }
 
-    // dP/dF of P = F G S_e G^T, S_e = L^e : E_e, E_e = 1/2 (G^T F^T F G - I), for the cubic
-    // L^e_abcd = C12 d_ab d_cd + C44 (d_ac d_bd + d_ad d_bc) + (C11 - C12 - 2 C44) d_abcd:
-    //   dP_iJ/dF_kL = d_ik (G S_e G^T)_LJ + C12 M_iJ M_kL + C44 ((H H^T)_ik (G G^T)_JL + M_iL M_kJ)
-    //                 + (C11 - C12 - 2 C44) sum_p H_ip G_Jp H_kp G_Lp,
-    // H = F G = F_e, M = H G^T.
+    // dP/dF of P = H S_e G^T (H = F G = F_e, G = F_p,n^-1), S_e = L^e : E_e,
+    // E_e = 1/2 (H^T H - I). With the unrolled n^iJ_ab = dP_iJ/dS_ab = H_ia G_Jb (+ H_ib G_Ja for
+    // a < b), dE_ab/dF_kL = w_ab n^kL_ab (w = 1 on the diagonal, 1/2 off it), and the cubic L^e,
+    //   dP_iJ/dF_kL = (C11 - C12) sum_a n^iJ_aa n^kL_aa + C12 s^iJ s^kL
+    //                 + C44 sum_(a<b) n^iJ_ab n^kL_ab + d_ik (G S_e G^T)_LJ,   s = sum_a n_aa,
+    // symmetric in (iJ, kL) (hyperelasticity), so only half of it is formed.
     void elastic_tangent(const SlipLawData    &law,
                          const Matrix<double> &H,
                          const Matrix<double> &G,
                          const Matrix<double> &S_e,
                          Tensor<4, 3>         &dP_dF)
     {
-      const Matrix<double> Q = multiply_transposed_second(multiply(G, S_e), G);
-      const Matrix<double> M = multiply_transposed_second(H, G);
-      const Matrix<double> HH = multiply_transposed_second(H, H);
-      const Matrix<double> GG = multiply_transposed_second(G, G);
-      const double         anisotropy = law.C11 - law.C12 - 2.0 * law.C44;
-      // the factors of the C44 and cubic terms that depend on (i, k) and on (J, L) only
-      std::array<std::array<std::array<double, 4>, 3>, 3> left, right;
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int k = 0; k < 3; ++k)
-          {
-            left[i][k][3] = law.C44 * HH[i][k];
-            right[i][k][3] = GG[i][k];
-            for (unsigned int p = 0; p < 3; ++p)
-              {
-                left[i][k][p] = anisotropy * H[i][p] * H[k][p];
-                right[i][k][p] = G[i][p] * G[k][p];
-              }
-          }
+      const Matrix<double>                  Q = multiply_transposed_second(multiply(G, S_e), G);
+      std::array<std::array<double, 7>, 9> n_unrolled; // n_aa (3), n_ab (3), s
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int J = 0; J < 3; ++J)
-          for (unsigned int k = 0; k < 3; ++k)
-            for (unsigned int L = 0; L < 3; ++L)
+          {
+            auto &v = n_unrolled[3 * i + J];
+            for (unsigned int m = 0; m < 6; ++m)
               {
-                const auto &a = left[i][k], &b = right[J][L];
-                double      value = law.C12 * M[i][J] * M[k][L] + law.C44 * M[i][L] * M[k][J] +
-                               a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
-                if (i == k)
-                  value += Q[L][J];
-                dP_dF[i][J][k][L] = value;
+                const unsigned int a = sym_i[m], b = sym_j[m];
+                v[m] = H[i][a] * G[J][b] + (m < 3 ? 0.0 : H[i][b] * G[J][a]);
               }
+            v[6] = v[0] + v[1] + v[2];
+          }
+      const double normal = law.C11 - law.C12;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int J = 0; J < 3; ++J)
+          {
+            const auto &u = n_unrolled[3 * i + J];
+            for (unsigned int k = i; k < 3; ++k)
+              for (unsigned int L = (k == i ? J : 0); L < 3; ++L)
+                {
+                  const auto &v = n_unrolled[3 * k + L];
+                  double value = normal * (u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) +
+                                 law.C12 * u[6] * v[6] + law.C44 * (u[3] * v[3] + u[4] * v[4] + u[5] * v[5]);
+                  if (i == k)
+                    value += Q[L][J];
+                  dP_dF[i][J][k][L] = value;
+                  dP_dF[k][L][i][J] = value;
+                }
+          }
     }
 
     // The local problem of one increment: unknowns x = (E_e (6), Delta lambda / tau0,

@@ -1,6 +1,8 @@
 // Cost of one material-point update [us], elastic and plastic, with and without the tangent,
 // for the J2 model of Table 1 and the crystal model of Table 2 (issue 5's "profile the material
 // update"). Run on demand: build/bench_material_point. Not a test: timings are machine facts.
+// `build/bench_material_point crystal plastic yes 100` runs one row only, 100 times: the form to
+// count instructions with valgrind --tool=callgrind (repeatable, unlike times on a shared machine).
 #include <materials/CrystalPlasticity.h>
 #include <materials/J2Plasticity.h>
 #include <materials/Orientation.h>
@@ -9,6 +11,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 using namespace indentsim::materials;
@@ -19,11 +22,11 @@ namespace
                      const dealii::Tensor<2, 3> &F,
                      const std::vector<double>  &state,
                      const bool                  tangent,
+                     const unsigned int          n,
                      double                     &plastic_strain)
   {
     MaterialPointResponse response;
     std::vector<double>   state_new(state.size());
-    const unsigned int    n = 2000;
     const auto            start = std::chrono::steady_clock::now();
     for (unsigned int k = 0; k < n; ++k)
       model.update(F, state, response, state_new, tangent);
@@ -33,8 +36,14 @@ namespace
   }
 } // namespace
 
-int main()
+int main(int argc, char **argv)
 {
+  // Optional filter: model regime tangent [repetitions].
+  const auto selected = [&](const char *model, const char *regime, const char *tangent) {
+    return argc < 4 || (std::string(argv[1]) == model && std::string(argv[2]) == regime &&
+                        std::string(argv[3]) == tangent);
+  };
+  const unsigned int n_repetitions = argc >= 5 ? std::stoul(argv[4]) : 2000;
   const J2Plasticity      j2(69.0, 0.26, 0.305, 0.5);
   const CrystalPlasticity crystal(fcc_slip_systems(), CubicElasticity(), ExtendedVoceHardening(), 10.0);
   std::printf("model    regime   tangent  time_us  plastic_strain\n");
@@ -51,11 +60,15 @@ int main()
           F[0][2] = 0.3 * strain;
           for (const bool tangent : {false, true})
             {
+              const char *model_name = model == &j2 ? "j2" : "crystal";
+              const char *regime = strain < 1e-2 ? "elastic" : "plastic";
+              if (!selected(model_name, regime, tangent ? "yes" : "no"))
+                continue;
               double     plastic_strain = 0;
-              const auto time = time_update(*model, F, state, tangent, plastic_strain);
+              const auto time = time_update(*model, F, state, tangent, n_repetitions, plastic_strain);
               std::printf("%-8s %-8s %-8s %8.2f  %.3g\n",
-                          model == &j2 ? "j2" : "crystal",
-                          strain < 1e-2 ? "elastic" : "plastic",
+                          model_name,
+                          regime,
                           tangent ? "yes" : "no",
                           time,
                           plastic_strain);

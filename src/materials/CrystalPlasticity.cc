@@ -178,6 +178,101 @@ namespace indentsim::materials
       return result;
     }
 
+    // exp(X) exactly as exp_matrix computes it (same scaling, terms and squarings, so the same
+    // numbers) and its derivative dA/dX_ab. With the scaled Y = 2^-s X and the terms
+    // T_j = Y^j / j! of the series A_Y = sum_{k<=K} T_k, the derivative of the truncated series is
+    //   dA_Y/dY_ab = sum_{k=1..K} 1/k! sum_{j+m=k-1} Y^j e_a e_b^T Y^m
+    //             = sum_j T_j e_a e_b^T G_j,   G_j = sum_{m<=K-1-j} j! m!/(j+m+1)! T_m,
+    // then each squaring A <- A A carries dA <- dA A + A dA: the derivatives that forward AD
+    // through exp_matrix gives, without carrying 9 derivatives through every product.
+    void exp_matrix_and_derivative(const Matrix<double>          &X,
+                                   Matrix<double>                &A,
+                                   std::array<Matrix<double>, 9> &dA_dX)
+    {
+      double norm_squared = 0.0;
+      for (const auto &row : X)
+        for (const double a : row)
+          norm_squared += a * a;
+      double       norm = std::sqrt(norm_squared);
+      unsigned int n_squarings = 0;
+      while (norm > 0.25 && n_squarings < 60)
+        {
+          norm *= 0.5;
+          ++n_squarings;
+        }
+      const double   scale = std::ldexp(1.0, -static_cast<int>(n_squarings));
+      Matrix<double> Y = X;
+      for (auto &row : Y)
+        for (auto &a : row)
+          a *= scale;
+
+      constexpr unsigned int        max_terms = 30;
+      std::array<Matrix<double>, max_terms + 1> terms; // T_0 .. T_K
+      terms[0] = identity_matrix<double>();
+      A = identity_matrix<double>();
+      terms[1] = Y;
+      unsigned int n_terms = 1;
+      double       bound = norm;
+      for (unsigned int k = 1; k <= max_terms; ++k)
+        {
+          if (k > 1)
+            {
+              terms[k] = multiply(terms[k - 1], Y);
+              for (auto &row : terms[k])
+                for (auto &a : row)
+                  a /= double(k);
+              bound *= norm / k;
+            }
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
+              A[i][j] += terms[k][i][j];
+          n_terms = k;
+          if (bound * norm / (k + 1) < 1e-17 && k >= 2)
+            break;
+          if (norm == 0.0)
+            break;
+        }
+
+      // beta(j, m) = j! m! / (j + m + 1)!
+      std::array<Matrix<double>, max_terms> G; // G_j, j = 0 .. K-1
+      for (unsigned int j = 0; j < n_terms; ++j)
+        {
+          G[j] = Matrix<double>{};
+          double beta = 1.0 / (j + 1); // m = 0
+          for (unsigned int m = 0; j + m + 1 <= n_terms; ++m)
+            {
+              for (unsigned int b = 0; b < 3; ++b)
+                for (unsigned int l = 0; l < 3; ++l)
+                  G[j][b][l] += beta * terms[m][b][l];
+              beta *= double(m + 1) / double(j + m + 2);
+            }
+        }
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int b = 0; b < 3; ++b)
+          {
+            Matrix<double> &dA = dA_dX[3 * a + b];
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int l = 0; l < 3; ++l)
+                {
+                  double sum = 0.0;
+                  for (unsigned int j = 0; j < n_terms; ++j)
+                    sum += terms[j][i][a] * G[j][b][l];
+                  dA[i][l] = sum * scale;
+                }
+          }
+      for (unsigned int s = 0; s < n_squarings; ++s)
+        {
+          for (auto &dA : dA_dX)
+            {
+              const Matrix<double> left = multiply(dA, A), right = multiply(A, dA);
+              for (unsigned int i = 0; i < 3; ++i)
+                for (unsigned int j = 0; j < 3; ++j)
+                  dA[i][j] = left[i][j] + right[i][j];
+            }
+          A = multiply(A, A);
+        }
+    }
+
     // Everything that follows from the elastic strain, the critical shears and the multiplier:
     // second Piola-Kirchhoff stress in the lattice frame S_e = L^e : E_e (eq. 11), resolved
     // shears from the Mandel stress M_e = C_e S_e (eq. 10), Phi (eq. 14) and the slip
@@ -197,6 +292,7 @@ namespace indentsim::materials
       std::array<Number, n_slip>   ratio;       // tau^r / tau_c^r
       Number                       Phi;
       std::array<Number, n_slip>   delta_gamma; // Delta gamma^r
+      std::array<Number, n_slip>   flow_power;  // (tau^r / (Phi tau_c^r))^(2n-2)
     };
 
     template <int n_slip, typename Number>
@@ -249,23 +345,27 @@ namespace indentsim::materials
         {
           out.Phi = 0.0;
           for (int r = 0; r < n_slip; ++r)
-            out.delta_gamma[r] = 0.0;
+            out.delta_gamma[r] = out.flow_power[r] = 0.0;
           return;
         }
       const Number abs_largest = largest_value > 0 ? out.ratio[largest] : Number(-out.ratio[largest]);
-      Number       sum = 0.0;
+      // (rho_r / Phi)^(2n-2) = (rho_r / rho_max)^(2n-2) sum^(-(n-1)/n): one power per system
+      // serves Phi and the flow direction.
+      Number sum = 0.0;
       for (int r = 0; r < n_slip; ++r)
         {
           const Number relative = out.ratio[r] / abs_largest;
-          sum += real_power(Number(relative * relative), law.n);
+          const Number relative_squared = relative * relative;
+          out.flow_power[r] = real_power(relative_squared, law.n - 1.0);
+          sum += relative_squared * out.flow_power[r];
         }
       using std::pow;
       out.Phi = abs_largest * pow(sum, 1.0 / (2.0 * law.n));
+      const Number power_scale = pow(sum, (1.0 - law.n) / law.n);
       for (int r = 0; r < n_slip; ++r)
         {
-          const Number direction = out.ratio[r] / out.Phi;
-          out.delta_gamma[r] = lambda_scaled / tau_c_scaled[r] * direction *
-                               real_power(Number(direction * direction), law.n - 1.0);
+          out.flow_power[r] *= power_scale;
+          out.delta_gamma[r] = lambda_scaled / tau_c_scaled[r] * (out.ratio[r] / out.Phi) * out.flow_power[r];
         }
     }
 
@@ -302,92 +402,452 @@ namespace indentsim::materials
       return law.theta1 * (1.0 - e_n * exp(-x)) + (law.tau1 + law.theta1 * Gamma_n) * e_n * k * phi;
     }
 
-    // The local problem of one increment: unknowns E_e (6), Delta lambda / tau0, tau_c^r / tau0;
-    // parameters C_e^tr (6, unrolled). All residuals in strain units (stresses divided by C44).
+    // S = L^e : E (eq. 11), cubic St-Venant-Kirchhoff in the lattice frame.
+    Matrix<double> elastic_stress(const SlipLawData &law, const Matrix<double> &E)
+    {
+      Matrix<double> S;
+      const double   trace_E = E[0][0] + E[1][1] + E[2][2];
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          S[i][i] = (law.C11 - law.C12) * E[i][i] + law.C12 * trace_E;
+          for (unsigned int j = i + 1; j < 3; ++j)
+            {
+              S[i][j] = 2.0 * law.C44 * E[i][j];
+              S[j][i] = S[i][j];
+            }
+        }
+      return S;
+    }
+
+    // A trial state is certainly elastic when Phi <= n_slip^(1/2n) max_r |rho_r| (eq. 14) is
+    // below 1: most points of an indentation are, and the powers of Phi are then not needed.
+    // S_e as slip_response computes it.
     template <int n_slip>
-    struct CrystalResidual
+    bool certainly_elastic(const SlipLawData           &law,
+                           const std::array<double, 6> &E_e,
+                           const double                *tau_c_scaled,
+                           const double                 bound_factor,
+                           Matrix<double>              &S_e)
+    {
+      Matrix<double> E, C_e;
+      for (unsigned int k = 0; k < 6; ++k)
+        {
+          E[sym_i[k]][sym_j[k]] = E_e[k];
+          E[sym_j[k]][sym_i[k]] = E_e[k];
+        }
+      S_e = elastic_stress(law, E);
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          C_e[i][j] = 2.0 * E[i][j] + (i == j ? 1.0 : 0.0);
+      const Matrix<double> M_e = multiply(C_e, S_e);
+      // |rho_r| < 1 / bound_factor, with a margin far above the round-off of rho_r
+      const double limit = law.tau0 * (1.0 - 1e-10) / bound_factor;
+      for (int r = 0; r < n_slip; ++r)
+        {
+          double tau = 0.0;
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
+              tau += M_e[i][j] * law.schmid[r][i][j];
+          if (!(std::abs(tau) < limit * tau_c_scaled[r]))
+            return false;
+        }
+      return true;
+    }
+
+    // dP/dF of P = H S_e G^T (H = F G = F_e, G = F_p,n^-1), S_e = L^e : E_e,
+    // E_e = 1/2 (H^T H - I). With the unrolled n^iJ_ab = dP_iJ/dS_ab = H_ia G_Jb (+ H_ib G_Ja for
+    // a < b), dE_ab/dF_kL = w_ab n^kL_ab (w = 1 on the diagonal, 1/2 off it), and the cubic L^e,
+    //   dP_iJ/dF_kL = (C11 - C12) sum_a n^iJ_aa n^kL_aa + C12 s^iJ s^kL
+    //                 + C44 sum_(a<b) n^iJ_ab n^kL_ab + d_ik (G S_e G^T)_LJ,   s = sum_a n_aa,
+    // symmetric in (iJ, kL) (hyperelasticity), so only half of it is formed.
+    void elastic_tangent(const SlipLawData    &law,
+                         const Matrix<double> &H,
+                         const Matrix<double> &G,
+                         const Matrix<double> &S_e,
+                         Tensor<4, 3>         &dP_dF)
+    {
+      const Matrix<double>                  Q = multiply_transposed_second(multiply(G, S_e), G);
+      std::array<std::array<double, 7>, 9> n_unrolled; // n_aa (3), n_ab (3), s
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int J = 0; J < 3; ++J)
+          {
+            auto &v = n_unrolled[3 * i + J];
+            for (unsigned int m = 0; m < 6; ++m)
+              {
+                const unsigned int a = sym_i[m], b = sym_j[m];
+                v[m] = H[i][a] * G[J][b] + (m < 3 ? 0.0 : H[i][b] * G[J][a]);
+              }
+            v[6] = v[0] + v[1] + v[2];
+          }
+      const double normal = law.C11 - law.C12;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int J = 0; J < 3; ++J)
+          {
+            const auto &u = n_unrolled[3 * i + J];
+            for (unsigned int k = i; k < 3; ++k)
+              for (unsigned int L = (k == i ? J : 0); L < 3; ++L)
+                {
+                  const auto &v = n_unrolled[3 * k + L];
+                  double value = normal * (u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) +
+                                 law.C12 * u[6] * v[6] + law.C44 * (u[3] * v[3] + u[4] * v[4] + u[5] * v[5]);
+                  if (i == k)
+                    value += Q[L][J];
+                  dP_dF[i][J][k][L] = value;
+                  dP_dF[k][L][i][J] = value;
+                }
+          }
+    }
+
+    // The local problem of one increment: unknowns x = (E_e (6), Delta lambda / tau0,
+    // tau_c^r / tau0), residuals of the header in strain units (stresses divided by C44), and
+    // their Jacobian written out by the chain rule in plain doubles (dexp(X)/dX from the series,
+    // exp_matrix_and_derivative; the secant Hbar'(Delta Gamma) by one AD direction):
+    //   dR_E/dx = I_E - 1/2 dC_e/dDelta gamma . dDelta gamma/dx,
+    //   dC_e/dDelta gamma^r = -sum_ab dC_e/dX_ab (m_0^r (x) n_0^r)_ab, X = -Delta L_p,
+    //   dDelta gamma^r = g_r/tau_c^r dlambda - lambda g_r/tau_c^r^2 dtau_c^r
+    //                    + lambda w_r/(tau_c^r Phi) (drho_r - d_r dPhi),
+    // with rho_r = tau^r/tau_c^r, d_r = rho_r/Phi, g_r = d_r^(2n-1) = dPhi/drho_r,
+    // w_r = (2n-1) d_r^(2n-2) (all scaled by tau0 as the unknowns are).
+    template <int n_slip>
+    struct CrystalLocalProblem
     {
       static constexpr int n_unknowns = 7 + n_slip;
-      static constexpr int n_parameters = 6;
       static constexpr int lambda_index = 6;
       static constexpr int tau_c_index = 7;
+      using Unknowns = std::array<double, n_unknowns>;
+      using Jacobian = std::array<std::array<double, n_unknowns>, n_unknowns>;
 
       SlipLawData                  law;
       const ExtendedVoceHardening *hardening;
       double                       Gamma_n;
       const double                *tau_c_n; // n_slip [GPa]
+      Matrix<double>               C_e_trial;
 
-      template <typename Number>
-      void operator()(const std::array<Number, n_unknowns>   &x,
-                      const std::array<Number, n_parameters> &p,
-                      std::array<Number, n_unknowns>         &R) const
+      // slip and A are written by every evaluation, the rest by those with a Jacobian; the
+      // state update and the consistent tangent reuse them.
+      SlipResponse<n_slip, double>                       slip;
+      Matrix<double>                                     A;        // exp(-Delta L_p)
+      std::array<Matrix<double>, 9>                      dA_dX;    // dA/dX_ab, row-major ab
+      std::array<std::array<double, n_unknowns>, n_slip> ddelta_gamma_dx;
+      // dR_tc/dtau_c = diag(tau_c_diagonal) - low_rank_P low_rank_Q^T (see solve_linearized).
+      std::array<double, n_slip>                         tau_c_diagonal;
+      std::array<std::array<double, 2>, n_slip>          low_rank_P, low_rank_Q;
+
+      Matrix<double> minus_delta_L_p() const
       {
-        SlipResponse<n_slip, Number> slip;
-        slip_response<n_slip, Number>(law, &x[0], &x[tau_c_index], x[lambda_index], slip);
-
-        // A = exp(-Delta L_p), Delta L_p = sum_r Delta gamma^r m_0^r (x) n_0^r (eqs 12-13).
-        Matrix<Number> minus_delta_L_p;
+        Matrix<double> X;
         for (unsigned int i = 0; i < 3; ++i)
           for (unsigned int j = 0; j < 3; ++j)
             {
-              Number sum = 0.0;
+              double sum = 0.0;
               for (int r = 0; r < n_slip; ++r)
                 if (law.schmid[r][i][j] != 0.0)
                   sum -= slip.delta_gamma[r] * law.schmid[r][i][j];
-              minus_delta_L_p[i][j] = sum;
+              X[i][j] = sum;
             }
-        const Matrix<Number> A = exp_matrix(minus_delta_L_p);
-        Matrix<Number>       C_e_trial;
-        for (unsigned int k = 0; k < 6; ++k)
+        return X;
+      }
+
+      void operator()(const Unknowns &x, Unknowns &R, Jacobian *jacobian)
+      {
+        slip_response<n_slip, double>(law, &x[0], &x[tau_c_index], x[lambda_index], slip);
+
+        // A = exp(-Delta L_p) (eqs 12-13), with dA/dX when the Jacobian is wanted.
+        const Matrix<double> X = minus_delta_L_p();
+        Matrix<double>       C_e;
+        std::array<std::array<double, 9>, 6> dC_e_dX; // unrolled C_e by X_ab
+        if (jacobian)
           {
-            C_e_trial[sym_i[k]][sym_j[k]] = p[k];
-            C_e_trial[sym_j[k]][sym_i[k]] = p[k];
+            exp_matrix_and_derivative(X, A, dA_dX);
+            // dC_e/dX_ab = dA^T B + B^T dA, B = C_e^tr A
+            const Matrix<double> B = multiply(C_e_trial, A);
+            C_e = multiply_transposed_first(A, B);
+            for (unsigned int ab = 0; ab < 9; ++ab)
+              {
+                const Matrix<double> dA_T_B = multiply_transposed_first(dA_dX[ab], B);
+                for (unsigned int k = 0; k < 6; ++k)
+                  dC_e_dX[k][ab] = dA_T_B[sym_i[k]][sym_j[k]] + dA_T_B[sym_j[k]][sym_i[k]];
+              }
           }
-        const auto C_e = multiply_transposed_first(A, multiply(C_e_trial, A));
+        else
+          {
+            A = exp_matrix(X);
+            C_e = multiply_transposed_first(A, multiply(C_e_trial, A));
+          }
         for (unsigned int k = 0; k < 6; ++k)
           R[k] = x[k] - 0.5 * (C_e[sym_i[k]][sym_j[k]] - (k < 3 ? 1.0 : 0.0));
 
         R[lambda_index] = (slip.Phi - 1.0) * (law.tau0 / law.C44);
 
-        Number delta_Gamma = 0.0;
-        std::array<Number, n_slip> abs_delta_gamma;
+        // Secant hardening Hbar(Delta Gamma) and its derivative (one AD direction).
+        double                   delta_Gamma = 0.0;
+        std::array<double, n_slip> abs_delta_gamma;
         for (int r = 0; r < n_slip; ++r)
           {
-            abs_delta_gamma[r] =
-              scalar_value(slip.delta_gamma[r]) >= 0 ? slip.delta_gamma[r] : Number(-slip.delta_gamma[r]);
+            abs_delta_gamma[r] = slip.delta_gamma[r] >= 0 ? slip.delta_gamma[r] : -slip.delta_gamma[r];
             delta_Gamma += abs_delta_gamma[r];
           }
-        const Number H_bar = voce_secant_modulus(*hardening, Gamma_n, delta_Gamma);
+        using SecantDerivative = Sacado::Fad::SFad<double, 1>;
+        const SecantDerivative H_bar_ad =
+          voce_secant_modulus(*hardening, Gamma_n, SecantDerivative(1, 0, delta_Gamma));
+        const double H_bar = H_bar_ad.val();
         const double q = hardening->q;
         for (int r = 0; r < n_slip; ++r)
           R[tau_c_index + r] = (law.tau0 * x[tau_c_index + r] - tau_c_n[r] -
                                 H_bar * (q * delta_Gamma + (1.0 - q) * abs_delta_gamma[r])) /
                                law.C44;
+        if (!jacobian)
+          return;
+
+        Jacobian &J = *jacobian;
+        const double lambda = x[lambda_index];
+        const double *tau_c = &x[tau_c_index];
+
+        // drho_r/dE_k = (m_0^r (x) n_0^r) : dM_e/dE_k / (tau0 tau_c^r),
+        // dM_e = 2 dE S_e + C_e (L^e : dE) (eq. 10).
+        Matrix<double> C_e_of_E = identity_matrix<double>();
+        for (unsigned int k = 0; k < 6; ++k)
+          {
+            C_e_of_E[sym_i[k]][sym_j[k]] += 2.0 * x[k];
+            if (k >= 3)
+              C_e_of_E[sym_j[k]][sym_i[k]] += 2.0 * x[k];
+          }
+        std::array<Matrix<double>, 6> dM_dE;
+        for (unsigned int k = 0; k < 6; ++k)
+          {
+            Matrix<double> dE{};
+            dE[sym_i[k]][sym_j[k]] = 1.0;
+            dE[sym_j[k]][sym_i[k]] = 1.0;
+            const Matrix<double> dS = elastic_stress(law, dE);
+            const Matrix<double> first = multiply(dE, slip.S_e);
+            const Matrix<double> second = multiply(C_e_of_E, dS);
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                dM_dE[k][i][j] = 2.0 * first[i][j] + second[i][j];
+          }
+
+        std::array<double, n_unknowns> dPhi_dx{};
+        std::array<std::array<double, 6>, n_slip> drho_dE;
+        std::array<double, n_slip> g, w, d;
+        const bool yielding = slip.Phi != 0.0;
+        for (int r = 0; r < n_slip; ++r)
+          {
+            const double scale = 1.0 / (law.tau0 * tau_c[r]);
+            for (unsigned int k = 0; k < 6; ++k)
+              {
+                double sum = 0.0;
+                for (unsigned int i = 0; i < 3; ++i)
+                  for (unsigned int j = 0; j < 3; ++j)
+                    sum += dM_dE[k][i][j] * law.schmid[r][i][j];
+                drho_dE[r][k] = sum * scale;
+              }
+            if (yielding)
+              {
+                d[r] = slip.ratio[r] / slip.Phi;
+                g[r] = d[r] * slip.flow_power[r];
+                w[r] = (2.0 * law.n - 1.0) * slip.flow_power[r];
+              }
+            else
+              d[r] = g[r] = w[r] = 0.0;
+            for (unsigned int k = 0; k < 6; ++k)
+              dPhi_dx[k] += g[r] * drho_dE[r][k];
+            // drho_r/dtau_c^r = -rho_r / tau_c^r
+            dPhi_dx[tau_c_index + r] = -g[r] * slip.ratio[r] / tau_c[r];
+          }
+
+        // dDelta gamma^r/dtau_c^s = delta_rs D_r + u_r v_s (the critical shear of the system
+        // itself, and every tau_c through Phi).
+        std::array<double, n_slip> D, u, v;
+        for (int r = 0; r < n_slip; ++r)
+          {
+            auto        &row = ddelta_gamma_dx[r];
+            const double c = yielding ? lambda * w[r] / (tau_c[r] * slip.Phi) : 0.0;
+            for (unsigned int k = 0; k < 6; ++k)
+              row[k] = c * (drho_dE[r][k] - d[r] * dPhi_dx[k]);
+            row[lambda_index] = g[r] / tau_c[r];
+            D[r] = -c * slip.ratio[r] / tau_c[r] - lambda * g[r] / (tau_c[r] * tau_c[r]);
+            u[r] = c * d[r];
+            v[r] = -dPhi_dx[tau_c_index + r];
+          }
+        for (int r = 0; r < n_slip; ++r)
+          for (int s = 0; s < n_slip; ++s)
+            ddelta_gamma_dx[r][tau_c_index + s] = u[r] * v[s] + (r == s ? D[r] : 0.0);
+
+        // R_E rows: dR_E/dx = I_E - 1/2 dC_e/dDelta gamma dDelta gamma/dx.
+        std::array<std::array<double, n_slip>, 6> dC_e_ddelta_gamma;
+        for (unsigned int k = 0; k < 6; ++k)
+          for (int r = 0; r < n_slip; ++r)
+            {
+              double sum = 0.0;
+              for (unsigned int a = 0; a < 3; ++a)
+                for (unsigned int b = 0; b < 3; ++b)
+                  sum -= dC_e_dX[k][3 * a + b] * law.schmid[r][a][b];
+              dC_e_ddelta_gamma[k][r] = sum;
+            }
+        for (unsigned int k = 0; k < 6; ++k)
+          {
+            auto  &row = J[k];
+            double dC_e_u = 0.0;
+            for (int j = 0; j < tau_c_index; ++j)
+              row[j] = 0.0;
+            for (int r = 0; r < n_slip; ++r)
+              {
+                const double dC = -0.5 * dC_e_ddelta_gamma[k][r];
+                for (int j = 0; j < tau_c_index; ++j)
+                  row[j] += dC * ddelta_gamma_dx[r][j];
+                dC_e_u += dC * u[r];
+              }
+            row[k] += 1.0;
+            for (int s = 0; s < n_slip; ++s)
+              row[tau_c_index + s] = -0.5 * dC_e_ddelta_gamma[k][s] * D[s] + dC_e_u * v[s];
+          }
+
+        // R_f row.
+        for (int j = 0; j < n_unknowns; ++j)
+          J[lambda_index][j] = dPhi_dx[j] * (law.tau0 / law.C44);
+
+        // R_tc rows: d(Hbar (q Delta Gamma + (1 - q) |Delta gamma^r|)), with
+        // dR_tc^r/dtau_c^s = delta_rs (tau0 - b_r D_r)/C44 - (a_r e_s + b_r u_r v_s)/C44,
+        // e = dDelta Gamma/dtau_c: diagonal minus rank 2, kept for solve_linearized.
+        std::array<double, n_unknowns> ddelta_Gamma_dx{};
+        double                         sign_u = 0.0;
+        std::array<double, n_slip>     sign;
+        for (int r = 0; r < n_slip; ++r)
+          {
+            sign[r] = slip.delta_gamma[r] >= 0 ? 1.0 : -1.0;
+            for (int j = 0; j < tau_c_index; ++j)
+              ddelta_Gamma_dx[j] += sign[r] * ddelta_gamma_dx[r][j];
+            sign_u += sign[r] * u[r];
+          }
+        for (int s = 0; s < n_slip; ++s)
+          ddelta_Gamma_dx[tau_c_index + s] = sign[s] * D[s] + sign_u * v[s];
+        const double dH_bar = H_bar_ad.fastAccessDx(0);
+        for (int r = 0; r < n_slip; ++r)
+          {
+            const double a = dH_bar * (q * delta_Gamma + (1.0 - q) * abs_delta_gamma[r]) + H_bar * q;
+            const double b = H_bar * (1.0 - q) * sign[r];
+            tau_c_diagonal[r] = (law.tau0 - b * D[r]) / law.C44;
+            low_rank_P[r] = {{a / law.C44, b * u[r] / law.C44}};
+            low_rank_Q[r] = {{ddelta_Gamma_dx[tau_c_index + r], v[r]}};
+          }
+        for (int r = 0; r < n_slip; ++r)
+          {
+            auto &row = J[tau_c_index + r];
+            for (int j = 0; j < tau_c_index; ++j)
+              row[j] = -(low_rank_P[r][0] * law.C44 * ddelta_Gamma_dx[j] +
+                         (1.0 - q) * H_bar * sign[r] * ddelta_gamma_dx[r][j]) /
+                       law.C44;
+            for (int s = 0; s < n_slip; ++s)
+              row[tau_c_index + s] =
+                -(low_rank_P[r][0] * low_rank_Q[s][0] + low_rank_P[r][1] * low_rank_Q[s][1]) +
+                (r == s ? tau_c_diagonal[r] : 0.0);
+          }
+      }
+
+      // Solves J X = B, J from the last evaluation with a Jacobian, by eliminating the critical
+      // shears: with y = (E_e, Delta lambda), t = tau_c,
+      //   Z = J_tt^-1 [J_ty | B_t],  (J_yy - J_yt Z_y) X_y = B_y - J_yt Z_B,  X_t = Z_B - Z_y X_y,
+      // where J_tt = D - P Q^T (diagonal plus rank 2, the latent hardening and the shared Phi)
+      // is inverted by the Sherman-Morrison-Woodbury formula
+      //   J_tt^-1 = D^-1 + D^-1 P (I - Q^T D^-1 P)^-1 Q^T D^-1.
+      // That needs D and the 2x2 capacitance away from singular: for large increments with
+      // q > 1, D_r = (tau0 - b_r D_r)/C44 can approach zero while J itself is regular, so those
+      // cases fall back to the dense LU of J.
+      template <int n_rhs>
+      bool solve_linearized(const Jacobian &J, std::array<std::array<double, n_rhs>, n_unknowns> &B) const
+      {
+        constexpr int n_y = tau_c_index, n_columns = n_y + n_rhs;
+        const auto    dense = [&]() {
+          auto copy = J;
+          return internal::solve_dense<n_unknowns, n_rhs>(copy, B);
+        };
+        const double diagonal_floor = 0.1 * law.tau0 / law.C44;
+        for (int r = 0; r < n_slip; ++r)
+          if (!(std::abs(tau_c_diagonal[r]) >= diagonal_floor))
+            return dense();
+        std::array<double, 2>                 capacitance_rows[2] = {{{1.0, 0.0}}, {{0.0, 1.0}}};
+        for (int r = 0; r < n_slip; ++r)
+          for (unsigned int i = 0; i < 2; ++i)
+            for (unsigned int j = 0; j < 2; ++j)
+              capacitance_rows[i][j] -= low_rank_Q[r][i] * low_rank_P[r][j] / tau_c_diagonal[r];
+        const double determinant = capacitance_rows[0][0] * capacitance_rows[1][1] -
+                                   capacitance_rows[0][1] * capacitance_rows[1][0];
+        if (!(std::abs(determinant) >= 1e-3))
+          return dense();
+
+        // Z = J_tt^-1 [J_ty | B_t]
+        std::array<std::array<double, n_columns>, n_slip> Z;
+        std::array<double, n_columns>                     W0{}, W1{};
+        for (int r = 0; r < n_slip; ++r)
+          {
+            const double inverse_diagonal = 1.0 / tau_c_diagonal[r];
+            for (int c = 0; c < n_columns; ++c)
+              {
+                Z[r][c] = (c < n_y ? J[n_y + r][c] : B[n_y + r][c - n_y]) * inverse_diagonal;
+                W0[c] += low_rank_Q[r][0] * Z[r][c];
+                W1[c] += low_rank_Q[r][1] * Z[r][c];
+              }
+          }
+        for (int c = 0; c < n_columns; ++c)
+          {
+            const double k0 = (capacitance_rows[1][1] * W0[c] - capacitance_rows[0][1] * W1[c]) / determinant;
+            const double k1 = (capacitance_rows[0][0] * W1[c] - capacitance_rows[1][0] * W0[c]) / determinant;
+            W0[c] = k0;
+            W1[c] = k1;
+          }
+        for (int r = 0; r < n_slip; ++r)
+          {
+            const double p0 = low_rank_P[r][0] / tau_c_diagonal[r],
+                         p1 = low_rank_P[r][1] / tau_c_diagonal[r];
+            for (int c = 0; c < n_columns; ++c)
+              Z[r][c] += p0 * W0[c] + p1 * W1[c];
+          }
+
+        // Schur complement on y.
+        std::array<std::array<double, n_y>, n_y>   schur;
+        std::array<std::array<double, n_rhs>, n_y> X_y;
+        for (int i = 0; i < n_y; ++i)
+          {
+            for (int c = 0; c < n_y; ++c)
+              schur[i][c] = J[i][c];
+            for (int c = 0; c < n_rhs; ++c)
+              X_y[i][c] = B[i][c];
+            for (int r = 0; r < n_slip; ++r)
+              {
+                const double J_yt = J[i][n_y + r];
+                for (int c = 0; c < n_y; ++c)
+                  schur[i][c] -= J_yt * Z[r][c];
+                for (int c = 0; c < n_rhs; ++c)
+                  X_y[i][c] -= J_yt * Z[r][n_y + c];
+              }
+          }
+        if (!internal::solve_dense<n_y, n_rhs>(schur, X_y))
+          return dense();
+        for (int r = 0; r < n_slip; ++r)
+          for (int c = 0; c < n_rhs; ++c)
+            {
+              double sum = Z[r][n_y + c];
+              for (int j = 0; j < n_y; ++j)
+                sum -= Z[r][j] * X_y[j][c];
+              B[n_y + r][c] = sum;
+            }
+        for (int i = 0; i < n_y; ++i)
+          B[i] = X_y[i];
+        return true;
       }
     };
 
-    using ADNumberF = Sacado::Fad::SFad<double, 9>;
-
-    // P = F_e S_e F_p^-T and its AD derivatives, with F_e = F F_p^-1.
-    template <typename Number, typename NumberP>
-    void write_response(const Matrix<Number>  &F_e,
-                        const Matrix<Number>  &S_e,
-                        const Matrix<NumberP> &F_p_inverse,
-                        const Tensor<2, 3>    &F,
-                        MaterialPointResponse &response,
-                        const bool             with_tangent)
+    // P = F_e S_e F_p^-T and the Kirchhoff stress tau = P F^T.
+    void write_stress(const Matrix<double> &F_e,
+                      const Matrix<double> &S_e,
+                      const Matrix<double> &F_p_inverse,
+                      const Tensor<2, 3>   &F,
+                      MaterialPointResponse &response)
     {
       const auto P = multiply_transposed_second(multiply(F_e, S_e), F_p_inverse);
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int J = 0; J < 3; ++J)
-          {
-            response.P[i][J] = scalar_value(P[i][J]);
-            if constexpr (!std::is_same_v<Number, double>)
-              if (with_tangent)
-                for (unsigned int k = 0; k < 3; ++k)
-                  for (unsigned int L = 0; L < 3; ++L)
-                    response.dP_dF[i][J][k][L] = P[i][J].dx(3 * k + L);
-          }
+          response.P[i][J] = P[i][J];
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int j = 0; j < 3; ++j)
           {
@@ -441,6 +901,7 @@ namespace indentsim::materials
     require(n >= 1 && n <= 50, "yield_exponent_n must lie in [1, 50]");
     for (unsigned int r = 0; r < n_systems; ++r)
       schmid.push_back(to_matrix(systems.schmid_tensor(r)));
+    yield_bound_factor = std::pow(double(n_systems), 1.0 / (2.0 * n));
   }
 
   double CrystalPlasticity::reference_modulus() const
@@ -529,8 +990,9 @@ namespace indentsim::materials
                                               std::span<double>       state_new,
                                               const bool              compute_tangent) const
   {
-    using Residual = CrystalResidual<n_slip>;
-    using LocalProblem = ImplicitLocalProblem<Residual::n_unknowns, Residual::n_parameters>;
+    using LocalProblem = CrystalLocalProblem<n_slip>;
+    constexpr int n_unknowns = LocalProblem::n_unknowns;
+    using Newton = ImplicitLocalProblem<n_unknowns, 6>;
 
     double J_minus_one = 0.0;
     if (!admissible_deformation(F, J_minus_one))
@@ -546,55 +1008,42 @@ namespace indentsim::materials
     // Elastic trial: C_e^tr = F_p,n^-T C F_p,n^-1 and E_e^tr.
     const Matrix<double> F_e_trial = multiply(F_matrix, F_p_n_inverse);
     const auto           C_e_trial = multiply_transposed_first(F_e_trial, F_e_trial);
-    typename LocalProblem::Parameters parameters;
-    std::array<double, 6>             E_trial;
+    std::array<double, 6> E_trial;
     for (unsigned int k = 0; k < 6; ++k)
-      {
-        parameters[k] = C_e_trial[sym_i[k]][sym_j[k]];
-        E_trial[k] = 0.5 * (parameters[k] - (k < 3 ? 1.0 : 0.0));
-      }
+      E_trial[k] = 0.5 * (C_e_trial[sym_i[k]][sym_j[k]] - (k < 3 ? 1.0 : 0.0));
     std::array<double, n_slip> tau_c_n_scaled;
     for (int r = 0; r < n_slip; ++r)
       tau_c_n_scaled[r] = tau_c_n[r] / hardening.tau0;
 
+    // Elastic step, P = F_e S_e F_p,n^-T with F_e = F F_p,n^-1.
+    const auto elastic_step = [&](const Matrix<double> &S_e) {
+      write_stress(F_e_trial, S_e, F_p_n_inverse, F, response);
+      if (compute_tangent)
+        elastic_tangent(law, F_e_trial, F_p_n_inverse, S_e, response.dP_dF);
+      std::copy(state_old.begin(), state_old.end(), state_new.begin());
+      return UpdateStatus::success;
+    };
+
+    Matrix<double> S_e_trial;
+    if (certainly_elastic<n_slip>(law, E_trial, tau_c_n_scaled.data(), yield_bound_factor, S_e_trial))
+      return elastic_step(S_e_trial);
     SlipResponse<n_slip, double> trial;
     slip_response<n_slip, double>(law, E_trial.data(), tau_c_n_scaled.data(), 0.0, trial);
     if (!std::isfinite(trial.Phi))
       return UpdateStatus::invalid_deformation;
 
-    const auto elastic_step = [&]() {
-      if (compute_tangent)
-        {
-          Matrix<ADNumberF> F_ad;
-          for (unsigned int k = 0; k < 3; ++k)
-            for (unsigned int L = 0; L < 3; ++L)
-              F_ad[k][L] = ADNumberF(9, 3 * k + L, F[k][L]);
-          const auto F_e = multiply(F_ad, F_p_n_inverse);
-          const auto C_e = multiply_transposed_first(F_e, F_e);
-          std::array<ADNumberF, 6> E;
-          for (unsigned int k = 0; k < 6; ++k)
-            E[k] = 0.5 * (C_e[sym_i[k]][sym_j[k]] - (k < 3 ? 1.0 : 0.0));
-          // E's values from the trial (same numbers; C - I formed once).
-          std::array<ADNumberF, n_slip> unit;
-          for (auto &u : unit)
-            u = 1.0;
-          SlipResponse<n_slip, ADNumberF> slip;
-          slip_response<n_slip, ADNumberF>(law, E.data(), unit.data(), ADNumberF(0.0), slip);
-          write_response(F_e, slip.S_e, F_p_n_inverse, F, response, true);
-        }
-      else
-        write_response(F_e_trial, trial.S_e, F_p_n_inverse, F, response, false);
-      std::copy(state_old.begin(), state_old.end(), state_new.begin());
-      return UpdateStatus::success;
-    };
-
     // KKT (eq. 8): no plastic flow while Phi <= 1.
     if (trial.Phi <= 1.0)
-      return elastic_step();
+      return elastic_step(trial.S_e);
 
     // Plastic corrector: the local Newton from the elastic trial.
-    const Residual residual{law, &hardening, Gamma_n, tau_c_n};
-    typename LocalProblem::Unknowns unknowns;
+    LocalProblem problem; // the workspace members are written before they are read
+    problem.law = law;
+    problem.hardening = &hardening;
+    problem.Gamma_n = Gamma_n;
+    problem.tau_c_n = tau_c_n;
+    problem.C_e_trial = C_e_trial;
+    std::array<double, n_unknowns> unknowns;
     double strain_scale = hardening.tau0 / elasticity.C44;
     for (unsigned int k = 0; k < 6; ++k)
       strain_scale = std::max(strain_scale, std::abs(E_trial[k]));
@@ -607,27 +1056,30 @@ namespace indentsim::materials
 
     for (unsigned int k = 0; k < 6; ++k)
       unknowns[k] = E_trial[k];
-    unknowns[Residual::lambda_index] = 0.0;
+    unknowns[LocalProblem::lambda_index] = 0.0;
     for (int r = 0; r < n_slip; ++r)
-      unknowns[Residual::tau_c_index + r] = tau_c_n_scaled[r];
-    const LocalNewtonResult newton = LocalProblem::solve(residual, parameters, unknowns, settings);
-    const double lambda_scaled = unknowns[Residual::lambda_index];
+      unknowns[LocalProblem::tau_c_index + r] = tau_c_n_scaled[r];
+    typename LocalProblem::Jacobian jacobian;
+    const LocalNewtonResult newton = Newton::solve_with_jacobian(problem, unknowns, jacobian, settings);
+    const double lambda_scaled = unknowns[LocalProblem::lambda_index];
     if (!newton.converged || !(lambda_scaled >= 0.0))
       {
         // A trial state on the yield surface to round-off returns Delta lambda = 0 (+- round-off).
         if (newton.converged && std::abs(lambda_scaled) <= 1e-12 * strain_scale)
-          return elastic_step();
+          return elastic_step(trial.S_e);
         std::copy(state_old.begin(), state_old.end(), state_new.begin());
         return UpdateStatus::local_newton_failed;
       }
 
-    // Converged slip increments and the new plastic state.
-    SlipResponse<n_slip, double> slip;
-    slip_response<n_slip, double>(law,
-                                  &unknowns[0],
-                                  &unknowns[Residual::tau_c_index],
-                                  unknowns[Residual::lambda_index],
-                                  slip);
+    // The converged slip increments and A = exp(-Delta L_p) are those of the last evaluation;
+    // the tangent needs the Jacobian there too.
+    if (compute_tangent && !newton.jacobian_at_solution)
+      {
+        std::array<double, n_unknowns> residual;
+        problem(unknowns, residual, &jacobian);
+      }
+    const SlipResponse<n_slip, double> &slip = problem.slip;
+    const Matrix<double>               &A = problem.A;
     Matrix<double> delta_L_p{};
     double         delta_Gamma = 0.0;
     for (int r = 0; r < n_slip; ++r)
@@ -637,58 +1089,103 @@ namespace indentsim::materials
           for (unsigned int j = 0; j < 3; ++j)
             delta_L_p[i][j] += slip.delta_gamma[r] * schmid[r][i][j];
       }
-    Matrix<double> minus_delta_L_p = delta_L_p;
-    for (auto &row : minus_delta_L_p)
-      for (auto &a : row)
-        a = -a;
     const Matrix<double> F_p_new = multiply(exp_matrix(delta_L_p), to_matrix(plastic_deformation(state_old)));
-    const Matrix<double> A = exp_matrix(minus_delta_L_p);
     const Matrix<double> F_p_new_inverse = multiply(F_p_n_inverse, A);
+    const Matrix<double> F_e = multiply(F_e_trial, A);
+    write_stress(F_e, slip.S_e, F_p_new_inverse, F, response);
 
     if (compute_tangent)
       {
-        typename LocalProblem::Sensitivity dx_dp;
-        if (!LocalProblem::sensitivity(residual, parameters, unknowns, dx_dp))
+        // Implicit function theorem: dx/dC_e^tr = -(dR/dx)^-1 dR/dC_e^tr, where only R_E depends
+        // on C_e^tr: dR_E/dC_e^tr_m = -1/2 A^T U_m A (U_m the unit symmetric tensor of entry m).
+        std::array<std::array<double, 6>, n_unknowns> dx_dp{};
+        for (unsigned int m = 0; m < 6; ++m)
+          {
+            Matrix<double> U{};
+            U[sym_i[m]][sym_j[m]] = 1.0;
+            U[sym_j[m]][sym_i[m]] = 1.0;
+            const auto AUA = multiply_transposed_first(A, multiply(U, A));
+            for (unsigned int k = 0; k < 6; ++k)
+              dx_dp[k][m] = 0.5 * AUA[sym_i[k]][sym_j[k]];
+          }
+        if (!problem.template solve_linearized<6>(jacobian, dx_dp))
           {
             std::copy(state_old.begin(), state_old.end(), state_new.begin());
             return UpdateStatus::local_newton_failed;
           }
-        Matrix<ADNumberF> F_ad;
+        // dDelta gamma/dC_e^tr
+        std::array<std::array<double, 6>, n_slip> ddelta_gamma_dp;
+        for (int r = 0; r < n_slip; ++r)
+          for (unsigned int m = 0; m < 6; ++m)
+            {
+              double sum = 0.0;
+              for (int j = 0; j < n_unknowns; ++j)
+                sum += problem.ddelta_gamma_dx[r][j] * dx_dp[j][m];
+              ddelta_gamma_dp[r][m] = sum;
+            }
+
+        // P = F_e S_e F_p^-T with F_e = F G A, F_p^-1 = G A (G = F_p,n^-1):
+        //   dP = (dF G A + F G dA) S_e F_p^-T + F_e (L^e : dE_e) F_p^-T + F_e S_e (G dA)^T.
+        const Matrix<double> S_F_p_inverse_T = multiply_transposed_second(slip.S_e, F_p_new_inverse);
+        const Matrix<double> F_e_S = multiply(F_e, slip.S_e);
+        const Matrix<double> G_A = F_p_new_inverse;
         for (unsigned int k = 0; k < 3; ++k)
           for (unsigned int L = 0; L < 3; ++L)
-            F_ad[k][L] = ADNumberF(9, 3 * k + L, F[k][L]);
-        const auto F_e_trial_ad = multiply(F_ad, F_p_n_inverse);
-        const auto C_e_trial_ad = multiply_transposed_first(F_e_trial_ad, F_e_trial_ad);
-        std::array<ADNumberF, 6> parameters_ad;
-        for (unsigned int k = 0; k < 6; ++k)
-          parameters_ad[k] = C_e_trial_ad[sym_i[k]][sym_j[k]];
-        const auto x_ad = LocalProblem::linearized_solution(unknowns, dx_dp, parameters_ad);
-        SlipResponse<n_slip, ADNumberF> slip_ad;
-        slip_response<n_slip, ADNumberF>(
-          law, &x_ad[0], &x_ad[Residual::tau_c_index], x_ad[Residual::lambda_index], slip_ad);
-        Matrix<ADNumberF> minus_delta_L_p_ad;
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int j = 0; j < 3; ++j)
             {
-              ADNumberF sum = 0.0;
+              const auto &G_L = F_p_n_inverse[L]; // dF G has the single row k = G_L
+              std::array<double, 6> dp;
+              for (unsigned int m = 0; m < 6; ++m)
+                {
+                  const unsigned int i = sym_i[m], j = sym_j[m];
+                  dp[m] = G_L[i] * F_e_trial[k][j] + F_e_trial[k][i] * G_L[j];
+                }
+              Matrix<double> dE;
+              for (unsigned int m = 0; m < 6; ++m)
+                {
+                  double sum = 0.0;
+                  for (unsigned int a = 0; a < 6; ++a)
+                    sum += dx_dp[m][a] * dp[a];
+                  dE[sym_i[m]][sym_j[m]] = sum;
+                  dE[sym_j[m]][sym_i[m]] = sum;
+                }
+              // dX = -sum_r dDelta gamma^r m_0^r (x) n_0^r, dA = dA/dX : dX
+              Matrix<double> dX{};
               for (int r = 0; r < n_slip; ++r)
-                if (schmid[r][i][j] != 0.0)
-                  sum -= slip_ad.delta_gamma[r] * schmid[r][i][j];
-              minus_delta_L_p_ad[i][j] = sum;
+                {
+                  double d_gamma = 0.0;
+                  for (unsigned int a = 0; a < 6; ++a)
+                    d_gamma += ddelta_gamma_dp[r][a] * dp[a];
+                  for (unsigned int i = 0; i < 3; ++i)
+                    for (unsigned int j = 0; j < 3; ++j)
+                      if (schmid[r][i][j] != 0.0)
+                        dX[i][j] -= d_gamma * schmid[r][i][j];
+                }
+              Matrix<double> dA{};
+              for (unsigned int ab = 0; ab < 9; ++ab)
+                {
+                  const double dX_ab = dX[ab / 3][ab % 3];
+                  for (unsigned int i = 0; i < 3; ++i)
+                    for (unsigned int j = 0; j < 3; ++j)
+                      dA[i][j] += problem.dA_dX[ab][i][j] * dX_ab;
+                }
+              Matrix<double> dF_e = multiply(F_e_trial, dA);
+              for (unsigned int j = 0; j < 3; ++j)
+                for (unsigned int m = 0; m < 3; ++m)
+                  dF_e[k][j] += G_L[m] * A[m][j];
+              const auto dP_1 = multiply(dF_e, S_F_p_inverse_T);
+              const auto dP_2 = multiply_transposed_second(multiply(F_e, elastic_stress(law, dE)), G_A);
+              const auto dP_3 = multiply_transposed_second(F_e_S, multiply(F_p_n_inverse, dA));
+              for (unsigned int i = 0; i < 3; ++i)
+                for (unsigned int J = 0; J < 3; ++J)
+                  response.dP_dF[i][J][k][L] = dP_1[i][J] + dP_2[i][J] + dP_3[i][J];
             }
-        const auto A_ad = exp_matrix(minus_delta_L_p_ad);
-        const auto F_p_inverse_ad = multiply(F_p_n_inverse, A_ad);
-        const auto F_e_ad = multiply(F_e_trial_ad, A_ad);
-        write_response(F_e_ad, slip_ad.S_e, F_p_inverse_ad, F, response, true);
       }
-    else
-      write_response(multiply(F_e_trial, A), slip.S_e, F_p_new_inverse, F, response, false);
 
     for (unsigned int i = 0; i < 3; ++i)
       for (unsigned int j = 0; j < 3; ++j)
         state_new[3 * i + j] = F_p_new[i][j];
     for (int r = 0; r < n_slip; ++r)
-      state_new[9 + r] = hardening.tau0 * unknowns[Residual::tau_c_index + r];
+      state_new[9 + r] = hardening.tau0 * unknowns[LocalProblem::tau_c_index + r];
     state_new[9 + n_slip] = Gamma_n + delta_Gamma;
     for (const double v : state_new)
       if (!std::isfinite(v))

@@ -5,7 +5,9 @@
 // A model writes its residual once, as a generic callable over the scalar type, and gets the
 // local Newton, its Jacobian and the sensitivity needed for the consistent tangent from here
 // (the DAMASK / MFEM-hooke idea: one integrator, the physics only supplies the residual). The
-// J2 return mapping uses it; the crystal-plasticity integrator is meant to reuse it.
+// J2 return mapping uses it. Where AD of the whole residual is too slow (the crystal integrator,
+// 19 unknowns), solve_with_jacobian runs the same Newton with a model-supplied Jacobian and,
+// optionally, a model-supplied linear solve that exploits its structure.
 //
 // The residual is called as residual(x, p, R) with x, p and R std::arrays of one scalar type
 // Number (double or Sacado::Fad::SFad<double, n>), and must be a template in Number, e.g. a
@@ -39,6 +41,8 @@ namespace indentsim::materials
     bool         converged = false;
     unsigned int n_iterations = 0;
     double       residual_norm = 0.0; // max-norm at exit
+    // solve_with_jacobian only: the Jacobian it returns was evaluated at the returned x.
+    bool         jacobian_at_solution = false;
   };
 
   namespace internal
@@ -186,6 +190,92 @@ namespace indentsim::materials
               result.n_iterations += 1;
               result.converged = result.residual_norm <= settings.stagnation_tolerance;
               return result;
+            }
+        }
+      result.converged = result.residual_norm <= settings.tolerance;
+      return result;
+    }
+
+    // Newton's method as solve(), for a model that supplies its own Jacobian (hand-derived, or
+    // AD of a part only): evaluate(x, R, dR_dx) fills R, and dR/dx too unless dR_dx is null.
+    // A model that knows the structure of its Jacobian may provide
+    // evaluate.solve_linearized<n_rhs>(dR_dx, B) (B := dR_dx^-1 B, false if singular), used
+    // instead of the dense LU. Line-search trials ask for R alone, and dR/dx is evaluated once
+    // a trial is accepted and not yet converged, so no Jacobian is spent on a rejected step or
+    // on the converged point. On return, `jacobian` holds dR/dx at the last point where it was
+    // evaluated, which is x only when result.jacobian_at_solution; the last call of evaluate is
+    // always at the returned x.
+    template <typename Evaluate>
+    static LocalNewtonResult
+    solve_with_jacobian(Evaluate                                               &evaluate,
+                        Unknowns                                               &x,
+                        std::array<std::array<double, n_unknowns>, n_unknowns> &jacobian,
+                        const LocalNewtonSettings &settings = LocalNewtonSettings())
+    {
+      const auto euclidean_norm = [](const Unknowns &v) {
+        double sum = 0.0;
+        for (const double a : v)
+          sum += a * a;
+        return std::isfinite(sum) ? std::sqrt(sum) : std::numeric_limits<double>::infinity();
+      };
+
+      LocalNewtonResult result;
+      Unknowns          R;
+      evaluate(x, R, &jacobian);
+      result.jacobian_at_solution = true;
+      result.residual_norm = internal::max_norm<n_unknowns>(R);
+      for (; result.n_iterations < settings.max_iterations; ++result.n_iterations)
+        {
+          if (!std::isfinite(result.residual_norm))
+            return result;
+          if (result.residual_norm <= settings.tolerance)
+            {
+              result.converged = true;
+              return result;
+            }
+
+          std::array<std::array<double, 1>, n_unknowns> step;
+          for (int i = 0; i < n_unknowns; ++i)
+            step[i][0] = -R[i];
+          if constexpr (requires { evaluate.template solve_linearized<1>(jacobian, step); })
+            {
+              if (!evaluate.template solve_linearized<1>(jacobian, step))
+                return result;
+            }
+          else
+            {
+              auto factorised = jacobian;
+              if (!internal::solve_dense<n_unknowns, 1>(factorised, step))
+                return result;
+            }
+
+          const double   old_norm = euclidean_norm(R);
+          const Unknowns x_old = x;
+          double         alpha = 1.0;
+          bool           accepted = false;
+          result.jacobian_at_solution = false;
+          for (unsigned int ls = 0; ls <= settings.max_line_search_steps; ++ls, alpha *= 0.5)
+            {
+              for (int i = 0; i < n_unknowns; ++i)
+                x[i] = x_old[i] + alpha * step[i][0];
+              evaluate(x, R, nullptr);
+              if (euclidean_norm(R) <= (1.0 - 1e-4 * alpha) * old_norm)
+                {
+                  accepted = true;
+                  break;
+                }
+            }
+          result.residual_norm = internal::max_norm<n_unknowns>(R);
+          if (!accepted)
+            {
+              result.n_iterations += 1;
+              result.converged = result.residual_norm <= settings.stagnation_tolerance;
+              return result;
+            }
+          if (std::isfinite(result.residual_norm) && result.residual_norm > settings.tolerance)
+            {
+              evaluate(x, R, &jacobian);
+              result.jacobian_at_solution = true;
             }
         }
       result.converged = result.residual_norm <= settings.tolerance;

@@ -521,9 +521,11 @@ namespace
                        state_new);
         EXPECT_TRUE(status == UpdateStatus::success || status == UpdateStatus::local_newton_failed);
         if (status == UpdateStatus::success)
-          for (unsigned int i = 0; i < 3; ++i)
-            for (unsigned int j = 0; j < 3; ++j)
-              EXPECT_TRUE(std::isfinite(response.P[i][j]));
+          {
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                EXPECT_TRUE(std::isfinite(response.P[i][j]));
+          }
       }
     EXPECT_EQ(model.update(diagonal(-1, 1, 1), state, response, state_new),
               UpdateStatus::invalid_deformation);

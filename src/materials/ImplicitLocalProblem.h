@@ -122,78 +122,33 @@ namespace indentsim::materials
                                    Unknowns                  &x,
                                    const LocalNewtonSettings &settings = LocalNewtonSettings())
     {
+      // The residual in plain doubles, and with dR/dx by forward AD when asked for.
       using ADNumber = Sacado::Fad::SFad<double, n_unknowns>;
       std::array<ADNumber, n_parameters> p_ad;
       for (int a = 0; a < n_parameters; ++a)
         p_ad[a] = ADNumber(p[a]);
-
-      Unknowns                                               R;
-      std::array<std::array<double, n_unknowns>, n_unknowns> dR_dx;
-      const auto evaluate = [&](const Unknowns &x_trial) {
-        std::array<ADNumber, n_unknowns> x_ad, R_ad;
-        for (int i = 0; i < n_unknowns; ++i)
-          x_ad[i] = ADNumber(n_unknowns, i, x_trial[i]);
-        residual(x_ad, p_ad, R_ad);
-        for (int i = 0; i < n_unknowns; ++i)
-          {
-            R[i] = R_ad[i].val();
-            for (int j = 0; j < n_unknowns; ++j)
-              dR_dx[i][j] = R_ad[i].dx(j);
-          }
-      };
-      const auto euclidean_norm = [](const Unknowns &v) {
-        double sum = 0.0;
-        for (const double a : v)
-          sum += a * a;
-        return std::isfinite(sum) ? std::sqrt(sum) : std::numeric_limits<double>::infinity();
-      };
-
-      LocalNewtonResult result;
-      evaluate(x);
-      result.residual_norm = internal::max_norm<n_unknowns>(R);
-      for (; result.n_iterations < settings.max_iterations; ++result.n_iterations)
-        {
-          if (!std::isfinite(result.residual_norm))
-            return result;
-          if (result.residual_norm <= settings.tolerance)
+      const auto evaluate =
+        [&](const Unknowns &x_trial,
+            Unknowns       &R,
+            std::array<std::array<double, n_unknowns>, n_unknowns> *dR_dx) {
+          if (!dR_dx)
             {
-              result.converged = true;
-              return result;
+              residual(x_trial, p, R);
+              return;
             }
-
-          std::array<std::array<double, 1>, n_unknowns> step;
+          std::array<ADNumber, n_unknowns> x_ad, R_ad;
           for (int i = 0; i < n_unknowns; ++i)
-            step[i][0] = -R[i];
-          auto jacobian = dR_dx;
-          if (!internal::solve_dense<n_unknowns, 1>(jacobian, step))
-            return result;
-
-          const double   old_norm = euclidean_norm(R);
-          const Unknowns x_old = x;
-          double         alpha = 1.0;
-          bool           accepted = false;
-          for (unsigned int ls = 0; ls <= settings.max_line_search_steps; ++ls, alpha *= 0.5)
+            x_ad[i] = ADNumber(n_unknowns, i, x_trial[i]);
+          residual(x_ad, p_ad, R_ad);
+          for (int i = 0; i < n_unknowns; ++i)
             {
-              for (int i = 0; i < n_unknowns; ++i)
-                x[i] = x_old[i] + alpha * step[i][0];
-              evaluate(x);
-              if (euclidean_norm(R) <= (1.0 - 1e-4 * alpha) * old_norm)
-                {
-                  accepted = true;
-                  break;
-                }
+              R[i] = R_ad[i].val();
+              for (int j = 0; j < n_unknowns; ++j)
+                (*dR_dx)[i][j] = R_ad[i].dx(j);
             }
-          result.residual_norm = internal::max_norm<n_unknowns>(R);
-          // At round-off level no step can reduce the residual further: accept if converged.
-          if (!accepted)
-            {
-              result.n_iterations += 1;
-              result.converged = result.residual_norm <= settings.stagnation_tolerance;
-              return result;
-            }
-        }
-      result.converged = result.residual_norm <= settings.tolerance;
-      return result;
+        };
+      std::array<std::array<double, n_unknowns>, n_unknowns> jacobian;
+      return solve_with_jacobian(evaluate, x, jacobian, settings);
     }
 
     // Newton's method as solve(), for a model that supplies its own Jacobian (hand-derived, or

@@ -132,15 +132,19 @@ namespace indentsim::materials
     // by 2^-s until its Frobenius norm is <= 1/4, the series is summed until the next term is
     // below 1e-17 (one more term than the value needs, so that derivatives carried by AD
     // numbers are as accurate as the value), then squared s times.
+    // Scaling and squaring: Y = 2^-s X with |Y| <= 1/4 (Frobenius), so that the Taylor series
+    // of exp(Y) converges in a few terms; exp(X) = exp(Y)^(2^s).
     template <typename Number>
-    Matrix<Number> exp_matrix(const Matrix<Number> &X)
+    Matrix<Number> scaled_for_series(const Matrix<Number> &X,
+                                     double               &norm,
+                                     unsigned int         &n_squarings)
     {
       double norm_squared = 0.0;
       for (const auto &row : X)
         for (const auto &a : row)
           norm_squared += scalar_value(a) * scalar_value(a);
-      double       norm = std::sqrt(norm_squared);
-      unsigned int n_squarings = 0;
+      norm = std::sqrt(norm_squared);
+      n_squarings = 0;
       while (norm > 0.25 && n_squarings < 60)
         {
           norm *= 0.5;
@@ -151,6 +155,15 @@ namespace indentsim::materials
       for (auto &row : Y)
         for (auto &a : row)
           a *= scale;
+      return Y;
+    }
+
+    template <typename Number>
+    Matrix<Number> exp_matrix(const Matrix<Number> &X)
+    {
+      double         norm = 0;
+      unsigned int   n_squarings = 0;
+      const Matrix<Number> Y = scaled_for_series(X, norm, n_squarings);
 
       Matrix<Number> result = identity_matrix<Number>();
       Matrix<Number> term = Y;
@@ -189,22 +202,10 @@ namespace indentsim::materials
                                    Matrix<double>                &A,
                                    std::array<Matrix<double>, 9> &dA_dX)
     {
-      double norm_squared = 0.0;
-      for (const auto &row : X)
-        for (const double a : row)
-          norm_squared += a * a;
-      double       norm = std::sqrt(norm_squared);
-      unsigned int n_squarings = 0;
-      while (norm > 0.25 && n_squarings < 60)
-        {
-          norm *= 0.5;
-          ++n_squarings;
-        }
-      const double   scale = std::ldexp(1.0, -static_cast<int>(n_squarings));
-      Matrix<double> Y = X;
-      for (auto &row : Y)
-        for (auto &a : row)
-          a *= scale;
+      double               norm = 0;
+      unsigned int         n_squarings = 0;
+      const Matrix<double> Y = scaled_for_series(X, norm, n_squarings);
+      const double         scale = std::ldexp(1.0, -static_cast<int>(n_squarings)); // dY/dX
 
       constexpr unsigned int        max_terms = 30;
       std::array<Matrix<double>, max_terms + 1> terms; // T_0 .. T_K

@@ -134,15 +134,14 @@ namespace indentsim::materials
     // numbers are as accurate as the value), then squared s times.
     // Scaling and squaring: Y = 2^-s X with |Y| <= 1/4 (Frobenius), so that the Taylor series
     // of exp(Y) converges in a few terms; exp(X) = exp(Y)^(2^s).
-    template <typename Number>
-    Matrix<Number> scaled_for_series(const Matrix<Number> &X,
+    Matrix<double> scaled_for_series(const Matrix<double> &X,
                                      double               &norm,
                                      unsigned int         &n_squarings)
     {
       double norm_squared = 0.0;
       for (const auto &row : X)
-        for (const auto &a : row)
-          norm_squared += scalar_value(a) * scalar_value(a);
+        for (const double a : row)
+          norm_squared += a * a;
       norm = std::sqrt(norm_squared);
       n_squarings = 0;
       while (norm > 0.25 && n_squarings < 60)
@@ -151,41 +150,58 @@ namespace indentsim::materials
           ++n_squarings;
         }
       const double   scale = std::ldexp(1.0, -static_cast<int>(n_squarings));
-      Matrix<Number> Y = X;
+      Matrix<double> Y = X;
       for (auto &row : Y)
         for (auto &a : row)
           a *= scale;
       return Y;
     }
 
-    template <typename Number>
-    Matrix<Number> exp_matrix(const Matrix<Number> &X)
-    {
-      double         norm = 0;
-      unsigned int   n_squarings = 0;
-      const Matrix<Number> Y = scaled_for_series(X, norm, n_squarings);
+    constexpr unsigned int max_series_terms = 30;
+    using SeriesTerms = std::array<Matrix<double>, max_series_terms + 1>;
 
-      Matrix<Number> result = identity_matrix<Number>();
-      Matrix<Number> term = Y;
-      double         bound = norm; // norm^k / k!, bounds |term_k|
-      for (unsigned int k = 1; k <= 30; ++k)
+    // The Taylor terms T_k = Y^k / k! of exp(Y) (|Y| = norm <= 1/4) until the next term is below
+    // 1e-17, their sum in `sum`; returns the index K of the last term.
+    unsigned int exp_series_terms(const Matrix<double> &Y,
+                                  const double          norm,
+                                  SeriesTerms          &terms,
+                                  Matrix<double>       &sum)
+    {
+      terms[0] = identity_matrix<double>();
+      sum = identity_matrix<double>();
+      terms[1] = Y;
+      unsigned int n_terms = 1;
+      double       bound = norm; // norm^k / k!, bounds |T_k|
+      for (unsigned int k = 1; k <= max_series_terms; ++k)
         {
           if (k > 1)
             {
-              term = multiply(term, Y);
-              for (auto &row : term)
+              terms[k] = multiply(terms[k - 1], Y);
+              for (auto &row : terms[k])
                 for (auto &a : row)
                   a /= double(k);
               bound *= norm / k;
             }
           for (unsigned int i = 0; i < 3; ++i)
             for (unsigned int j = 0; j < 3; ++j)
-              result[i][j] += term[i][j];
+              sum[i][j] += terms[k][i][j];
+          n_terms = k;
           if (bound * norm / (k + 1) < 1e-17 && k >= 2)
             break;
           if (norm == 0.0)
             break;
         }
+      return n_terms;
+    }
+
+    Matrix<double> exp_matrix(const Matrix<double> &X)
+    {
+      double               norm = 0;
+      unsigned int         n_squarings = 0;
+      const Matrix<double> Y = scaled_for_series(X, norm, n_squarings);
+      SeriesTerms          terms;
+      Matrix<double>       result;
+      exp_series_terms(Y, norm, terms, result);
       for (unsigned int s = 0; s < n_squarings; ++s)
         result = multiply(result, result);
       return result;
@@ -207,35 +223,11 @@ namespace indentsim::materials
       const Matrix<double> Y = scaled_for_series(X, norm, n_squarings);
       const double         scale = std::ldexp(1.0, -static_cast<int>(n_squarings)); // dY/dX
 
-      constexpr unsigned int        max_terms = 30;
-      std::array<Matrix<double>, max_terms + 1> terms; // T_0 .. T_K
-      terms[0] = identity_matrix<double>();
-      A = identity_matrix<double>();
-      terms[1] = Y;
-      unsigned int n_terms = 1;
-      double       bound = norm;
-      for (unsigned int k = 1; k <= max_terms; ++k)
-        {
-          if (k > 1)
-            {
-              terms[k] = multiply(terms[k - 1], Y);
-              for (auto &row : terms[k])
-                for (auto &a : row)
-                  a /= double(k);
-              bound *= norm / k;
-            }
-          for (unsigned int i = 0; i < 3; ++i)
-            for (unsigned int j = 0; j < 3; ++j)
-              A[i][j] += terms[k][i][j];
-          n_terms = k;
-          if (bound * norm / (k + 1) < 1e-17 && k >= 2)
-            break;
-          if (norm == 0.0)
-            break;
-        }
+      SeriesTerms        terms; // T_0 .. T_K
+      const unsigned int n_terms = exp_series_terms(Y, norm, terms, A);
 
       // beta(j, m) = j! m! / (j + m + 1)!
-      std::array<Matrix<double>, max_terms> G; // G_j, j = 0 .. K-1
+      std::array<Matrix<double>, max_series_terms> G; // G_j, j = 0 .. K-1
       for (unsigned int j = 0; j < n_terms; ++j)
         {
           G[j] = Matrix<double>{};

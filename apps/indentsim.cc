@@ -3,6 +3,7 @@
 //
 // Thin application layer: parse the command line and the case file, build the problem, run it,
 // write the outputs. No physics here.
+#include "analysis/AnalyzeCommand.h"
 #include "io/CaseFile.h"
 #include "io/CommandLine.h"
 #include "solver/IndentationProblem.h"
@@ -55,10 +56,14 @@ namespace
     if (root)
       {
         plot_load_penetration(the_case.output.directory);
+        const bool oliver_pharr =
+          the_case.loading.unload &&
+          analysis::analyze_run_directory(the_case.output.directory, std::cout, std::cerr);
         std::cout << "Results in " << the_case.output.directory
                   << ": load_penetration.csv (um, mN), load_penetration.png, specimen.pvd "
                      "(ParaView), pileup.json, pileup_*.csv/png (heights in um), "
-                     "resolved_case.yaml, run.log\n";
+                  << (oliver_pharr ? "oliver_pharr.json/png, " : "")
+                  << "resolved_case.yaml, run.log\n";
       }
   }
 
@@ -159,6 +164,19 @@ int main(int argc, char **argv)
           case io::Command::version:
             if (root)
               std::cout << io::version_text();
+            return 0;
+          case io::Command::analyze:
+            // Serial post-processing: rank 0 only.
+            if (root)
+              try
+                {
+                  analysis::analyze_command(options.analyze, options.output_directory);
+                }
+              catch (const std::invalid_argument &e) // bad input: named in the message
+                {
+                  std::cerr << "indentsim: error: " << e.what() << '\n';
+                  return 1;
+                }
             return 0;
           default:
             return run(options, communicator);

@@ -95,6 +95,9 @@ namespace indentsim::io
     bool         unload = true;    // then back until the indenter force vanishes (force control:
                                    // down to 1 % of max_force)
     unsigned int unload_steps = 0; // 0: same increment size as loading (computed)
+    unsigned int unload_points = 20; // depth control: each unloading step lowers the force by
+                                     // about max force / unload_points (the Oliver-Pharr fit
+                                     // needs points on the upper unloading); 0: off
     unsigned int hold_steps = 0;   // increments holding the maximum (recorded; no creep in these
                                    // rate-independent models)
     unsigned int cycles = 1;       // load-hold-unload cycles to the same maximum

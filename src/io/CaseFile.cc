@@ -51,7 +51,8 @@ namespace indentsim::io
        {"size", "refined_region", "contact_elements", "symmetry", "f_bar", "elements_per_side",
         "grains", "seed"}},
       {"loading",
-       {"control", "max_depth", "max_force", "steps", "unload", "unload_steps", "hold_steps",
+       {"control", "max_depth", "max_force", "steps", "unload", "unload_steps", "unload_points",
+        "hold_steps",
         "cycles", "max_cutbacks", "max_strain"}},
       {"contact",
        {"friction_coefficient", "penalty", "penetration_tolerance", "max_augmentations"}},
@@ -294,6 +295,7 @@ namespace indentsim::io
           read_unsigned(map, "loading", "steps", loading.steps);
           read_bool(map, "loading", "unload", loading.unload);
           read_unsigned(map, "loading", "unload_steps", loading.unload_steps);
+          read_unsigned(map, "loading", "unload_points", loading.unload_points);
           read_unsigned(map, "loading", "hold_steps", loading.hold_steps);
           read_unsigned(map, "loading", "cycles", loading.cycles);
           read_unsigned(map, "loading", "max_cutbacks", loading.max_cutbacks);
@@ -746,6 +748,9 @@ namespace indentsim::io
         if (l.cycles > 1 && !l.unload)
           reject("loading.cycles", std::to_string(l.cycles),
                  "several load-unload cycles need loading.unload: true");
+        if (l.unload_points > 10000)
+          reject("loading.unload_points", std::to_string(l.unload_points),
+                 "must satisfy 0 <= unload_points <= 10000 (0: uniform depth steps)");
         if (l.max_cutbacks > max_allowed_cutbacks)
           reject("loading.max_cutbacks", std::to_string(l.max_cutbacks),
                  "must be <= " + std::to_string(max_allowed_cutbacks));
@@ -1195,6 +1200,8 @@ namespace indentsim::io
          "then back until the force vanishes (force control: to 1 % of max_force)");
     line("  unload_steps: " + std::to_string(c.loading.unload_steps),
          "0: same increment size as loading");
+    line("  unload_points: " + std::to_string(c.loading.unload_points),
+         "depth control: force drop per unloading step <= max force / unload_points; 0: off");
     line("  hold_steps: " + std::to_string(c.loading.hold_steps), "increments holding the maximum");
     line("  cycles: " + std::to_string(c.loading.cycles), "load-hold-unload cycles");
     line("  max_cutbacks: " + std::to_string(c.loading.max_cutbacks),

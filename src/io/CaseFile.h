@@ -70,12 +70,15 @@ namespace indentsim::io
     inline constexpr const char *pileup_max_depth_png = "pileup_max_depth.png";
     inline constexpr const char *pileup_unloaded_png  = "pileup_unloaded.png";
     inline constexpr const char *pileup_profiles_png  = "pileup_profiles.png";
+    // Oliver-Pharr analysis of the unloading (analysis/OliverPharr.h).
+    inline constexpr const char *oliver_pharr_json    = "oliver_pharr.json";
+    inline constexpr const char *oliver_pharr_png     = "oliver_pharr.png";
     // ParaView series: specimen.pvd, specimen_<step>.pvtu, specimen_<step>.<rank>.vtu.
     inline constexpr const char *paraview_basename = "specimen";
 
     // Exact names that mark an earlier run and are removed by --overwrite.
-    inline constexpr std::array<const char *, 15> known_names = {
-      {load_penetration_csv, load_penetration_png, stress_strain_csv, stress_strain_j2_csv,
+    inline constexpr std::array<const char *, 17> known_names = {
+      {oliver_pharr_json, oliver_pharr_png, load_penetration_csv, load_penetration_png, stress_strain_csv, stress_strain_j2_csv,
        stress_strain_png, resolved_case, log, run_summary, pileup_json, pileup_max_depth_csv,
        pileup_unloaded_csv, pileup_profiles_csv, pileup_max_depth_png, pileup_unloaded_png,
        pileup_profiles_png}};

@@ -2,6 +2,8 @@
 // reads the case and hands it on.
 #include <io/CommandLine.h>
 
+#include <cmath>
+
 #ifndef INDENTSIM_VERSION
 #  define INDENTSIM_VERSION "unknown"
 #endif
@@ -15,6 +17,112 @@ namespace indentsim::io
       throw CommandLineError(problem + "\n\n" + usage_text() +
                              "Run 'indentsim --help' for details.\n");
     }
+
+    double parse_number(const std::string &option, const std::string &text)
+    {
+      std::size_t used = 0;
+      double      value = 0;
+      try
+        {
+          value = std::stod(text, &used);
+        }
+      catch (const std::exception &)
+        {
+          used = 0;
+        }
+      if (used == 0 || used != text.size() || !std::isfinite(value))
+        bad_usage(option + " needs a number; got '" + text + "'");
+      return value;
+    }
+
+    CommandLineOptions parse_analyze(const std::vector<std::string> &arguments)
+    {
+      CommandLineOptions options;
+      options.command = Command::analyze;
+      AnalyzeOptions &a = options.analyze;
+      for (std::size_t i = 1; i < arguments.size(); ++i)
+        {
+          const std::string &argument = arguments[i];
+          const auto value = [&]() -> std::string {
+            if (i + 1 >= arguments.size() || arguments[i + 1].empty())
+              bad_usage(argument + " needs a value");
+            return arguments[++i];
+          };
+          if (argument == "--help" || argument == "-h")
+            {
+              options = CommandLineOptions{};
+              options.command = Command::help;
+              return options;
+            }
+          else if (argument == "--indenter")
+            a.indenter_shape = value();
+          else if (argument == "--indenter-case")
+            a.indenter_case = value();
+          else if (argument == "--epsilon")
+            {
+              a.epsilon = parse_number(argument, value());
+              if (!(*a.epsilon > 0 && *a.epsilon <= 1))
+                bad_usage("--epsilon must lie in (0, 1]");
+            }
+          else if (argument == "--beta")
+            {
+              a.beta = parse_number(argument, value());
+              if (!(a.beta > 0))
+                bad_usage("--beta must be positive");
+            }
+          else if (argument == "--fit-range")
+            {
+              const std::string text = value();
+              const auto        comma = text.find(',');
+              if (comma == std::string::npos)
+                bad_usage("--fit-range needs LO,HI (fractions of P_max); got '" + text + "'");
+              a.fit_lower = parse_number(argument, text.substr(0, comma));
+              a.fit_upper = parse_number(argument, text.substr(comma + 1));
+              if (!(a.fit_lower >= 0 && a.fit_lower < a.fit_upper && a.fit_upper <= 1))
+                bad_usage("--fit-range LO,HI needs 0 <= LO < HI <= 1; got '" + text + "'");
+            }
+          else if (argument == "--poisson")
+            {
+              a.sample_poisson_ratio = parse_number(argument, value());
+              if (!(*a.sample_poisson_ratio > -1 && *a.sample_poisson_ratio < 0.5))
+                bad_usage("--poisson must lie in (-1, 0.5)");
+            }
+          else if (argument == "--indenter-modulus")
+            {
+              a.indenter_modulus = parse_number(argument, value());
+              if (!(*a.indenter_modulus > 0))
+                bad_usage("--indenter-modulus must be positive [GPa]");
+            }
+          else if (argument == "--indenter-poisson")
+            {
+              a.indenter_poisson_ratio = parse_number(argument, value());
+              if (!(a.indenter_poisson_ratio > -1 && a.indenter_poisson_ratio < 0.5))
+                bad_usage("--indenter-poisson must lie in (-1, 0.5)");
+            }
+          else if (argument == "--output")
+            options.output_directory = value();
+          else if (argument == "--depth-column")
+            a.depth_column = value();
+          else if (argument == "--force-column")
+            a.force_column = value();
+          else if (argument == "--depth-unit")
+            a.depth_unit = value();
+          else if (argument == "--force-unit")
+            a.force_unit = value();
+          else if (!argument.empty() && argument[0] == '-')
+            bad_usage("unknown option '" + argument + "' for analyze");
+          else if (a.target.empty())
+            a.target = argument;
+          else
+            bad_usage("analyze takes one run directory or CSV ('" + a.target + "' and '" +
+                      argument + "' given)");
+        }
+      if (a.target.empty())
+        bad_usage("'analyze' needs a run directory or a CSV: indentsim analyze RUN_DIR_OR_CSV");
+      if (!a.indenter_shape.empty() && !a.indenter_case.empty())
+        bad_usage("give either --indenter or --indenter-case, not both");
+      return options;
+    }
   } // namespace
 
   std::string usage_text()
@@ -22,6 +130,11 @@ namespace indentsim::io
     return "Usage:\n"
            "  indentsim run CASE.yaml [--output DIR] [--overwrite] [--compare-j2]\n"
            "  indentsim check CASE.yaml [--output DIR] [--compare-j2]\n"
+           "  indentsim analyze RUN_DIR_OR_CSV [--indenter SHAPE | --indenter-case CASE.yaml]\n"
+           "                    [--epsilon E] [--beta B] [--fit-range LO,HI] [--poisson NU]\n"
+           "                    [--indenter-modulus E --indenter-poisson NU] [--output DIR]\n"
+           "                    [--depth-column NAME] [--force-column NAME]\n"
+           "                    [--depth-unit um|nm|mm] [--force-unit mN|uN|N]\n"
            "  indentsim --help\n"
            "  indentsim --version\n";
   }
@@ -41,6 +154,24 @@ namespace indentsim::io
            "                    stress_strain.csv, stress_strain.png instead of the first two.\n"
            "  check CASE.yaml   Validate the case file and print the resolved case; no\n"
            "                    computation, nothing is written.\n"
+           "  analyze RUN_DIR_OR_CSV\n"
+           "                    Oliver-Pharr analysis of the unloading curve: power-law fit on\n"
+           "                    the upper unloading (--fit-range, default 0.5,1 of P_max),\n"
+           "                    stiffness, contact depth, area from the indenter's area\n"
+           "                    function, hardness, reduced modulus, residual depth, plastic\n"
+           "                    work ratio; for a run directory also the simulation's true\n"
+           "                    contact area (the method's pile-up error). Writes\n"
+           "                    oliver_pharr.json and oliver_pharr.png into the run directory\n"
+           "                    or next to the CSV (or --output DIR), replacing only those two.\n"
+           "                    A run directory takes its indenter from resolved_case.yaml; a\n"
+           "                    CSV needs --indenter (vickers, berkovich, cone, rounded_cone,\n"
+           "                    sphere, flat_punch with their default keys) or --indenter-case\n"
+           "                    (the indenter block of a case file). CSV columns: the first\n"
+           "                    named depth*/h* and force*/load*/P*, units from the name\n"
+           "                    (depth_nm, force_uN, 'depth (um)') or --depth-unit/--force-unit.\n"
+           "                    epsilon defaults to 0.727 (cones), 1 (flat punch), 0.75 (others);\n"
+           "                    --poisson NU adds the sample's Young modulus; the indenter is\n"
+           "                    rigid unless --indenter-modulus (diamond: 1141, nu 0.07).\n"
            "\n"
            "Options:\n"
            "  --output DIR      Write results to DIR instead of output.directory of the case.\n"
@@ -83,14 +214,17 @@ namespace indentsim::io
         options.command = Command::version;
         return options;
       }
+    if (first == "analyze")
+      return parse_analyze(arguments);
     if (first == "run")
       options.command = Command::run;
     else if (first == "check")
       options.command = Command::check;
     else if (!first.empty() && first[0] == '-')
-      bad_usage("unknown option '" + first + "' (a command comes first: run or check)");
+      bad_usage("unknown option '" + first + "' (a command comes first: run, check or analyze)");
     else
-      bad_usage("unknown command '" + first + "'; allowed: run, check, --help, --version");
+      bad_usage("unknown command '" + first +
+                "'; allowed: run, check, analyze, --help, --version");
 
     for (std::size_t i = 1; i < arguments.size(); ++i)
       {

@@ -1,6 +1,7 @@
 // The command line of the indentsim executable:
 //   indentsim run CASE.yaml [--output DIR] [--overwrite] [--compare-j2]
 //   indentsim check CASE.yaml [--output DIR] [--compare-j2]
+//   indentsim analyze RUN_DIR_OR_CSV [--indenter SHAPE | --indenter-case CASE.yaml] [...]
 //   indentsim --help | --version
 #pragma once
 
@@ -22,8 +23,24 @@ namespace indentsim::io
   {
     run,     // validate the case, prepare the output directory, compute
     check,   // validate the case and print the resolved case; no computation
+    analyze, // Oliver-Pharr analysis of a run directory or a load-penetration CSV
     help,
     version
+  };
+
+  // indentsim analyze: what to analyse and how (analysis/OliverPharr.h).
+  struct AnalyzeOptions
+  {
+    std::string           target;        // a run directory or a CSV of depth and force
+    std::string           indenter_shape; // --indenter SHAPE: the shape with its default keys
+    std::string           indenter_case;  // --indenter-case FILE: the indenter block of a case
+    std::optional<double> epsilon;        // --epsilon: geometry factor (default by shape)
+    double                beta = 1.0;     // --beta
+    double                fit_lower = 0.5, fit_upper = 1.0; // --fit-range LO,HI (of P_max)
+    std::optional<double> sample_poisson_ratio;    // --poisson NU
+    std::optional<double> indenter_modulus;        // --indenter-modulus E [GPa]
+    double                indenter_poisson_ratio = 0.07; // --indenter-poisson NU
+    std::string depth_column, force_column, depth_unit, force_unit; // CSV columns and units
   };
 
   struct CommandLineOptions
@@ -33,6 +50,7 @@ namespace indentsim::io
     std::optional<std::string> output_directory;  // --output DIR: replaces output.directory
     bool                       overwrite = false; // --overwrite: replace an earlier run's results
     bool                       compare_j2 = false; // --compare-j2: sets the case's compare_j2
+    AnalyzeOptions             analyze;            // analyze
   };
 
   // `arguments` excludes the program name. Throws CommandLineError.

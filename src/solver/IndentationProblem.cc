@@ -868,9 +868,18 @@ namespace indentsim::solver
         const double nominal_increment = maximum / segment.steps;
         double       increment = nominal_increment;
         unsigned int easy_steps = 0, segment_steps = 0;
+        // Depth-controlled unloading is paced by force: each step lowers the force by about
+        // max_force / unload_points, with the depth increment from the last step's secant
+        // unloading stiffness (the first step takes a quarter of the nominal increment). The
+        // elastic recovery spans a small part of the depth, so uniform depth steps would leave
+        // the Oliver-Pharr fit a handful of points.
+        const bool force_paced = unloading && !force_control && loading.unload_points > 0;
+        double     paced_increment =
+          force_paced ? nominal_increment / 4 : std::numeric_limits<double>::infinity();
         while (true)
           {
             increment = std::min(increment, nominal_increment);
+            const double depth_before = depth, force_before = records_.back().force;
             StepRecord   record;
             // Force control from a state that carries no load has no contact stiffness to steer
             // the depth: first touch under depth control, 0.1 % of a contact element beyond the
@@ -909,7 +918,8 @@ namespace indentsim::solver
             while (true)
               {
                 if (!hold)
-                  new_value = unloading ? std::max(segment.target, value - increment) :
+                  new_value = unloading ?
+                                std::max(segment.target, value - std::min(increment, paced_increment)) :
                                           std::min(segment.target, value + increment);
                 const IncrementStatus status =
                   force_control ?
@@ -933,16 +943,16 @@ namespace indentsim::solver
                 ++cutbacks;
                 pcout_ << "    step " << step + 1 << " to " << new_value << unit << ": "
                        << to_string(status) << "; cutting the increment back to "
-                       << increment / 2 << unit << "\n";
+                       << std::min(increment, paced_increment) / 2 << unit << "\n";
                 if (log.is_open())
                   log << "# step " << step + 1 << ": " << to_string(status)
-                      << ", increment cut back to " << increment / 2 << unit << "\n";
+                      << ", increment cut back to " << std::min(increment, paced_increment) / 2 << unit << "\n";
                 if (cutbacks > loading.max_cutbacks || hold)
                   throw std::runtime_error(
                     std::string(hold ? "hold" : "increment") + " to " + std::to_string(new_value) +
                     unit + " failed after " + std::to_string(cutbacks - 1) + " cut-backs (" +
                     to_string(status) + ")");
-                increment /= 2;
+                increment = std::min(increment, paced_increment) / 2;
               }
             value = new_value;
             depth = record.depth;
@@ -1028,6 +1038,9 @@ namespace indentsim::solver
 
             if (segment_done)
               break;
+            if (force_paced && depth_before - depth > 0 && force_before - record.force > 0)
+              paced_increment = (max_force / loading.unload_points) * (depth_before - depth) /
+                                (force_before - record.force);
             // After a cut-back, grow the increment again only once three steps in a row have
             // converged easily, so that a difficult stretch is not retried at every step.
             easy_steps = (cutbacks == 0 && record.newton_iterations <= 6) ? easy_steps + 1 : 0;

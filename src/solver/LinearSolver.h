@@ -85,6 +85,8 @@ namespace indentsim::solver
 
   private:
     void destroy();
+    void use_gmres(); // right-preconditioned, true-residual test
+    void use_cg();    // true-residual test
 
     MPI_Comm                                        communicator_;
     Kind                                            kind_ = Kind::direct;

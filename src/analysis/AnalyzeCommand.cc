@@ -1,0 +1,186 @@
+#include "analysis/AnalyzeCommand.h"
+
+#include "analysis/OliverPharr.h"
+#include "indenter/IndenterFactory.h"
+#include "io/CaseFile.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+namespace indentsim::analysis
+{
+  namespace
+  {
+    namespace fs = std::filesystem;
+
+    std::string describe(const io::IndenterParameters &p)
+    {
+      std::ostringstream out;
+      out << p.shape;
+      if (p.shape == "rounded_cone")
+        out << " (a " << p.a << ", delta " << p.delta << " um)";
+      else if (p.shape == "sphere" || p.shape == "flat_punch")
+        out << " (radius " << p.radius << " um)";
+      else if (p.shape == "cone")
+        out << " (half-angle " << p.half_angle_deg << " deg, tip radius " << p.tip_radius
+            << " um)";
+      else if (p.shape == "vickers" || p.shape == "berkovich")
+        out << " (tip radius " << p.tip_radius << " um)";
+      else if (p.shape == "profile_table")
+        out << " (" << p.file << ")";
+      return out.str();
+    }
+
+    // Analyses and writes; returns the result for the summary.
+    OliverPharrResult analyze_and_write(const LoadCurve &curve, const io::IndenterParameters &indenter_parameters,
+                                        const OliverPharrSettings &settings,
+                                        const std::string &directory, const std::string &source)
+    {
+      const auto indenter = indenter::create_indenter(indenter_parameters);
+      const OliverPharrResult result =
+        analyze(curve, [&](const double h) { return indenter->projected_area(h); }, settings);
+      fs::create_directories(directory);
+      const std::string json_path = directory + "/" + io::output_files::oliver_pharr_json;
+      const std::string temporary = json_path + ".tmp";
+      {
+        std::ofstream out(temporary);
+        if (!out)
+          throw std::invalid_argument(json_path + ": cannot write into this directory");
+        out << to_json(result, settings, describe(indenter_parameters), source, &curve);
+        if (!out)
+          throw std::invalid_argument(json_path + ": writing failed");
+      }
+      fs::rename(temporary, json_path);
+      const std::string script = std::string(INDENTSIM_SOURCE_DIR) + "/python/plot_oliver_pharr.py";
+      const std::string command = "python3 \"" + script + "\" \"" + json_path + "\" -o \"" +
+                                  directory + "/" + io::output_files::oliver_pharr_png + "\"";
+      if (std::system(command.c_str()) != 0)
+        std::cerr << "warning: the plot " << directory
+                  << "/" << io::output_files::oliver_pharr_png << " could not be written (command: " << command << ")\n";
+      return result;
+    }
+
+    void print_summary(std::ostream &out, const OliverPharrResult &r, const std::string &path)
+    {
+      out << std::setprecision(5) << "Oliver-Pharr (" << path << "):\n"
+          << "  h_max " << r.max_depth << " um, P_max " << r.max_force << " mN, fit P = "
+          << r.fit.alpha << " (h - " << r.fit.h_f << ")^" << r.fit.m << " on " << r.fit.n_points
+          << " points (rms " << r.fit.rms_error << " mN)\n"
+          << "  S " << r.stiffness << " mN/um, h_c " << r.contact_depth << " um, A "
+          << r.contact_area << " um^2, H " << r.hardness << " GPa, E_r " << r.reduced_modulus
+          << " GPa";
+      if (r.sample_modulus)
+        out << ", E " << *r.sample_modulus << " GPa";
+      out << "\n  h_r/h_max " << r.residual_depth / r.max_depth << ", W_p/W_t "
+          << r.plastic_work_ratio;
+      if (r.true_contact_area)
+        out << "\n  true contact area " << *r.true_contact_area << " um^2 (H "
+            << *r.true_hardness << " GPa): Oliver-Pharr area error " << std::showpos
+            << *r.area_error_percent << std::noshowpos << " %";
+      out << '\n';
+    }
+  } // namespace
+
+  std::string analyze_command(const io::AnalyzeOptions         &options,
+                              const std::optional<std::string> &output_directory)
+  {
+    const fs::path target(options.target);
+    if (!fs::exists(target))
+      throw std::invalid_argument(options.target + ": no such run directory or CSV file");
+    const bool run_directory = fs::is_directory(target);
+    const std::string csv_path =
+      run_directory ? (target / io::output_files::load_penetration_csv).string() : target.string();
+    if (run_directory && !fs::exists(csv_path))
+      throw std::invalid_argument(options.target + ": a run directory needs " +
+                                  io::output_files::load_penetration_csv +
+                                  " (this one has none)");
+
+    io::IndenterParameters indenter_parameters;
+    if (!options.indenter_case.empty())
+      indenter_parameters = io::read_case_file(options.indenter_case).indenter;
+    else if (!options.indenter_shape.empty())
+      {
+        indenter_parameters.shape = options.indenter_shape;
+        io::Case probe;
+        probe.indenter = indenter_parameters;
+        try
+          {
+            io::validate_case(probe);
+          }
+        catch (const std::exception &e)
+          {
+            throw std::invalid_argument("--indenter " + options.indenter_shape + ": " + e.what());
+          }
+        if (options.indenter_shape == "profile_table")
+          throw std::invalid_argument("--indenter profile_table needs its table: use "
+                                      "--indenter-case with a case file naming indenter.file");
+      }
+    else if (run_directory)
+      {
+        const std::string resolved = (target / io::output_files::resolved_case).string();
+        if (!fs::exists(resolved))
+          throw std::invalid_argument(options.target + ": the run directory has no " +
+                                      io::output_files::resolved_case +
+                                      "; name the indenter with --indenter or --indenter-case");
+        indenter_parameters = io::read_case_file(resolved).indenter;
+      }
+    else
+      throw std::invalid_argument(options.target + ": a CSV needs the indenter: --indenter "
+                                  "vickers|berkovich|cone|rounded_cone|sphere|flat_punch or "
+                                  "--indenter-case CASE.yaml");
+
+    OliverPharrSettings settings;
+    settings.epsilon = options.epsilon ? *options.epsilon : default_epsilon(indenter_parameters.shape);
+    settings.beta = options.beta;
+    settings.fit_lower = options.fit_lower;
+    settings.fit_upper = options.fit_upper;
+    settings.sample_poisson_ratio = options.sample_poisson_ratio;
+    if (options.indenter_modulus)
+      settings.indenter_modulus = *options.indenter_modulus;
+    settings.indenter_poisson_ratio = options.indenter_poisson_ratio;
+
+    const LoadCurve curve = read_load_curve_csv(csv_path, options.depth_column,
+                                                options.force_column, options.depth_unit,
+                                                options.force_unit);
+    const std::string directory =
+      output_directory ? *output_directory :
+      run_directory    ? target.string() :
+                         (target.has_parent_path() ? target.parent_path().string() : ".");
+    const OliverPharrResult result =
+      analyze_and_write(curve, indenter_parameters, settings, directory, csv_path);
+    const std::string json_path = directory + "/" + io::output_files::oliver_pharr_json;
+    print_summary(std::cout, result, json_path);
+    return json_path;
+  }
+
+  bool analyze_run_directory(const std::string &run_directory, std::ostream &summary,
+                             std::ostream &warnings)
+  {
+    try
+      {
+        const io::Case the_case =
+          io::read_case_file(run_directory + "/" + io::output_files::resolved_case);
+        OliverPharrSettings settings;
+        settings.epsilon = default_epsilon(the_case.indenter.shape);
+        if (the_case.material.model != "crystal")
+          settings.sample_poisson_ratio = the_case.material.poisson_ratio;
+        const std::string csv_path = run_directory + "/" + io::output_files::load_penetration_csv;
+        const LoadCurve   curve = read_load_curve_csv(csv_path);
+        const OliverPharrResult result =
+          analyze_and_write(curve, the_case.indenter, settings, run_directory, csv_path);
+        print_summary(summary, result, run_directory + "/" + io::output_files::oliver_pharr_json);
+        return true;
+      }
+    catch (const std::exception &e)
+      {
+        warnings << "warning: no Oliver-Pharr analysis of " << run_directory << ": " << e.what()
+                 << '\n';
+        return false;
+      }
+  }
+} // namespace indentsim::analysis

@@ -1,0 +1,24 @@
+// `indentsim analyze` and the Oliver-Pharr step at the end of an indentation run: find the
+// curve and the indenter, run analysis/OliverPharr.h, write oliver_pharr.json and the plot
+// oliver_pharr.png. Units: um, mN, GPa (1 GPa*um^2 = 1 mN).
+#pragma once
+
+#include "io/CommandLine.h"
+
+#include <optional>
+#include <string>
+
+namespace indentsim::analysis
+{
+  // Analyses options.target (a run directory with load_penetration.csv and resolved_case.yaml,
+  // or a CSV file) and writes oliver_pharr.json/png into output_directory, or else into the run
+  // directory or the CSV's directory. Prints a summary. Returns the JSON's path. Throws
+  // std::invalid_argument (bad input, named) or io::CaseFileError (bad indenter case).
+  std::string analyze_command(const io::AnalyzeOptions         &options,
+                              const std::optional<std::string> &output_directory);
+
+  // The same for a finished indentation run in `run_directory` with the run's own settings;
+  // returns false (and says why on `warnings`) if the curve has no analysable unloading.
+  bool analyze_run_directory(const std::string &run_directory, std::ostream &summary,
+                             std::ostream &warnings);
+} // namespace indentsim::analysis

@@ -1,0 +1,593 @@
+// Oliver-Pharr analysis (see OliverPharr.h for the equations and units).
+#include "analysis/OliverPharr.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace indentsim::analysis
+{
+  namespace
+  {
+    constexpr double min_exponent = 1.0, max_exponent = 6.0;
+
+    double sum_of_squares(const std::vector<double> &depth, const std::vector<double> &force,
+                          const PowerLawFit &fit)
+    {
+      double sum = 0;
+      for (std::size_t i = 0; i < depth.size(); ++i)
+        {
+          const double r = force[i] - fit.force(depth[i]);
+          sum += r * r;
+        }
+      return sum;
+    }
+
+    // For fixed h_f and m the best alpha is linear least squares: sum P x^m / sum x^2m.
+    double best_alpha(const std::vector<double> &depth, const std::vector<double> &force,
+                      const double h_f, const double m)
+    {
+      double numerator = 0, denominator = 0;
+      for (std::size_t i = 0; i < depth.size(); ++i)
+        {
+          const double xm = std::pow(depth[i] - h_f, m);
+          numerator += force[i] * xm;
+          denominator += xm * xm;
+        }
+      return numerator / denominator;
+    }
+
+    // The start of the Levenberg-Marquardt polish: h_f on a logarithmic grid below the
+    // smallest fitted depth, m from the straight line log P = log alpha + m log(h - h_f).
+    PowerLawFit profile_start(const std::vector<double> &depth, const std::vector<double> &force)
+    {
+      const double h_min = *std::min_element(depth.begin(), depth.end());
+      const double h_max = *std::max_element(depth.begin(), depth.end());
+      const double span = std::max(h_max - h_min, 1e-12 * std::max(1.0, std::abs(h_max)));
+      PowerLawFit  best;
+      double       best_sum = std::numeric_limits<double>::infinity();
+      for (int k = 0; k <= 120; ++k)
+        {
+          const double h_f = h_min - span * std::pow(10.0, -4.0 + 6.0 * k / 120.0);
+          double       sx = 0, sy = 0, sxx = 0, sxy = 0;
+          const double n = static_cast<double>(depth.size());
+          for (std::size_t i = 0; i < depth.size(); ++i)
+            {
+              const double x = std::log(depth[i] - h_f), y = std::log(force[i]);
+              sx += x;
+              sy += y;
+              sxx += x * x;
+              sxy += x * y;
+            }
+          const double denominator = n * sxx - sx * sx;
+          double       m = denominator > 0 ? (n * sxy - sx * sy) / denominator : 1.5;
+          m = std::clamp(m, min_exponent, max_exponent);
+          PowerLawFit candidate;
+          candidate.h_f = h_f;
+          candidate.m = m;
+          candidate.alpha = best_alpha(depth, force, h_f, m);
+          const double sum = sum_of_squares(depth, force, candidate);
+          if (sum < best_sum)
+            {
+              best_sum = sum;
+              best = candidate;
+            }
+        }
+      return best;
+    }
+
+    // Solves the 3x3 system A d = b by Gaussian elimination with partial pivoting.
+    bool solve3(std::array<std::array<double, 3>, 3> a, std::array<double, 3> b,
+                std::array<double, 3> &d)
+    {
+      for (int c = 0; c < 3; ++c)
+        {
+          int pivot = c;
+          for (int r = c + 1; r < 3; ++r)
+            if (std::abs(a[r][c]) > std::abs(a[pivot][c]))
+              pivot = r;
+          if (a[pivot][c] == 0.0)
+            return false;
+          std::swap(a[c], a[pivot]);
+          std::swap(b[c], b[pivot]);
+          for (int r = c + 1; r < 3; ++r)
+            {
+              const double factor = a[r][c] / a[c][c];
+              for (int k = c; k < 3; ++k)
+                a[r][k] -= factor * a[c][k];
+              b[r] -= factor * b[c];
+            }
+        }
+      for (int r = 2; r >= 0; --r)
+        {
+          double value = b[r];
+          for (int k = r + 1; k < 3; ++k)
+            value -= a[r][k] * d[k];
+          d[r] = value / a[r][r];
+        }
+      return std::isfinite(d[0]) && std::isfinite(d[1]) && std::isfinite(d[2]);
+    }
+
+    std::string lower(std::string text)
+    {
+      std::transform(text.begin(), text.end(), text.begin(),
+                     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+      return text;
+    }
+
+    std::string trim(const std::string &text)
+    {
+      const auto begin = text.find_first_not_of(" \t\r\"");
+      if (begin == std::string::npos)
+        return "";
+      const auto end = text.find_last_not_of(" \t\r\"");
+      return text.substr(begin, end - begin + 1);
+    }
+
+    // The unit written into a column name: the text in () or [] or after the last '_'.
+    std::string unit_in_name(const std::string &name)
+    {
+      const std::string lowered = lower(name);
+      for (const auto &[open, close] : {std::pair{'(', ')'}, std::pair{'[', ']'}})
+        {
+          const auto begin = lowered.find(open), end = lowered.find(close);
+          if (begin != std::string::npos && end != std::string::npos && end > begin)
+            return trim(lowered.substr(begin + 1, end - begin - 1));
+        }
+      const auto underscore = lowered.rfind('_');
+      return underscore == std::string::npos ? "" : lowered.substr(underscore + 1);
+    }
+
+    // Factor to um or mN; 0 if the unit is not known.
+    double depth_factor(const std::string &unit)
+    {
+      const std::string u = lower(unit);
+      if (u == "um" || u == "\xc2\xb5m" || u == "\xce\xbcm" || u == "micron" || u == "microns")
+        return 1.0;
+      if (u == "nm")
+        return 1e-3;
+      if (u == "mm")
+        return 1e3;
+      return 0.0;
+    }
+
+    double force_factor(const std::string &unit)
+    {
+      const std::string u = lower(unit);
+      if (u == "mn")
+        return 1.0;
+      if (u == "un" || u == "\xc2\xb5n" || u == "\xce\xbcn")
+        return 1e-3;
+      if (u == "n")
+        return 1e3;
+      return 0.0;
+    }
+
+    bool starts_with_any(const std::string &name, std::initializer_list<const char *> prefixes)
+    {
+      const std::string lowered = lower(name);
+      for (const char *prefix : prefixes)
+        if (lowered.rfind(prefix, 0) == 0)
+          return true;
+      return false;
+    }
+
+    std::vector<std::string> split(const std::string &line, const char delimiter)
+    {
+      std::vector<std::string> fields;
+      if (delimiter == ' ')
+        {
+          std::istringstream in(line);
+          std::string        field;
+          while (in >> field)
+            fields.push_back(field);
+          return fields;
+        }
+      std::string field;
+      std::istringstream in(line);
+      while (std::getline(in, field, delimiter))
+        fields.push_back(trim(field));
+      return fields;
+    }
+
+    std::string format(const double value)
+    {
+      if (!std::isfinite(value))
+        return "null";
+      std::ostringstream out;
+      out << std::setprecision(10) << value;
+      return out.str();
+    }
+  } // namespace
+
+  double PowerLawFit::force(const double h) const
+  {
+    return h > h_f ? alpha * std::pow(h - h_f, m) : 0.0;
+  }
+
+  double PowerLawFit::stiffness(const double h) const
+  {
+    return h > h_f ? alpha * m * std::pow(h - h_f, m - 1.0) : 0.0;
+  }
+
+  PowerLawFit fit_power_law(const std::vector<double> &depth, const std::vector<double> &force)
+  {
+    if (depth.size() != force.size() || depth.size() < 3)
+      throw std::invalid_argument("the power-law fit P = alpha (h - h_f)^m needs at least 3 "
+                                  "points; it got " +
+                                  std::to_string(std::min(depth.size(), force.size())));
+    for (std::size_t i = 0; i < depth.size(); ++i)
+      if (!(force[i] > 0) || !std::isfinite(depth[i]))
+        throw std::invalid_argument("the power-law fit needs positive forces and finite depths; "
+                                    "point " + std::to_string(i) + " has depth " +
+                                    format(depth[i]) + " um, force " + format(force[i]) + " mN");
+    const double h_min = *std::min_element(depth.begin(), depth.end());
+    PowerLawFit  fit = profile_start(depth, force);
+    double       sum = sum_of_squares(depth, force, fit);
+    double       lambda = 1e-3;
+    for (int iteration = 0; iteration < 500 && sum > 0; ++iteration)
+      {
+        // Gauss-Newton normal equations in (alpha, h_f, m) with Marquardt's diagonal scaling.
+        std::array<std::array<double, 3>, 3> normal{};
+        std::array<double, 3>                gradient{};
+        for (std::size_t i = 0; i < depth.size(); ++i)
+          {
+            const double x = depth[i] - fit.h_f, xm = std::pow(x, fit.m);
+            const std::array<double, 3> row = {
+              {xm, -fit.alpha * fit.m * xm / x, fit.alpha * xm * std::log(x)}};
+            const double residual = force[i] - fit.alpha * xm;
+            for (int a = 0; a < 3; ++a)
+              {
+                gradient[a] += row[a] * residual;
+                for (int b = 0; b < 3; ++b)
+                  normal[a][b] += row[a] * row[b];
+              }
+          }
+        bool improved = false;
+        for (int attempt = 0; attempt < 30 && !improved; ++attempt)
+          {
+            auto damped = normal;
+            for (int a = 0; a < 3; ++a)
+              damped[a][a] += lambda * normal[a][a];
+            std::array<double, 3> step{};
+            if (!solve3(damped, gradient, step))
+              {
+                lambda *= 10;
+                continue;
+              }
+            PowerLawFit trial = fit;
+            trial.alpha += step[0];
+            trial.h_f += step[1];
+            trial.m += step[2];
+            const bool admissible = trial.alpha > 0 && trial.h_f < h_min &&
+                                    trial.m >= min_exponent && trial.m <= max_exponent;
+            const double trial_sum =
+              admissible ? sum_of_squares(depth, force, trial) :
+                           std::numeric_limits<double>::infinity();
+            if (trial_sum < sum)
+              {
+                const double relative_change = (sum - trial_sum) / sum;
+                fit = trial;
+                sum = trial_sum;
+                lambda = std::max(lambda / 10, 1e-12);
+                improved = true;
+                if (relative_change < 1e-14)
+                  iteration = 500; // converged
+              }
+            else
+              lambda *= 10;
+          }
+        if (!improved)
+          break;
+      }
+    fit.n_points = static_cast<unsigned int>(depth.size());
+    fit.rms_error = std::sqrt(sum / depth.size());
+    return fit;
+  }
+
+  double default_epsilon(const std::string &shape)
+  {
+    // Oliver and Pharr (1992, table 1): 0.72 conical, 0.75 paraboloid of revolution (and
+    // Berkovich/Vickers by their recommendation), 1 flat punch.
+    if (shape == "cone" || shape == "rounded_cone")
+      return 2.0 * (M_PI - 2.0) / M_PI;
+    if (shape == "flat_punch")
+      return 1.0;
+    return 0.75;
+  }
+
+  OliverPharrResult analyze(const LoadCurve                     &curve,
+                            const std::function<double(double)> &area_function,
+                            const OliverPharrSettings           &settings)
+  {
+    const std::string where = curve.source.empty() ? "the curve" : curve.source;
+    const std::size_t n = curve.depth.size();
+    if (curve.force.size() != n || n < 4)
+      throw std::invalid_argument(where + ": a load-penetration curve with unloading needs at "
+                                          "least 4 points (it has " + std::to_string(n) + ")");
+    if (!(settings.fit_lower >= 0 && settings.fit_lower < settings.fit_upper &&
+          settings.fit_upper <= 1.0))
+      throw std::invalid_argument("the fit range [" + format(settings.fit_lower) + ", " +
+                                  format(settings.fit_upper) +
+                                  "] of P_max is not allowed: 0 <= lower < upper <= 1");
+    OliverPharrResult result;
+    // The unloading starts at the last point of the largest depth (after a hold at it).
+    const double h_max = *std::max_element(curve.depth.begin(), curve.depth.end());
+    std::size_t  begin = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (curve.depth[i] >= h_max - 1e-12 * std::abs(h_max))
+        begin = i;
+    std::size_t end = begin + 1;
+    while (end < n && curve.depth[end] <= curve.depth[end - 1])
+      ++end;
+    result.unloading_begin = static_cast<unsigned int>(begin);
+    result.unloading_end = static_cast<unsigned int>(end);
+    result.max_depth = curve.depth[begin];
+    result.max_force = curve.force[begin];
+    if (!(result.max_force > 0))
+      throw std::invalid_argument(where + ": the force at the largest depth " +
+                                  format(h_max) + " um is " + format(result.max_force) +
+                                  " mN; an indentation curve needs a positive maximum force");
+
+    std::vector<double> fit_depth, fit_force;
+    for (std::size_t i = begin; i < end; ++i)
+      if (curve.force[i] >= settings.fit_lower * result.max_force &&
+          curve.force[i] <= settings.fit_upper * result.max_force && curve.force[i] > 0)
+        {
+          fit_depth.push_back(curve.depth[i]);
+          fit_force.push_back(curve.force[i]);
+        }
+    if (fit_depth.size() < 3)
+      throw std::invalid_argument(
+        where + ": the unloading branch (" + std::to_string(end - begin) + " points from " +
+        format(h_max) + " um) has " + std::to_string(fit_depth.size()) + " points between " +
+        format(100 * settings.fit_lower) + " % and " + format(100 * settings.fit_upper) +
+        " % of P_max = " + format(result.max_force) +
+        " mN; the power-law fit needs at least 3: record more unloading points "
+        "(loading.unload_points) or widen the fit range");
+    result.fit = fit_power_law(fit_depth, fit_force);
+    result.stiffness = result.fit.stiffness(result.max_depth);
+    if (!(result.stiffness > 0))
+      throw std::invalid_argument(where + ": the fitted unloading stiffness at h_max is " +
+                                  format(result.stiffness) + " mN/um; it must be positive");
+    result.contact_depth = result.max_depth - settings.epsilon * result.max_force / result.stiffness;
+    result.contact_area = result.contact_depth > 0 ? area_function(result.contact_depth) : 0.0;
+    if (!(result.contact_area > 0))
+      throw std::invalid_argument(where + ": the contact depth h_c = " +
+                                  format(result.contact_depth) +
+                                  " um gives no contact area; the unloading is too soft for "
+                                  "this indenter (check the units and --epsilon)");
+    result.hardness = result.max_force / result.contact_area;
+    result.reduced_modulus =
+      std::sqrt(M_PI) / (2.0 * settings.beta) * result.stiffness / std::sqrt(result.contact_area);
+    if (settings.sample_poisson_ratio)
+      {
+        const double nu = *settings.sample_poisson_ratio;
+        const double indenter_compliance =
+          std::isfinite(settings.indenter_modulus) ?
+            (1.0 - settings.indenter_poisson_ratio * settings.indenter_poisson_ratio) /
+              settings.indenter_modulus :
+            0.0;
+        result.sample_modulus = (1.0 - nu * nu) / (1.0 / result.reduced_modulus - indenter_compliance);
+      }
+
+    // Work: the loading path up to h_max (previous cycles included) and the unloading branch
+    // down to zero force; if the data stop above zero force, the fitted power law closes it.
+    for (std::size_t i = 0; i < begin; ++i)
+      result.total_work +=
+        0.5 * (curve.force[i] + curve.force[i + 1]) * (curve.depth[i + 1] - curve.depth[i]);
+    result.residual_depth_source = "fit h_f";
+    result.residual_depth = result.fit.h_f;
+    bool reached_zero = false;
+    for (std::size_t i = begin; i + 1 < end && !reached_zero; ++i)
+      {
+        const double f0 = curve.force[i], f1 = curve.force[i + 1];
+        const double h0 = curve.depth[i], h1 = curve.depth[i + 1];
+        if (f1 > 0)
+          result.elastic_work += 0.5 * (f0 + f1) * (h0 - h1);
+        else
+          {
+            // zero force between h1 and h0 (linear interpolation)
+            const double h_zero = f0 > 0 ? h0 - (h0 - h1) * f0 / (f0 - f1) : h0;
+            result.elastic_work += 0.5 * std::max(f0, 0.0) * (h0 - h_zero);
+            result.residual_depth = h_zero;
+            result.residual_depth_source = "curve";
+            reached_zero = true;
+          }
+      }
+    if (!reached_zero)
+      {
+        const double h_last = curve.depth[end - 1], f_last = curve.force[end - 1];
+        if (f_last <= 1e-3 * result.max_force)
+          {
+            result.residual_depth = h_last;
+            result.residual_depth_source = "curve";
+          }
+        else if (h_last > result.fit.h_f)
+          result.elastic_work += result.fit.alpha * std::pow(h_last - result.fit.h_f, result.fit.m + 1) /
+                                 (result.fit.m + 1);
+      }
+    result.plastic_work_ratio =
+      result.total_work > 0 ? (result.total_work - result.elastic_work) / result.total_work : 0.0;
+
+    if (!curve.contact_area.empty() && curve.contact_area[begin] > 0)
+      {
+        result.true_contact_area = curve.contact_area[begin];
+        result.true_hardness = result.max_force / *result.true_contact_area;
+        result.area_error_percent =
+          100.0 * (result.contact_area - *result.true_contact_area) / *result.true_contact_area;
+      }
+    return result;
+  }
+
+  std::string to_json(const OliverPharrResult &r, const OliverPharrSettings &settings,
+                      const std::string &indenter_description, const std::string &source,
+                      const LoadCurve *curve)
+  {
+    std::ostringstream out;
+    const auto optional = [](const std::optional<double> &value) {
+      return value ? format(*value) : std::string("null");
+    };
+    out << "{\n"
+        << "  \"units\": \"depths um, forces mN, areas um^2, stiffness mN/um, hardness and moduli "
+           "GPa, work mN*um (= nJ)\",\n"
+        << "  \"source\": \"" << source << "\",\n"
+        << "  \"indenter\": \"" << indenter_description << "\",\n"
+        << "  \"method\": \"Oliver-Pharr: P = alpha (h - h_f)^m on the unloading points with "
+        << format(100 * settings.fit_lower) << "-" << format(100 * settings.fit_upper)
+        << " % of P_max; S = dP/dh at h_max; h_c = h_max - epsilon P_max/S; "
+           "E_r = sqrt(pi)/(2 beta) S/sqrt(A(h_c))\",\n"
+        << "  \"epsilon\": " << format(settings.epsilon) << ",\n"
+        << "  \"beta\": " << format(settings.beta) << ",\n"
+        << "  \"fit_range_of_max_force\": [" << format(settings.fit_lower) << ", "
+        << format(settings.fit_upper) << "],\n"
+        << "  \"max_depth_um\": " << format(r.max_depth) << ",\n"
+        << "  \"max_force_mN\": " << format(r.max_force) << ",\n"
+        << "  \"fit\": {\"alpha_mN_per_um_m\": " << format(r.fit.alpha)
+        << ", \"h_f_um\": " << format(r.fit.h_f) << ", \"m\": " << format(r.fit.m)
+        << ", \"rms_error_mN\": " << format(r.fit.rms_error)
+        << ", \"n_points\": " << r.fit.n_points << "},\n"
+        << "  \"stiffness_mN_per_um\": " << format(r.stiffness) << ",\n"
+        << "  \"contact_depth_um\": " << format(r.contact_depth) << ",\n"
+        << "  \"contact_area_um2\": " << format(r.contact_area) << ",\n"
+        << "  \"hardness_GPa\": " << format(r.hardness) << ",\n"
+        << "  \"reduced_modulus_GPa\": " << format(r.reduced_modulus) << ",\n"
+        << "  \"sample_poisson_ratio\": " << optional(settings.sample_poisson_ratio) << ",\n"
+        << "  \"sample_modulus_GPa\": " << optional(r.sample_modulus) << ",\n"
+        << "  \"residual_depth_um\": " << format(r.residual_depth) << ",\n"
+        << "  \"residual_depth_source\": \"" << r.residual_depth_source << "\",\n"
+        << "  \"residual_depth_ratio\": " << format(r.residual_depth / r.max_depth) << ",\n"
+        << "  \"total_work_mN_um\": " << format(r.total_work) << ",\n"
+        << "  \"elastic_work_mN_um\": " << format(r.elastic_work) << ",\n"
+        << "  \"plastic_work_ratio\": " << format(r.plastic_work_ratio) << ",\n"
+        << "  \"true_contact_area_um2\": " << optional(r.true_contact_area) << ",\n"
+        << "  \"true_hardness_GPa\": " << optional(r.true_hardness) << ",\n"
+        << "  \"area_error_percent\": " << optional(r.area_error_percent) << ",\n"
+        << "  \"unloading_points\": [" << r.unloading_begin << ", " << r.unloading_end << "]";
+    if (curve != nullptr)
+      {
+        const auto array = [&out](const std::vector<double> &values) {
+          out << '[';
+          for (std::size_t i = 0; i < values.size(); ++i)
+            out << (i ? ", " : "") << format(values[i]);
+          out << ']';
+        };
+        out << ",\n  \"curve\": {\"depth_um\": ";
+        array(curve->depth);
+        out << ", \"force_mN\": ";
+        array(curve->force);
+        out << '}';
+      }
+    out << "\n}\n";
+    return out.str();
+  }
+
+  LoadCurve read_load_curve_csv(const std::string &path, const std::string &depth_column,
+                                const std::string &force_column, const std::string &depth_unit,
+                                const std::string &force_unit)
+  {
+    std::ifstream in(path);
+    if (!in)
+      throw std::invalid_argument(path + ": cannot open the file");
+    std::string line;
+    std::size_t line_number = 0;
+    std::vector<std::string> header;
+    char delimiter = ',';
+    while (std::getline(in, line))
+      {
+        ++line_number;
+        if (trim(line).empty() || trim(line)[0] == '#')
+          continue;
+        delimiter = line.find(',') != std::string::npos  ? ',' :
+                    line.find('\t') != std::string::npos ? '\t' :
+                    line.find(';') != std::string::npos  ? ';' :
+                                                           ' ';
+        header = split(line, delimiter);
+        break;
+      }
+    if (header.empty())
+      throw std::invalid_argument(path + ": no header line (column names) found");
+
+    const auto find_column = [&](const std::string &requested,
+                                 std::initializer_list<const char *> prefixes,
+                                 const char *what) -> std::size_t {
+      for (std::size_t c = 0; c < header.size(); ++c)
+        if (requested.empty() ? starts_with_any(header[c], prefixes) : header[c] == requested)
+          return c;
+      std::string names;
+      for (const auto &name : header)
+        names += (names.empty() ? "" : ", ") + name;
+      throw std::invalid_argument(
+        path + ": " +
+        (requested.empty() ? std::string("no ") + what + " column found by name" :
+                             std::string("no column named '") + requested + "'") +
+        "; the header has: " + names + " (name the column with --" + what + "-column)");
+    };
+    const std::size_t depth_index =
+      find_column(depth_column, {"depth", "h_", "h ", "h(", "h[", "displacement", "penetration"},
+                  "depth");
+    const std::size_t force_index =
+      find_column(force_column, {"force", "load", "p_", "p ", "p(", "p["}, "force");
+    std::size_t area_index = header.size();
+    for (std::size_t c = 0; c < header.size(); ++c)
+      if (header[c] == "contact_area_um2")
+        area_index = c;
+
+    const std::string d_unit = depth_unit.empty() ? unit_in_name(header[depth_index]) : depth_unit;
+    const std::string f_unit = force_unit.empty() ? unit_in_name(header[force_index]) : force_unit;
+    const double      d_factor = depth_factor(d_unit), f_factor = force_factor(f_unit);
+    if (d_factor == 0)
+      throw std::invalid_argument(path + ": column '" + header[depth_index] + "': depth unit '" +
+                                  d_unit + "' is not known; allowed: um, nm, mm (write it into "
+                                           "the column name, e.g. depth_nm, or pass --depth-unit)");
+    if (f_factor == 0)
+      throw std::invalid_argument(path + ": column '" + header[force_index] + "': force unit '" +
+                                  f_unit + "' is not known; allowed: mN, uN, N (write it into "
+                                           "the column name, e.g. force_mN, or pass --force-unit)");
+
+    LoadCurve curve;
+    curve.source = path;
+    const auto number = [&](const std::vector<std::string> &fields, const std::size_t index) {
+      const std::string &text = fields[index];
+      std::size_t        used = 0;
+      double             value = 0;
+      try
+        {
+          value = std::stod(text, &used);
+        }
+      catch (const std::exception &)
+        {
+          used = 0;
+        }
+      if (used == 0 || used != text.size() || !std::isfinite(value))
+        throw std::invalid_argument(path + ", line " + std::to_string(line_number) +
+                                    ", column '" + header[index] + "': '" + text +
+                                    "' is not a finite number");
+      return value;
+    };
+    while (std::getline(in, line))
+      {
+        ++line_number;
+        if (trim(line).empty() || trim(line)[0] == '#')
+          continue;
+        const std::vector<std::string> fields = split(line, delimiter);
+        const std::size_t needed = std::max(depth_index, force_index) + 1;
+        if (fields.size() < needed)
+          throw std::invalid_argument(path + ", line " + std::to_string(line_number) + ": " +
+                                      std::to_string(fields.size()) + " fields, the header has " +
+                                      std::to_string(header.size()));
+        curve.depth.push_back(d_factor * number(fields, depth_index));
+        curve.force.push_back(f_factor * number(fields, force_index));
+        if (area_index < header.size() && area_index < fields.size())
+          curve.contact_area.push_back(number(fields, area_index));
+      }
+    if (curve.contact_area.size() != curve.depth.size())
+      curve.contact_area.clear();
+    return curve;
+  }
+} // namespace indentsim::analysis

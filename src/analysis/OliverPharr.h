@@ -1,0 +1,120 @@
+// Oliver-Pharr analysis of an indentation load-penetration curve with unloading.
+// Units: depths um, forces mN, areas um^2, stiffness mN/um, hardness and moduli GPa
+// (1 GPa*um^2 = 1 mN), work mN*um (= nJ).
+//
+// W.C. Oliver, G.M. Pharr, J. Mater. Res. 7 (1992) 1564-1583, and their 2004 review
+// (J. Mater. Res. 19, 3-20):
+//   unloading fit      P = alpha (h - h_f)^m           (eq. 9 of 2004, on the upper unloading)
+//   stiffness          S = dP/dh at h_max = alpha m (h_max - h_f)^(m - 1)
+//   contact depth      h_c = h_max - epsilon P_max / S  (eq. 11; epsilon 0.72 cone, 0.75
+//                                                        paraboloid/Berkovich, 1 flat punch)
+//   area               A = A(h_c), the indenter's area function
+//   hardness           H = P_max / A
+//   reduced modulus    E_r = sqrt(pi) / (2 beta) S / sqrt(A)   (eq. 1 and 8)
+//   sample modulus     1/E_r = (1 - nu^2)/E + (1 - nu_i^2)/E_i (rigid indenter: E_i = inf)
+// and the work split W_t = int_loading P dh, W_e = int_unloading P dh, W_p = W_t - W_e.
+//
+// Independent of the finite-element code: it reads a curve (ours or a measured one), so the
+// same numbers come out for simulation and experiment.
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace indentsim::analysis
+{
+  // A load-penetration curve in the order it was recorded. contact_area (um^2, the simulation's
+  // true projected contact area) is empty for measured curves.
+  struct LoadCurve
+  {
+    std::vector<double> depth;        // [um]
+    std::vector<double> force;        // [mN]
+    std::vector<double> contact_area; // [um^2], empty or one per point
+    std::string         source;       // file it came from (for messages)
+  };
+
+  // P = alpha (h - h_f)^m on the fitted points.
+  struct PowerLawFit
+  {
+    double       alpha = 0;     // [mN/um^m]
+    double       h_f = 0;       // [um]
+    double       m = 0;         // [-]
+    double       rms_error = 0; // root-mean-square force residual [mN]
+    unsigned int n_points = 0;
+
+    double force(double h) const;     // [mN]
+    double stiffness(double h) const; // dP/dh [mN/um]
+  };
+
+  // Least-squares fit of P = alpha (h - h_f)^m, h_f < min(h), 1 <= m <= 6: a profile search
+  // over h_f (log-linear start) polished by Levenberg-Marquardt in the force residual. Throws
+  // std::invalid_argument with fewer than 3 points or non-positive forces.
+  PowerLawFit fit_power_law(const std::vector<double> &depth, const std::vector<double> &force);
+
+  struct OliverPharrSettings
+  {
+    double epsilon = 0.75;     // geometry factor of the contact depth [-]
+    double beta = 1.0;         // correction factor of the modulus formula [-]
+    double fit_lower = 0.5;    // fit the unloading points with P >= fit_lower P_max ...
+    double fit_upper = 1.0;    // ... and P <= fit_upper P_max [-]
+    std::optional<double> sample_poisson_ratio; // nu: gives the sample's Young modulus
+    double indenter_modulus = std::numeric_limits<double>::infinity(); // E_i [GPa]
+    double indenter_poisson_ratio = 0.07;                              // nu_i [-]
+  };
+
+  struct OliverPharrResult
+  {
+    double      max_depth = 0;           // h_max [um]
+    double      max_force = 0;           // P_max [mN] (the force at h_max)
+    PowerLawFit fit;
+    double      stiffness = 0;           // S [mN/um]
+    double      contact_depth = 0;       // h_c [um]
+    double      contact_area = 0;        // A(h_c) [um^2]
+    double      hardness = 0;            // H [GPa]
+    double      reduced_modulus = 0;     // E_r [GPa]
+    std::optional<double> sample_modulus; // E [GPa], if the sample's nu is given
+    double      residual_depth = 0;      // h_r [um]: zero force after unloading
+    std::string residual_depth_source;   // "curve" (reached zero force) or "fit h_f"
+    double      total_work = 0;          // W_t [mN um]
+    double      elastic_work = 0;        // W_e [mN um]
+    double      plastic_work_ratio = 0;  // W_p / W_t [-]
+    // From the simulation only: the true projected contact area at h_max, its hardness and the
+    // Oliver-Pharr area's error against it (> 0: the method overestimates the area).
+    std::optional<double> true_contact_area;  // [um^2]
+    std::optional<double> true_hardness;      // [GPa]
+    std::optional<double> area_error_percent; // 100 (A - A_true) / A_true
+    unsigned int unloading_begin = 0;        // index of h_max in the curve
+    unsigned int unloading_end = 0;          // one past the last unloading point
+  };
+
+  // The unloading branch is the one that starts at the largest depth (the last cycle's
+  // maximum; a hold ends there) and runs while the depth falls. `area_function` maps a contact
+  // depth [um] to a projected area [um^2]. Throws std::invalid_argument naming curve.source if
+  // the curve has no unloading branch with at least three points in the fit range.
+  OliverPharrResult analyze(const LoadCurve                              &curve,
+                            const std::function<double(double)>          &area_function,
+                            const OliverPharrSettings                    &settings);
+
+  // The JSON document written as oliver_pharr.json (keys with units in their names), with the
+  // curve itself (um, mN) for the plot if `curve` is given.
+  std::string to_json(const OliverPharrResult &result, const OliverPharrSettings &settings,
+                      const std::string &indenter_description, const std::string &source,
+                      const LoadCurve *curve = nullptr);
+
+  // Reads a CSV with a header line (lines starting with '#' are comments). The depth and force
+  // columns are the named ones, or else the first header starting with depth/h/displacement/
+  // penetration and force/load/p. Units come from the column name (depth_um, depth_nm,
+  // "depth (nm)", force_mN, load_uN, force_N, ...) unless given ("um", "nm", "mm"; "mN", "uN",
+  // "N"). A column contact_area_um2, if present, is read as well. Throws std::invalid_argument
+  // naming the file, the column and the value on bad input.
+  LoadCurve read_load_curve_csv(const std::string &path, const std::string &depth_column = "",
+                                const std::string &force_column = "",
+                                const std::string &depth_unit = "",
+                                const std::string &force_unit = "");
+
+  // The geometry factor epsilon of Oliver and Pharr for an indenter shape name.
+  double default_epsilon(const std::string &shape);
+} // namespace indentsim::analysis

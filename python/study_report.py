@@ -379,7 +379,9 @@ class Report:
                      ", ".join(f"`{c['name']}` ({c['status']})" for c in missing) + ".", "")
 
     def case_link(self, case):
-        return f"[{case['name']}]({case['directory']}/)"
+        if os.path.isdir(case["path"]):
+            return f"[{case['name']}]({case['directory']}/)"
+        return case["name"]
 
     # -- sections --------------------------------------------------------------------------
 
@@ -669,12 +671,14 @@ class Report:
         titles = {"mesh_j2": "J2", "mesh_crystal": "crystal"}
         for group in ("mesh_j2", "mesh_crystal"):
             cases = {c["contact_elements"]: c for c in self.data.finished(group)}
+            listed = {c["contact_elements"] for c in self.data.cases if group in c["groups"]}
             for elements, value in sorted(paper.get(group, {}).items(), key=lambda e: int(e[0])):
                 n = int(elements)
                 case = cases.get(n)
                 ours = self.data.force_at_max_depth(case) if case else None
+                absent = "not finished" if n in listed else "not in this study"
                 rows.append([f"{titles[group]}, {n}×{n}", format_number(value, 1),
-                             format_number(ours, 1) if ours is not None else "not run",
+                             format_number(ours, 1) if ours is not None else absent,
                              format_percent((ours - value) / value, 2) if ours else "–",
                              f"{case['max_depth_um']:g}" if case else "–"])
             result = getattr(self, "convergence", {}).get(group)

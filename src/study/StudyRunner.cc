@@ -573,7 +573,7 @@ namespace indentsim::study
   {
     const fs::path path = fs::path(study_.output_directory) / study_files::index;
     std::ofstream  out(path);
-    const auto    &r = study_.report;
+    const auto    &report = study_.report;
     out << "{\n"
         << "  \"units\": \"lengths um, forces mN, stresses GPa, times s\",\n"
         << "  \"study_file\": " << json_string(fs::absolute(study_.source_file).string())
@@ -584,17 +584,17 @@ namespace indentsim::study
         << "  \"mpi_ranks\": " << settings_.ranks << ",\n"
         << "  \"jobs\": " << settings_.jobs << ",\n"
         << "  \"report\": {\n"
-        << "    \"title\": " << json_string(r.title) << ",\n"
-        << "    \"depth_at_force_mN\": " << json_number_text(r.depth_at_force_mN) << ",\n"
+        << "    \"title\": " << json_string(report.title) << ",\n"
+        << "    \"depth_at_force_mN\": " << json_number_text(report.depth_at_force_mN) << ",\n"
         << "    \"tensile_strains\": [";
-    for (std::size_t i = 0; i < r.tensile_strains.size(); ++i)
-      out << (i == 0 ? "" : ", ") << json_number_text(r.tensile_strains[i]);
+    for (std::size_t i = 0; i < report.tensile_strains.size(); ++i)
+      out << (i == 0 ? "" : ", ") << json_number_text(report.tensile_strains[i]);
     out << "],\n"
-        << "    \"paper_max_depth_um\": " << json_number_text(r.paper_max_depth_um) << ",\n"
-        << "    \"paper_note\": " << json_string(r.paper_note) << ",\n"
+        << "    \"paper_max_depth_um\": " << json_number_text(report.paper_max_depth_um) << ",\n"
+        << "    \"paper_note\": " << json_string(report.paper_note) << ",\n"
         << "    \"paper_forces_mN\": {";
     bool first_group = true;
-    for (const auto &[group, forces] : r.paper_forces_mN)
+    for (const auto &[group, forces] : report.paper_forces_mN)
       {
         out << (first_group ? "" : ", ") << json_string(group) << ": {";
         bool first = true;
@@ -611,8 +611,8 @@ namespace indentsim::study
     for (std::size_t i = 0; i < study_.cases.size(); ++i)
       {
         const StudyCase &c = study_.cases[i];
-        const io::Case  &rc = c.resolved;
-        const auto      &o = rc.material.orientation;
+        const io::Case  &resolved = c.resolved;
+        const auto      &orientation = resolved.material.orientation;
         const auto triple = [](const std::array<double, 3> &v) {
           return "[" + json_number_text(v[0]) + ", " + json_number_text(v[1]) + ", " +
                  json_number_text(v[2]) + "]";
@@ -625,24 +625,24 @@ namespace indentsim::study
             << ", \"ran_now\": " << (ran_now[i] ? "true" : "false") << ",\n"
             << "     \"base_file\": " << json_string(c.base_file)
             << ", \"overrides\": " << json_string(c.overrides_text) << ",\n"
-            << "     \"test\": " << json_string(rc.test)
-            << ", \"model\": " << json_string(rc.material.model)
-            << ", \"compare_j2\": " << (rc.compare_j2 ? "true" : "false")
-            << ", \"contact_elements\": " << rc.specimen.contact_elements
-            << ", \"refined_region_um\": " << triple(rc.specimen.refined_region)
-            << ", \"symmetry\": " << json_string(rc.specimen.symmetry)
-            << ", \"indenter\": " << json_string(rc.indenter.shape)
-            << ", \"control\": " << json_string(rc.loading.control)
-            << ", \"max_depth_um\": " << json_number_text(rc.loading.max_depth) << ",\n"
+            << "     \"test\": " << json_string(resolved.test)
+            << ", \"model\": " << json_string(resolved.material.model)
+            << ", \"compare_j2\": " << (resolved.compare_j2 ? "true" : "false")
+            << ", \"contact_elements\": " << resolved.specimen.contact_elements
+            << ", \"refined_region_um\": " << triple(resolved.specimen.refined_region)
+            << ", \"symmetry\": " << json_string(resolved.specimen.symmetry)
+            << ", \"indenter\": " << json_string(resolved.indenter.shape)
+            << ", \"control\": " << json_string(resolved.loading.control)
+            << ", \"max_depth_um\": " << json_number_text(resolved.loading.max_depth) << ",\n"
             << "     \"orientation\": "
-            << (o.kind == "surface_normal" ?
-                  "{\"surface_normal\": " + triple(o.surface_normal) +
-                    ", \"reference_direction\": " + triple(o.reference_direction) + "}" :
-                  "{\"euler_bunge_deg\": " + triple(o.euler_bunge_deg) + "}")
-            << ", \"grains\": " << json_string(rc.specimen.grains)
-            << ", \"seed\": " << rc.specimen.seed
-            << ", \"elements_per_side\": " << rc.specimen.elements_per_side
-            << ", \"max_strain\": " << json_number_text(rc.loading.max_strain) << "}"
+            << (orientation.kind == "surface_normal" ?
+                  "{\"surface_normal\": " + triple(orientation.surface_normal) +
+                    ", \"reference_direction\": " + triple(orientation.reference_direction) + "}" :
+                  "{\"euler_bunge_deg\": " + triple(orientation.euler_bunge_deg) + "}")
+            << ", \"grains\": " << json_string(resolved.specimen.grains)
+            << ", \"seed\": " << resolved.specimen.seed
+            << ", \"elements_per_side\": " << resolved.specimen.elements_per_side
+            << ", \"max_strain\": " << json_number_text(resolved.loading.max_strain) << "}"
             << (i + 1 < study_.cases.size() ? "," : "") << "\n";
       }
     out << "  ]\n}\n";

@@ -8,6 +8,8 @@
 #include "io/CommandLine.h"
 #include "solver/IndentationProblem.h"
 #include "solver/TensileProblem.h"
+#include "study/StudyFile.h"
+#include "study/StudyRunner.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/multithread_info.h>
@@ -143,6 +145,22 @@ namespace
       run_indentation(the_case, communicator, root);
     return 0;
   }
+
+  // indentsim study: reads the study file and runs its cases as child processes.
+  int run_study(const io::CommandLineOptions &options, const MPI_Comm communicator)
+  {
+    if (dealii::Utilities::MPI::n_mpi_processes(communicator) > 1)
+      throw io::CaseFileError("indentsim study starts each case itself and runs in one "
+                              "process; use --ranks N to run every case on N MPI ranks");
+    const study::Study the_study =
+      study::read_study_file(options.study_file, options.output_directory.value_or(""));
+    study::StudyRunSettings settings;
+    settings.ranks = options.study_ranks;
+    settings.jobs = options.study_jobs;
+    settings.dry_run = options.study_dry_run;
+    settings.only = options.study_only;
+    return study::StudyRunner(the_study, settings, std::cout).run();
+  }
 } // namespace
 
 int main(int argc, char **argv)
@@ -178,6 +196,8 @@ int main(int argc, char **argv)
                   return 1;
                 }
             return 0;
+          case io::Command::study:
+            return run_study(options, communicator);
           default:
             return run(options, communicator);
         }

@@ -1234,6 +1234,11 @@ namespace indentsim::io
     return out.str();
   }
 
+  std::string closest_name(const std::string &word, const std::vector<std::string> &candidates)
+  {
+    return closest_match(word, candidates);
+  }
+
   void write_resolved_case(const Case &resolved_case, const std::string &path)
   {
     std::ofstream output(path);

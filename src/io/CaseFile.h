@@ -22,6 +22,7 @@
 #include <array>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace indentsim::io
 {
@@ -46,6 +47,10 @@ namespace indentsim::io
   // Every key (defaults filled in) as YAML with unit comments; read_case_file() of this text
   // gives back an identical Case (numbers are written in shortest round-trip form).
   std::string resolved_case_yaml(const Case &resolved_case);
+
+  // The candidate closest to `word` if it is plausibly a typo of it, else "" (the "did you
+  // mean" of the messages; also used by the study file reader).
+  std::string closest_name(const std::string &word, const std::vector<std::string> &candidates);
 
   // Writes resolved_case_yaml() to `path`. Throws CaseFileError if it cannot be written.
   void write_resolved_case(const Case &resolved_case, const std::string &path);

@@ -2,6 +2,7 @@
 // reads the case and hands it on.
 #include <io/CommandLine.h>
 
+#include <algorithm>
 #include <cmath>
 
 #ifndef INDENTSIM_VERSION
@@ -16,6 +17,123 @@ namespace indentsim::io
     {
       throw CommandLineError(problem + "\n\n" + usage_text() +
                              "Run 'indentsim --help' for details.\n");
+    }
+
+    // The value of `option` given as "--option VALUE" or "--option=VALUE" at arguments[i]
+    // (advances i past a separate value).
+    std::string option_value(const std::vector<std::string> &arguments,
+                             std::size_t                    &i,
+                             const std::string              &option,
+                             const std::string              &value_name)
+    {
+      const std::string &argument = arguments[i];
+      std::string        value;
+      if (argument == option)
+        {
+          if (i + 1 >= arguments.size() || arguments[i + 1].rfind("--", 0) == 0)
+            bad_usage(option + " needs a value: " + option + " " + value_name);
+          value = arguments[++i];
+        }
+      else
+        value = argument.substr(option.size() + 1);
+      if (value.empty())
+        bad_usage(option + " needs a non-empty value: " + option + " " + value_name);
+      return value;
+    }
+
+    // A whole number in [1, largest] for --ranks and --jobs.
+    unsigned int positive_count(const std::string &option,
+                                const std::string &value,
+                                const unsigned int largest)
+    {
+      unsigned long parsed = 0;
+      std::size_t   used = 0;
+      try
+        {
+          parsed = std::stoul(value, &used);
+        }
+      catch (const std::exception &)
+        {
+          used = 0;
+        }
+      if (used != value.size() || value[0] == '-' || value[0] == '+' || parsed < 1 ||
+          parsed > largest)
+        bad_usage(option + " " + value + ": expected a whole number from 1 to " +
+                  std::to_string(largest));
+      return static_cast<unsigned int>(parsed);
+    }
+
+    // indentsim study STUDY.yaml [--output DIR] [--ranks N] [--jobs J] [--dry-run]
+    //                            [--only NAME[,NAME...]]
+    CommandLineOptions parse_study_arguments(const std::vector<std::string> &arguments)
+    {
+      CommandLineOptions options;
+      options.command = Command::study;
+      bool ranks_given = false, jobs_given = false;
+      for (std::size_t i = 1; i < arguments.size(); ++i)
+        {
+          const std::string &argument = arguments[i];
+          const auto         is_option = [&argument](const std::string &option) {
+            return argument == option || argument.rfind(option + "=", 0) == 0;
+          };
+          if (argument == "--help" || argument == "-h")
+            {
+              options = CommandLineOptions{};
+              options.command = Command::help;
+              return options;
+            }
+          else if (is_option("--output"))
+            {
+              if (options.output_directory)
+                bad_usage("--output given twice");
+              options.output_directory = option_value(arguments, i, "--output", "DIR");
+            }
+          else if (is_option("--ranks"))
+            {
+              if (ranks_given)
+                bad_usage("--ranks given twice");
+              ranks_given = true;
+              options.study_ranks =
+                positive_count("--ranks", option_value(arguments, i, "--ranks", "N"), 1024);
+            }
+          else if (is_option("--jobs"))
+            {
+              if (jobs_given)
+                bad_usage("--jobs given twice");
+              jobs_given = true;
+              options.study_jobs =
+                positive_count("--jobs", option_value(arguments, i, "--jobs", "J"), 64);
+            }
+          else if (argument == "--dry-run")
+            options.study_dry_run = true;
+          else if (is_option("--only"))
+            {
+              const std::string list = option_value(arguments, i, "--only", "NAME[,NAME...]");
+              std::size_t       start = 0;
+              while (start <= list.size())
+                {
+                  const std::size_t comma = std::min(list.find(',', start), list.size());
+                  const std::string name = list.substr(start, comma - start);
+                  if (name.empty())
+                    bad_usage("--only " + list +
+                              ": an empty name; give case names or groups separated by commas");
+                  options.study_only.push_back(name);
+                  start = comma + 1;
+                }
+            }
+          else if (!argument.empty() && argument[0] == '-')
+            bad_usage("unknown option '" + argument +
+                      "' for 'study'; allowed: --output DIR, --ranks N, --jobs J, --dry-run, "
+                      "--only NAME[,NAME...]");
+          else if (options.study_file.empty())
+            options.study_file = argument;
+          else
+            bad_usage("more than one study file given ('" + options.study_file + "' and '" +
+                      argument + "')");
+        }
+      if (options.study_file.empty())
+        bad_usage("'study' needs a study file: indentsim study STUDY.yaml");
+      return options;
     }
 
     double parse_number(const std::string &option, const std::string &text)
@@ -135,6 +253,8 @@ namespace indentsim::io
            "                    [--indenter-modulus E --indenter-poisson NU] [--output DIR]\n"
            "                    [--depth-column NAME] [--force-column NAME]\n"
            "                    [--depth-unit um|nm|mm] [--force-unit mN|uN|N]\n"
+           "  indentsim study STUDY.yaml [--output DIR] [--ranks N] [--jobs J] [--dry-run]\n"
+           "                  [--only NAME[,NAME...]]\n"
            "  indentsim --help\n"
            "  indentsim --version\n";
   }
@@ -172,6 +292,12 @@ namespace indentsim::io
            "                    epsilon defaults to 0.727 (cones), 1 (flat punch), 0.75 (others);\n"
            "                    --poisson NU adds the sample's Young modulus; the indenter is\n"
            "                    rigid unless --indenter-modulus (diamond: 1141, nu 0.07).\n"
+           "  study STUDY.yaml  Run the cases of a study file (a base case file plus overrides\n"
+           "                    per case) and write report.md (+ report.html, PNG figures) into\n"
+           "                    the study's output directory. Each case runs as its own process\n"
+           "                    in cases/<name>-<key>/, <key> a hash of its resolved case; a\n"
+           "                    rerun skips finished cases and restarts unfinished ones.\n"
+           "                    Exit code 3 if a case failed (the others still run).\n"
            "\n"
            "Options:\n"
            "  --output DIR      Write results to DIR instead of output.directory of the case.\n"
@@ -183,6 +309,11 @@ namespace indentsim::io
            "                    poisson_ratio, yield_stress, hardening_modulus) on the same\n"
            "                    mesh and loading; writes stress_strain_j2.csv (sets the case\n"
            "                    key compare_j2: true).\n"
+           "  study options:    --output DIR replaces the study's output directory;\n"
+           "                    --ranks N runs each case under mpirun -np N (default 1);\n"
+           "                    --jobs J runs up to J cases side by side (default 1);\n"
+           "                    --dry-run validates and lists the cases (finished or to run);\n"
+           "                    --only NAME[,NAME...] runs only these cases or groups.\n"
            "  -h, --help        Show this help.\n"
            "  --version         Show the version.\n"
            "\n"
@@ -216,15 +347,17 @@ namespace indentsim::io
       }
     if (first == "analyze")
       return parse_analyze(arguments);
+    if (first == "study")
+      return parse_study_arguments(arguments);
     if (first == "run")
       options.command = Command::run;
     else if (first == "check")
       options.command = Command::check;
     else if (!first.empty() && first[0] == '-')
-      bad_usage("unknown option '" + first + "' (a command comes first: run, check or analyze)");
+      bad_usage("unknown option '" + first + "' (a command comes first: run, check, analyze or study)");
     else
       bad_usage("unknown command '" + first +
-                "'; allowed: run, check, analyze, --help, --version");
+                "'; allowed: run, check, analyze, study, --help, --version");
 
     for (std::size_t i = 1; i < arguments.size(); ++i)
       {

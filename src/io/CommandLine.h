@@ -2,6 +2,7 @@
 //   indentsim run CASE.yaml [--output DIR] [--overwrite] [--compare-j2]
 //   indentsim check CASE.yaml [--output DIR] [--compare-j2]
 //   indentsim analyze RUN_DIR_OR_CSV [--indenter SHAPE | --indenter-case CASE.yaml] [...]
+//   indentsim study STUDY.yaml [--output DIR] [--ranks N] [--jobs J] [--dry-run] [--only NAMES]
 //   indentsim --help | --version
 #pragma once
 
@@ -24,6 +25,7 @@ namespace indentsim::io
     run,     // validate the case, prepare the output directory, compute
     check,   // validate the case and print the resolved case; no computation
     analyze, // Oliver-Pharr analysis of a run directory or a load-penetration CSV
+    study,   // run the cases of a study file (skipping finished ones) and write a report
     help,
     version
   };
@@ -51,6 +53,13 @@ namespace indentsim::io
     bool                       overwrite = false; // --overwrite: replace an earlier run's results
     bool                       compare_j2 = false; // --compare-j2: sets the case's compare_j2
     AnalyzeOptions             analyze;            // analyze
+
+    // study (study/StudyRunner.h); output_directory above replaces the study's `output`.
+    std::string              study_file;
+    unsigned int             study_ranks = 1;   // --ranks N: MPI ranks of each case
+    unsigned int             study_jobs = 1;    // --jobs J: cases run side by side
+    bool                     study_dry_run = false; // --dry-run: print the plan, run nothing
+    std::vector<std::string> study_only;        // --only NAME[,NAME...]: case names or groups
   };
 
   // `arguments` excludes the program name. Throws CommandLineError.

@@ -173,7 +173,7 @@ TEST(CaseFile, ResolvedCaseRoundTrips)
   c.indenter.edge_radius = 0.3;
   c.indenter.file = "/data/tips/my tip #2.csv"; // read only for shape: profile_table
   c.specimen = {{{300., 310., 150.}}, {{100., 90., 25.}}, 16, "quarter", false};
-  c.loading = {"depth", 5.5, 0.0, 33, false, 7, 2, 1, 5};
+  c.loading = {"depth", 5.5, 0.0, 33, false, 7, 11, 2, 1, 5};
   c.contact = {0.0, 12.5, 3e-7, 17};
   c.solver = {1e-9, 2.5e-11, 31};
   c.output = {"out dir: #1/\"quoted\"", 3};

@@ -1,6 +1,8 @@
 // Oliver-Pharr analysis (see OliverPharr.h for the equations and units).
 #include "analysis/OliverPharr.h"
 
+#include "io/TextNumber.h"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -553,22 +555,12 @@ namespace indentsim::analysis
     LoadCurve curve;
     curve.source = path;
     const auto number = [&](const std::vector<std::string> &fields, const std::size_t index) {
-      const std::string &text = fields[index];
-      std::size_t        used = 0;
-      double             value = 0;
-      try
-        {
-          value = std::stod(text, &used);
-        }
-      catch (const std::exception &)
-        {
-          used = 0;
-        }
-      if (used == 0 || used != text.size() || !std::isfinite(value))
+      const std::optional<double> value = io::parse_finite_number(fields[index]);
+      if (!value)
         throw std::invalid_argument(path + ", line " + std::to_string(line_number) +
-                                    ", column '" + header[index] + "': '" + text +
+                                    ", column '" + header[index] + "': '" + fields[index] +
                                     "' is not a finite number");
-      return value;
+      return *value;
     };
     while (std::getline(in, line))
       {

@@ -107,27 +107,6 @@ namespace indentsim::io
 
     std::string format_bool(const bool value) { return value ? "true" : "false"; }
 
-    std::string join(const std::vector<std::string> &words, const std::string &separator = ", ")
-    {
-      std::string text;
-      for (std::size_t i = 0; i < words.size(); ++i)
-        text += (i == 0 ? "" : separator) + words[i];
-      return text;
-    }
-
-    // The node as it was written, in one line (flow style for lists and maps).
-    std::string node_text(const YAML::Node &node)
-    {
-      if (!node.IsDefined() || node.IsNull())
-        return "(no value)";
-      if (node.IsScalar())
-        return node.Scalar();
-      YAML::Emitter emitter;
-      emitter.SetSeqFormat(YAML::Flow);
-      emitter.SetMapFormat(YAML::Flow);
-      emitter << node;
-      return emitter.c_str();
-    }
 
     // Levenshtein distance, for "did you mean" suggestions.
     std::size_t edit_distance(const std::string &a, const std::string &b)
@@ -1037,6 +1016,27 @@ namespace indentsim::io
       return found;
     }
   } // namespace
+
+  std::string join(const std::vector<std::string> &words, const std::string &separator)
+  {
+    std::string text;
+    for (std::size_t i = 0; i < words.size(); ++i)
+      text += (i == 0 ? "" : separator) + words[i];
+    return text;
+  }
+
+  std::string node_text(const YAML::Node &node)
+  {
+    if (!node.IsDefined() || node.IsNull())
+      return "(no value)";
+    if (node.IsScalar())
+      return node.Scalar();
+    YAML::Emitter emitter;
+    emitter.SetSeqFormat(YAML::Flow);
+    emitter.SetMapFormat(YAML::Flow);
+    emitter << node;
+    return emitter.c_str();
+  }
 
   // --------------------------------------------------------------------------------------------
 

@@ -24,6 +24,11 @@
 #include <string>
 #include <vector>
 
+namespace YAML
+{
+  class Node;
+}
+
 namespace indentsim::io
 {
   // Bad input or I/O concerning a case file or an output directory.
@@ -50,6 +55,12 @@ namespace indentsim::io
 
   // The candidate closest to `word` if it is plausibly a typo of it, else "" (the "did you
   // mean" of the messages; also used by the study file reader).
+  // The words separated by `separator`.
+  std::string join(const std::vector<std::string> &words, const std::string &separator = ", ");
+  // A YAML node as it was written, in one line (flow style for lists and maps); "(no value)"
+  // for a missing or null node. For error messages.
+  std::string node_text(const YAML::Node &node);
+
   std::string closest_name(const std::string &word, const std::vector<std::string> &candidates);
 
   // Writes resolved_case_yaml() to `path`. Throws CaseFileError if it cannot be written.

@@ -1,6 +1,7 @@
 // Command-line parsing for the indentsim executable. No physics here: main() only parses,
 // reads the case and hands it on.
 #include <io/CommandLine.h>
+#include <io/TextNumber.h>
 
 #include <algorithm>
 #include <cmath>
@@ -138,19 +139,10 @@ namespace indentsim::io
 
     double parse_number(const std::string &option, const std::string &text)
     {
-      std::size_t used = 0;
-      double      value = 0;
-      try
-        {
-          value = std::stod(text, &used);
-        }
-      catch (const std::exception &)
-        {
-          used = 0;
-        }
-      if (used == 0 || used != text.size() || !std::isfinite(value))
+      const std::optional<double> value = parse_finite_number(text);
+      if (!value)
         bad_usage(option + " needs a number; got '" + text + "'");
-      return value;
+      return *value;
     }
 
     CommandLineOptions parse_analyze(const std::vector<std::string> &arguments)

@@ -31,27 +31,8 @@ namespace indentsim::study
     // Paths of the resolved case that do not change a result and so stay out of the key.
     const std::vector<std::string> paths_outside_key = {"output.directory", "solver.threads"};
 
-    std::string join(const std::vector<std::string> &words, const std::string &separator = ", ")
-    {
-      std::string text;
-      for (std::size_t i = 0; i < words.size(); ++i)
-        text += (i == 0 ? "" : separator) + words[i];
-      return text;
-    }
-
-    // The node in one line, as written (flow style for lists and maps).
-    std::string flow_text(const YAML::Node &node)
-    {
-      if (!node.IsDefined() || node.IsNull())
-        return "(no value)";
-      if (node.IsScalar())
-        return node.Scalar();
-      YAML::Emitter emitter;
-      emitter.SetSeqFormat(YAML::Flow);
-      emitter.SetMapFormat(YAML::Flow);
-      emitter << node;
-      return emitter.c_str();
-    }
+    using io::join;
+    const auto &flow_text = io::node_text;
 
     int line_of(const YAML::Node &node)
     {

@@ -37,9 +37,11 @@ namespace indentsim::analysis
     }
 
     // Analyses and writes; returns the result for the summary.
-    OliverPharrResult analyze_and_write(const LoadCurve &curve, const io::IndenterParameters &indenter_parameters,
-                                        const OliverPharrSettings &settings,
-                                        const std::string &directory, const std::string &source)
+    OliverPharrResult analyze_and_write(const LoadCurve                &curve,
+                                        const io::IndenterParameters   &indenter_parameters,
+                                        const OliverPharrSettings      &settings,
+                                        const std::string              &directory,
+                                        const std::string              &source)
     {
       const auto indenter = indenter::create_indenter(indenter_parameters);
       const OliverPharrResult result =
@@ -61,7 +63,8 @@ namespace indentsim::analysis
                                   directory + "/" + io::output_files::oliver_pharr_png + "\"";
       if (std::system(command.c_str()) != 0)
         std::cerr << "warning: the plot " << directory
-                  << "/" << io::output_files::oliver_pharr_png << " could not be written (command: " << command << ")\n";
+                  << "/" << io::output_files::oliver_pharr_png
+                  << " could not be written (command: " << command << ")\n";
       return result;
     }
 
@@ -135,7 +138,8 @@ namespace indentsim::analysis
                                   "--indenter-case CASE.yaml");
 
     OliverPharrSettings settings;
-    settings.epsilon = options.epsilon ? *options.epsilon : default_epsilon(indenter_parameters.shape);
+    settings.epsilon =
+      options.epsilon ? *options.epsilon : default_epsilon(indenter_parameters.shape);
     settings.beta = options.beta;
     settings.fit_lower = options.fit_lower;
     settings.fit_upper = options.fit_upper;

@@ -357,7 +357,8 @@ namespace indentsim::analysis
     if (!(result.stiffness > 0))
       throw std::invalid_argument(where + ": the fitted unloading stiffness at h_max is " +
                                   format(result.stiffness) + " mN/um; it must be positive");
-    result.contact_depth = result.max_depth - settings.epsilon * result.max_force / result.stiffness;
+    result.contact_depth =
+      result.max_depth - settings.epsilon * result.max_force / result.stiffness;
     result.contact_area = result.contact_depth > 0 ? area_function(result.contact_depth) : 0.0;
     if (!(result.contact_area > 0))
       throw std::invalid_argument(where + ": the contact depth h_c = " +
@@ -375,7 +376,8 @@ namespace indentsim::analysis
             (1.0 - settings.indenter_poisson_ratio * settings.indenter_poisson_ratio) /
               settings.indenter_modulus :
             0.0;
-        result.sample_modulus = (1.0 - nu * nu) / (1.0 / result.reduced_modulus - indenter_compliance);
+        result.sample_modulus =
+          (1.0 - nu * nu) / (1.0 / result.reduced_modulus - indenter_compliance);
       }
 
     // Work: the loading path up to h_max (previous cycles included) and the unloading branch
@@ -411,8 +413,8 @@ namespace indentsim::analysis
             result.residual_depth_source = "curve";
           }
         else if (h_last > result.fit.h_f)
-          result.elastic_work += result.fit.alpha * std::pow(h_last - result.fit.h_f, result.fit.m + 1) /
-                                 (result.fit.m + 1);
+          result.elastic_work +=
+            result.fit.alpha * std::pow(h_last - result.fit.h_f, result.fit.m + 1) / (result.fit.m + 1);
       }
     result.plastic_work_ratio =
       result.total_work > 0 ? (result.total_work - result.elastic_work) / result.total_work : 0.0;

@@ -918,9 +918,9 @@ namespace indentsim::solver
             while (true)
               {
                 if (!hold)
-                  new_value = unloading ?
-                                std::max(segment.target, value - std::min(increment, paced_increment)) :
-                                          std::min(segment.target, value + increment);
+                  new_value =
+                    unloading ? std::max(segment.target, value - std::min(increment, paced_increment)) :
+                                std::min(segment.target, value + increment);
                 const IncrementStatus status =
                   force_control ?
                     solve_increment(depth_guess_for_force(new_value), record, extrapolate,
@@ -946,7 +946,8 @@ namespace indentsim::solver
                        << std::min(increment, paced_increment) / 2 << unit << "\n";
                 if (log.is_open())
                   log << "# step " << step + 1 << ": " << to_string(status)
-                      << ", increment cut back to " << std::min(increment, paced_increment) / 2 << unit << "\n";
+                      << ", increment cut back to " << std::min(increment, paced_increment) / 2
+                      << unit << "\n";
                 if (cutbacks > loading.max_cutbacks || hold)
                   throw std::runtime_error(
                     std::string(hold ? "hold" : "increment") + " to " + std::to_string(new_value) +

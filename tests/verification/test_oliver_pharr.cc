@@ -69,7 +69,9 @@ TEST(OliverPharr, PowerLawFitRecoversExactParameters)
 TEST(OliverPharr, ElasticConeGivesSneddonModulusExactly)
 {
   const double reduced_modulus = 74.0, tan_theta = std::tan(70.3 * M_PI / 180.);
-  const auto   sneddon = [&](const double h) { return 2. / M_PI * reduced_modulus * tan_theta * h * h; };
+  const auto   sneddon = [&](const double h) {
+    return 2. / M_PI * reduced_modulus * tan_theta * h * h;
+  };
   const LoadCurve curve = make_curve(sneddon, sneddon, 2.0, 0.0, 400, 400);
   analysis::OliverPharrSettings settings;
   settings.epsilon = analysis::default_epsilon("cone");

@@ -23,13 +23,15 @@ namespace
   using namespace indentsim;
 
   // Writes the PNG plot of the load-penetration curve with the project's Python script.
-  void plot_load_penetration(const std::string &directory)
+  // With `measured_csv` (um, mN) the measured curve is overlaid.
+  void plot_load_penetration(const std::string &directory, const std::string &measured_csv = "")
   {
     const std::string script =
       std::string(INDENTSIM_SOURCE_DIR) + "/python/plot_load_penetration.py";
-    const std::string command = "python3 \"" + script + "\" \"" + directory +
-                                "/load_penetration.csv\" -o \"" + directory +
-                                "/load_penetration.png\"";
+    std::string command = "python3 \"" + script + "\" \"" + directory + "/load_penetration.csv\"";
+    if (!measured_csv.empty())
+      command += " \"" + measured_csv + "\" --label computed --label measured";
+    command += " -o \"" + directory + "/load_penetration.png\"";
     if (std::system(command.c_str()) != 0)
       std::cerr << "warning: the plot " << directory
                 << "/load_penetration.png could not be written (command: " << command << ")\n";
@@ -57,7 +59,14 @@ namespace
     problem.run(the_case.output.directory);
     if (root)
       {
-        plot_load_penetration(the_case.output.directory);
+        const std::string &directory = the_case.output.directory;
+        const bool         compared =
+          !the_case.output.experimental_curve.empty() &&
+          analysis::compare_with_experiment(directory, the_case.output.experimental_curve,
+                                            std::cout, std::cerr);
+        plot_load_penetration(directory, compared ? directory + "/" +
+                                                      io::output_files::experimental_curve_csv :
+                                                    "");
         const bool oliver_pharr =
           the_case.loading.unload &&
           analysis::analyze_run_directory(the_case.output.directory, std::cout, std::cerr);
@@ -65,6 +74,7 @@ namespace
                   << ": load_penetration.csv (um, mN), load_penetration.png, specimen.pvd "
                      "(ParaView), pileup.json, pileup_*.csv/png (heights in um), "
                   << (oliver_pharr ? "oliver_pharr.json/png, " : "")
+                  << (compared ? "comparison_with_experiment.json, experimental_curve.csv, " : "")
                   << "resolved_case.yaml, run.log\n";
       }
   }

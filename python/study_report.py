@@ -306,6 +306,8 @@ class StudyData:
             case["summary"] = self._json(case, "run_summary.json")
             case["mark"] = self._json(case, "study_case.json")
             case["pileup"] = self._json(case, "pileup.json")
+            case["oliver_pharr"] = self._json(case, "oliver_pharr.json")
+            case["experiment"] = self._json(case, "comparison_with_experiment.json")
             refined_x = case.get("refined_region_um", [0.0])[0]
             n = case.get("contact_elements", 0)
             case["h_um"] = refined_x / n if n else float("nan")
@@ -720,6 +722,50 @@ class Report:
                          f"at a depth of {reached:.3f} µm** on loading (interpolated linearly "
                          f"between the load steps).", "")
 
+    def analysis_section(self):
+        """Oliver-Pharr results of every finished indentation and the deviation from measured
+        curves (cases with output.experimental_curve)."""
+        self.add("## 6. Oliver–Pharr analysis and measured curves", "")
+        cases = [c for c in self.data.cases if c["status"] == "finished" and c.get("oliver_pharr")]
+        if cases:
+            rows = []
+            for case in cases:
+                op = case["oliver_pharr"]
+                error = op.get("area_error_percent")
+                rows.append([case["label"], format_number(op.get("max_force_mN"), 1),
+                             format_number(op.get("stiffness_mN_per_um"), 0),
+                             format_number(op.get("contact_depth_um"), 3),
+                             format_number(op.get("hardness_GPa"), 3),
+                             format_number(op.get("reduced_modulus_GPa"), 1),
+                             format_number(op.get("true_hardness_GPa"), 3),
+                             f"{error:+.1f} %" if error is not None else "–",
+                             format_number(op.get("residual_depth_ratio"), 3),
+                             format_number(op.get("plastic_work_ratio"), 3)])
+            self.table(["case", "P_max [mN]", "S [mN/µm]", "h_c [µm]", "H [GPa]", "E_r [GPa]",
+                        "H, true area [GPa]", "O–P area vs true", "h_r/h_max", "W_p/W_t"], rows)
+            self.add("Oliver–Pharr on each case's own unloading (`oliver_pharr.json`); the true "
+                     "area is the simulation's projected contact area at maximum depth, so the "
+                     "last columns show the method's pile-up error.", "")
+        else:
+            self.add("No finished case with an Oliver–Pharr analysis (cases with unloading).", "")
+        measured = [c for c in self.data.cases if c["status"] == "finished" and c.get("experiment")]
+        if measured:
+            rows = []
+            for case in measured:
+                e = case["experiment"]
+                at_max = e.get("deviation_at_max_depth_percent")
+                rows.append([case["label"], f"`{e.get('measured_curve', '?')}`",
+                             e.get("n_points", "–"), format_number(e.get("rms_deviation_mN"), 2),
+                             format_percent(e.get("rms_deviation_relative"), 2),
+                             format_number(e.get("max_depth_um"), 3),
+                             format_number(e.get("computed_force_at_max_depth_mN"), 1),
+                             format_number(e.get("measured_force_at_max_depth_mN"), 1),
+                             f"{at_max:+.2f} %" if at_max is not None else "–"])
+            self.table(["case", "measured curve", "points", "RMS [mN]", "RMS / P_max",
+                        "max depth [µm]", "computed [mN]", "measured [mN]", "deviation"], rows)
+            self.add("Loading branches compared at the measured depths inside the computed "
+                     "range; each case's `load_penetration.png` overlays the measured curve.", "")
+
     def reproduce_section(self):
         index = self.data.index
         versions = sorted({(c.get("summary") or {}).get("version", "?")
@@ -739,7 +785,7 @@ class Report:
     def write(self):
         sections = [self.header, self.cases_section, self.tensile_section, self.mesh_section,
                     self.orientation_section, self.pileup_section, self.paper_section,
-                    self.reproduce_section]
+                    self.analysis_section, self.reproduce_section]
         for section in sections:
             try:
                 section()

@@ -1,5 +1,6 @@
 #include "analysis/AnalyzeCommand.h"
 
+#include "analysis/CurveComparison.h"
 #include "analysis/OliverPharr.h"
 #include "indenter/IndenterFactory.h"
 #include "io/CaseFile.h"
@@ -184,6 +185,47 @@ namespace indentsim::analysis
       {
         warnings << "warning: no Oliver-Pharr analysis of " << run_directory << ": " << e.what()
                  << '\n';
+        return false;
+      }
+  }
+
+  bool compare_with_experiment(const std::string &run_directory, const std::string &measured_csv,
+                               std::ostream &summary, std::ostream &warnings)
+  {
+    try
+      {
+        const LoadCurve computed =
+          read_load_curve_csv(run_directory + "/" + io::output_files::load_penetration_csv);
+        const LoadCurve      measured = read_load_curve_csv(measured_csv);
+        const CurveDeviation deviation = compare_loading(computed, measured);
+        const auto write = [&](const std::string &name, const std::string &text) {
+          const std::string path = run_directory + "/" + name, temporary = path + ".tmp";
+          {
+            std::ofstream out(temporary);
+            out << text;
+            if (!out)
+              throw std::invalid_argument(path + ": writing failed");
+          }
+          fs::rename(temporary, path);
+        };
+        write(io::output_files::experiment_comparison_json, to_json(deviation, measured_csv));
+        write(io::output_files::experimental_curve_csv, to_csv(measured));
+        summary << std::setprecision(5) << "Against the measured curve " << measured_csv
+                << ": RMS deviation of the loading " << deviation.rms_mN << " mN ("
+                << 100 * deviation.rms_relative << " % of the force at " << deviation.max_depth
+                << " um) over " << deviation.n_points << " measured points";
+        if (deviation.deviation_at_max_depth_percent)
+          summary << "; at " << deviation.max_depth << " um computed " << deviation.computed_force
+                  << " mN, measured " << *deviation.measured_force << " mN ("
+                  << std::showpos << *deviation.deviation_at_max_depth_percent << std::noshowpos
+                  << " %)";
+        summary << '\n';
+        return true;
+      }
+    catch (const std::exception &e)
+      {
+        warnings << "warning: no comparison with the measured curve " << measured_csv << ": "
+                 << e.what() << '\n';
         return false;
       }
   }

@@ -21,4 +21,11 @@ namespace indentsim::analysis
   // returns false (and says why on `warnings`) if the curve has no analysable unloading.
   bool analyze_run_directory(const std::string &run_directory, std::ostream &summary,
                              std::ostream &warnings);
+
+  // A finished run against a measured curve (output.experimental_curve): writes
+  // comparison_with_experiment.json and the measured curve in um and mN
+  // (experimental_curve.csv, for the plot overlay) into `run_directory`; prints the deviation.
+  // Returns false (and says why on `warnings`) if the comparison is impossible.
+  bool compare_with_experiment(const std::string &run_directory, const std::string &measured_csv,
+                               std::ostream &summary, std::ostream &warnings);
 } // namespace indentsim::analysis

@@ -135,6 +135,10 @@ namespace indentsim::io
   {
     std::string  directory = "results/run";
     unsigned int vtu_every = 0; // write VTU every k-th step (0: only at max depth and end)
+    // A measured load-penetration curve (CSV, units in the column names as for indentsim
+    // analyze) overlaid on the plot and compared with the loading curve; "" for none. A
+    // relative path is relative to the case file's directory; the reader stores it absolute.
+    std::string  experimental_curve = "";
 
     bool operator==(const OutputParameters &) const = default;
   };

@@ -3,6 +3,8 @@
 #include <indenter/IndenterFactory.h>
 #include <indenter/ProfileTable.h>
 #include <io/CaseFile.h>
+
+#include "analysis/OliverPharr.h"
 #include <materials/MaterialFactory.h>
 #include <materials/Orientation.h>
 
@@ -59,7 +61,7 @@ namespace indentsim::io
       {"solver",
        {"residual_tolerance", "absolute_tolerance", "max_newton_iterations", "linear_solver",
         "threads"}},
-      {"output", {"directory", "vtu_every"}}};
+      {"output", {"directory", "vtu_every", "experimental_curve"}}};
 
     const std::vector<std::string> allowed_tests = {"indentation", "tensile"};
     const std::vector<std::string> allowed_models = {"neo_hookean", "j2", "crystal"};
@@ -306,6 +308,10 @@ namespace indentsim::io
           auto &output = result.output;
           read_string(map, "output", "directory", "a directory path", output.directory);
           read_unsigned(map, "output", "vtu_every", output.vtu_every);
+          if (read_string(map, "output", "experimental_curve",
+                          "the path of a CSV with depth and force columns",
+                          output.experimental_curve))
+            output.experimental_curve = relative_to_case_file(output.experimental_curve);
         }
         return result;
       }
@@ -766,6 +772,26 @@ namespace indentsim::io
 
         if (o.directory.empty())
           reject("output.directory", "\"\"", "must be a non-empty directory path");
+        if (!o.experimental_curve.empty())
+          {
+            if (checked.test != "indentation")
+              reject("output.experimental_curve", "\"" + o.experimental_curve + "\"",
+                     "a measured load-penetration curve belongs to test: indentation");
+            try
+              {
+                const analysis::LoadCurve curve =
+                  analysis::read_load_curve_csv(o.experimental_curve);
+                if (curve.depth.size() < 2)
+                  throw std::invalid_argument("it has fewer than 2 data rows");
+              }
+            catch (const std::invalid_argument &error)
+              {
+                reject("output.experimental_curve", "\"" + o.experimental_curve + "\"",
+                       std::string(error.what()) +
+                         " (a CSV with a header; depth and force columns with their units in "
+                         "the names, e.g. depth_nm,load_uN)");
+              }
+          }
       }
 
     private:
@@ -1231,6 +1257,8 @@ namespace indentsim::io
          "relative paths: relative to the working directory");
     line("  vtu_every: " + std::to_string(c.output.vtu_every),
          "VTU every k-th step (0: at max depth and end)");
+    line("  experimental_curve: " + quoted(c.output.experimental_curve),
+         "measured curve (CSV) to overlay and compare; \"\": none");
     return out.str();
   }
 

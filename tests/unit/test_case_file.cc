@@ -1065,3 +1065,27 @@ TEST(CommandLine, HelpListsCommandsOptionsAndUnits)
     EXPECT_NE(help.find(fragment), std::string::npos) << fragment;
   EXPECT_NE(version_text().find("indentsim"), std::string::npos);
 }
+
+// output.experimental_curve: relative to the case file's directory, stored absolute, read and
+// checked before any computation; a missing file or a column without a known unit is rejected
+// naming the key, the file and what is allowed.
+TEST(CaseFile, ExperimentalCurveIsResolvedAndChecked)
+{
+  const fs::path dir = scratch_directory("experimental_curve");
+  fs::create_directories(dir / "cases" / "data");
+  write_text(dir / "cases" / "data" / "measured.csv", "depth_nm,load_uN\n0,0\n500,1000\n");
+  const fs::path case_path =
+    write_text(dir / "cases" / "case.yaml",
+               with("output:\n  directory: out\n  experimental_curve: data/measured.csv\n"));
+  const Case c = read_case_file(case_path.string());
+  EXPECT_EQ(c.output.experimental_curve,
+            fs::absolute(dir / "cases" / "data" / "measured.csv").lexically_normal().string());
+  Case missing = c;
+  missing.output.experimental_curve = "/no/such/measured.csv";
+  expect_rejected_case(missing, {"output.experimental_curve = \"/no/such/measured.csv\"",
+                                 "cannot open", "depth_nm,load_uN"});
+  write_text(dir / "cases" / "data" / "unitless.csv", "depth,force\n0,0\n1,2\n");
+  Case unitless = c;
+  unitless.output.experimental_curve = (dir / "cases" / "data" / "unitless.csv").string();
+  expect_rejected_case(unitless, {"output.experimental_curve", "depth unit '' is not known"});
+}

@@ -1,6 +1,7 @@
 // Oliver-Pharr analysis (analysis/OliverPharr.h) against closed forms: synthetic power laws,
 // Sneddon's elastic cone, Hertz's paraboloid, the work integrals of known curves, and an
 // elastic indentation computed by the solver. Units: um, mN, GPa (1 GPa*um^2 = 1 mN).
+#include "analysis/CurveComparison.h"
 #include "analysis/OliverPharr.h"
 #include "../test_cases.h"
 #include "../test_files.h"
@@ -297,4 +298,53 @@ TEST(OliverPharr, ElasticIndentationRecoversTheReducedModulus)
   EXPECT_LT(result.residual_depth / result.max_depth, 0.02);
   EXPECT_LT(std::abs(result.plastic_work_ratio), 0.03);
   EXPECT_LT(std::abs(*result.area_error_percent), 8.0);
+}
+
+// Comparison with a measured curve: computed P = C h^2 (with an unloading), measured 1.1 C h^2
+// on other depths and beyond the computed range. The RMS deviation over the measured loading
+// points inside the computed range is 0.1 C sqrt(mean h^4) up to the linear interpolation of
+// the computed curve (fine here), the deviation at the largest computed depth -1/11.
+TEST(CurveComparison, ScaledMeasurementGivesClosedFormDeviation)
+{
+  const double C = 20.0;
+  LoadCurve    computed, measured;
+  computed.source = "computed";
+  measured.source = "measured.csv";
+  for (int i = 0; i <= 600; ++i)
+    {
+      computed.depth.push_back(0.01 * i);
+      computed.force.push_back(C * 0.0001 * i * i);
+    }
+  computed.depth.push_back(5.9);
+  computed.force.push_back(100.0); // unloading: ignored
+  double sum = 0;
+  int    n = 0;
+  for (int i = 1; i <= 70; ++i)
+    {
+      const double h = 0.0937 * i; // up to 6.56 um, beyond the computed 6.0
+      measured.depth.push_back(h);
+      measured.force.push_back(1.1 * C * h * h);
+      if (h <= 6.0)
+        {
+          sum += std::pow(0.1 * C * h * h, 2);
+          ++n;
+        }
+    }
+  const analysis::CurveDeviation d = analysis::compare_loading(computed, measured);
+  EXPECT_EQ(d.n_points, static_cast<unsigned int>(n));
+  EXPECT_NEAR(d.rms_mN, std::sqrt(sum / n), 1e-3 * std::sqrt(sum / n));
+  EXPECT_DOUBLE_EQ(d.max_depth, 6.0);
+  EXPECT_NEAR(d.computed_force, C * 36, 1e-9);
+  ASSERT_TRUE(d.measured_force.has_value());
+  EXPECT_NEAR(*d.measured_force, 1.1 * C * 36, 1e-3); // interpolated between 5.9907 and 6.0844
+  EXPECT_NEAR(*d.deviation_at_max_depth_percent, -100.0 / 11, 0.01);
+
+  // A measurement that stops short of 6.0 um has no force there; one in the wrong unit
+  // (depths 1000 times too large) matches no computed depth and says so.
+  measured.depth.resize(30);
+  measured.force.resize(30);
+  EXPECT_FALSE(analysis::compare_loading(computed, measured).measured_force.has_value());
+  for (double &h : measured.depth)
+    h *= 1000;
+  EXPECT_THROW(analysis::compare_loading(computed, measured), std::invalid_argument);
 }

@@ -135,6 +135,9 @@ namespace indentsim::io
   {
     std::string  directory = "results/run";
     unsigned int vtu_every = 0; // write VTU every k-th step (0: only at max depth and end)
+    // Indentation: wall time between checkpoints of a run [s] (0: only when stopped by
+    // SIGINT/SIGTERM); `indentsim run CASE --resume` continues from the last one.
+    double checkpoint_interval_s = 300;
 
     bool operator==(const OutputParameters &) const = default;
   };

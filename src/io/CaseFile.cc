@@ -59,7 +59,7 @@ namespace indentsim::io
       {"solver",
        {"residual_tolerance", "absolute_tolerance", "max_newton_iterations", "linear_solver",
         "threads"}},
-      {"output", {"directory", "vtu_every"}}};
+      {"output", {"directory", "vtu_every", "checkpoint_interval_s"}}};
 
     const std::vector<std::string> allowed_tests = {"indentation", "tensile"};
     const std::vector<std::string> allowed_models = {"neo_hookean", "j2", "crystal"};
@@ -327,6 +327,8 @@ namespace indentsim::io
           auto &output = result.output;
           read_string(map, "output", "directory", "a directory path", output.directory);
           read_unsigned(map, "output", "vtu_every", output.vtu_every);
+          read_double(map, "output", "checkpoint_interval_s", "a wall time in s",
+                      output.checkpoint_interval_s);
         }
         return result;
       }
@@ -787,6 +789,9 @@ namespace indentsim::io
 
         if (o.directory.empty())
           reject("output.directory", "\"\"", "must be a non-empty directory path");
+        if (!(o.checkpoint_interval_s >= 0) || !std::isfinite(o.checkpoint_interval_s))
+          reject("output.checkpoint_interval_s", format_number(o.checkpoint_interval_s),
+                 "must be a wall time >= 0 s (0: checkpoint only when stopped)");
       }
 
     private:
@@ -1031,7 +1036,9 @@ namespace indentsim::io
       std::vector<fs::path> found;
       std::error_code       error;
       for (const auto &entry : fs::directory_iterator(directory, error))
-        if (entry.is_regular_file(error) && is_known_output_file(entry.path()))
+        if ((entry.is_regular_file(error) && is_known_output_file(entry.path())) ||
+            (entry.is_directory(error) &&
+             entry.path().filename() == output_files::checkpoint_directory))
           found.push_back(entry.path());
       std::sort(found.begin(), found.end());
       return found;
@@ -1231,6 +1238,8 @@ namespace indentsim::io
          "relative paths: relative to the working directory");
     line("  vtu_every: " + std::to_string(c.output.vtu_every),
          "VTU every k-th step (0: at max depth and end)");
+    line("  checkpoint_interval_s: " + format_number(c.output.checkpoint_interval_s),
+         "[s] wall time between checkpoints (0: only when stopped)");
     return out.str();
   }
 
@@ -1279,7 +1288,10 @@ namespace indentsim::io
                               "(--output DIR or output.directory)");
         for (const auto &file : earlier)
           {
-            fs::remove(file, error);
+            if (fs::is_directory(file, error)) // only the checkpoint folder
+              fs::remove_all(file, error);
+            else
+              fs::remove(file, error);
             if (error)
               throw CaseFileError("output directory '" + directory + "': cannot remove '" +
                                   file.string() + "': " + error.message());

@@ -78,6 +78,9 @@ namespace indentsim::io
     // Oliver-Pharr analysis of the unloading (analysis/OliverPharr.h).
     inline constexpr const char *oliver_pharr_json    = "oliver_pharr.json";
     inline constexpr const char *oliver_pharr_png     = "oliver_pharr.png";
+    // Checkpoint of a stopped indentation run (rank_<r>.bin), read by `run --resume`; removed
+    // when the run finishes.
+    inline constexpr const char *checkpoint_directory = "checkpoint";
     // ParaView series: specimen.pvd, specimen_<step>.pvtu, specimen_<step>.<rank>.vtu.
     inline constexpr const char *paraview_basename = "specimen";
 
@@ -96,6 +99,7 @@ namespace indentsim::io
   // probe file. If it already holds an earlier run's results (any of output_files) and
   // `overwrite` is false, throws CaseFileError telling the user to pass --overwrite or choose
   // another directory. With `overwrite` true, removes only our own known output files (the names
-  // above and specimen*.pvd/.vtu/.pvtu); nothing else, and no folder, is ever deleted.
+  // above, specimen*.pvd/.vtu/.pvtu and the folder `checkpoint` with its rank_*.bin files);
+  // nothing else, and no other folder, is ever deleted.
   void prepare_output_directory(const std::string &directory, bool overwrite);
 } // namespace indentsim::io

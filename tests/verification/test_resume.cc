@@ -162,18 +162,26 @@ TEST(Resume, StopDuringUnloadingAfterHold)
 }
 
 // Requirement: --resume refuses, with a message saying why, a directory without a checkpoint
-// and a checkpoint of a different case; a changed output.checkpoint_interval_s is no change.
-TEST(Resume, RefusesMissingCheckpointAndDifferentCase)
+// and a checkpoint of a different case; a changed output.checkpoint_interval_s is no change,
+// and a force-controlled run (first touch under depth control, then the depth as an unknown)
+// resumed after its first force step equals the uninterrupted one.
+TEST(Resume, RefusesMissingCheckpointAndDifferentCaseAndResumesForceControl)
 {
   io::Case c = test_cases::small_j2_case();
-  c.loading.steps = 4;
+  c.loading.control = "force";
+  c.loading.max_force = 1.0;
+  c.loading.max_depth = 3.0;
+  c.loading.steps = 2;
   c.output.checkpoint_interval_s = 0;
   const fs::path empty_dir = test_files::scratch_directory("resume", "empty");
   EXPECT_NE(message_of_resume(c, empty_dir).find("no checkpoint to resume from"),
             std::string::npos);
 
+  const fs::path  reference_dir = test_files::scratch_directory("resume", "force_reference");
+  const RunResult reference = run(c, reference_dir, std::nullopt, false);
+  ASSERT_EQ(reference.outcome, Outcome::finished);
   const fs::path dir = test_files::scratch_directory("resume", "refuse");
-  ASSERT_EQ(run(c, dir, 1, false).outcome, Outcome::stopped);
+  ASSERT_EQ(run(c, dir, 2, false).outcome, Outcome::stopped); // touch and the first force step
   io::Case changed = c;
   changed.material.yield_stress *= 1.01;
   EXPECT_NE(message_of_resume(changed, dir).find("belongs to a different case"),
@@ -181,7 +189,9 @@ TEST(Resume, RefusesMissingCheckpointAndDifferentCase)
   // The checkpoint is still there and valid for the unchanged case.
   io::Case other_interval = c;
   other_interval.output.checkpoint_interval_s = 60;
-  EXPECT_EQ(run(other_interval, dir, std::nullopt, true).outcome, Outcome::finished);
+  const RunResult resumed = run(other_interval, dir, std::nullopt, true);
+  ASSERT_EQ(resumed.outcome, Outcome::finished);
+  expect_same_curve(resumed.records, reference.records);
 }
 
 // Requirement: the checkpoint folder is one of a run's outputs: a plain rerun into the

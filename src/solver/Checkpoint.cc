@@ -105,6 +105,9 @@ namespace indentsim::solver::checkpoint
     stop_flag = 0;
     previous_interrupt_ = std::signal(SIGINT, on_stop_signal);
     previous_terminate_ = std::signal(SIGTERM, on_stop_signal);
+    // A process started to ignore SIGINT (nohup, a background job of a script) keeps ignoring it.
+    if (previous_interrupt_ == SIG_IGN)
+      std::signal(SIGINT, SIG_IGN);
   }
 
   StopRequest::~StopRequest()

@@ -872,7 +872,8 @@ namespace indentsim::solver
           }
         if (log.is_open())
           log << "# resumed at step " << loop.step << std::endl;
-        pcout_ << "Resumed at step " << loop.step << " (depth " << loop.depth
+        pcout_ << "Resumed at step " << loop.step << " (depth " << std::setprecision(6)
+               << loop.depth
                << " um) from the checkpoint in " << checkpoint_directory() << std::endl;
       }
     else
@@ -1125,7 +1126,8 @@ namespace indentsim::solver
           {
             const std::string case_name =
               case_.source_file.empty() ? std::string("CASE.yaml") : case_.source_file;
-            pcout_ << "stopped at step " << loop.step << " (depth " << loop.depth
+            pcout_ << "stopped at step " << loop.step << " (depth " << std::setprecision(6)
+                   << loop.depth
                    << " um); resume with: indentsim run " << case_name << " --resume"
                    << std::endl;
             if (log.is_open())

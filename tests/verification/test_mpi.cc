@@ -79,8 +79,10 @@ TEST(Mpi, FrictionUnderForceControlMatchesOneRank)
 }
 
 // Stop and resume on all ranks: a run stopped after step 3 and resumed from its per-rank
-// checkpoint files in a fresh problem gives the uninterrupted run's curve (1e-10 relative:
-// the direct solver and the partition are deterministic).
+// checkpoint files in a fresh problem gives the uninterrupted run's curve. To the Newton
+// tolerance only (1e-6 relative, Newton iterations within 1): two uninterrupted 2-rank runs are
+// not bit-identical (measured: up to 1.6e-8 relative in the force at step 3, before any stop);
+// one rank reproduces to round-off (Resume.* tests).
 TEST(Mpi, StoppedAndResumedRunEqualsUninterruptedRun)
 {
   io::Case c = test_cases::small_j2_case();
@@ -122,7 +124,7 @@ TEST(Mpi, StoppedAndResumedRunEqualsUninterruptedRun)
   for (std::size_t i = 1; i < reference.size(); ++i)
     {
       EXPECT_NEAR(resumed[i].depth, reference[i].depth, 1e-10 * reference[i].depth) << "step " << i;
-      EXPECT_NEAR(resumed[i].force, reference[i].force, 1e-10 * reference[i].force) << "step " << i;
-      EXPECT_EQ(resumed[i].newton_iterations, reference[i].newton_iterations) << "step " << i;
+      EXPECT_NEAR(resumed[i].force, reference[i].force, 1e-6 * reference[i].force) << "step " << i;
+      EXPECT_NEAR(resumed[i].newton_iterations, reference[i].newton_iterations, 1) << "step " << i;
     }
 }

@@ -52,11 +52,15 @@ namespace
                 << " could not be written (command: " << command << ")\n";
   }
 
-  void run_indentation(const io::Case &the_case, const MPI_Comm communicator, const bool root)
+  // Returns false if the run was stopped (checkpoint written, no end-of-run outputs).
+  bool run_indentation(const io::Case &the_case, const MPI_Comm communicator, const bool root,
+                       const bool resume)
   {
     solver::IndentationProblem problem(the_case, communicator);
     problem.setup();
-    problem.run(the_case.output.directory);
+    if (problem.run(the_case.output.directory, resume) ==
+        solver::IndentationProblem::RunOutcome::stopped)
+      return false;
     if (root)
       {
         const std::string &directory = the_case.output.directory;
@@ -77,6 +81,7 @@ namespace
                   << (compared ? "comparison_with_experiment.json, experimental_curve.csv, " : "")
                   << "resolved_case.yaml, run.log\n";
       }
+    return true;
   }
 
   void run_tensile(const io::Case &the_case, const MPI_Comm communicator, const bool root)
@@ -127,11 +132,22 @@ namespace
         return 0;
       }
 
+    if (options.resume && the_case.test != "indentation")
+      throw io::CaseFileError("--resume: only indentation runs can be stopped and resumed ("
+                              "a tensile run is short; rerun it with --overwrite)");
     std::string error;
     if (root)
       try
         {
-          io::prepare_output_directory(the_case.output.directory, options.overwrite);
+          // --resume continues in the existing directory: its results are the run's own.
+          if (options.resume)
+            {
+              if (!std::filesystem::is_directory(the_case.output.directory))
+                throw io::CaseFileError("--resume: the output directory '" +
+                                        the_case.output.directory + "' does not exist");
+            }
+          else
+            io::prepare_output_directory(the_case.output.directory, options.overwrite);
           io::write_resolved_case(the_case, the_case.output.directory + "/resolved_case.yaml");
         }
       catch (const std::exception &e)
@@ -151,8 +167,8 @@ namespace
 
     if (the_case.test == "tensile")
       run_tensile(the_case, communicator, root);
-    else
-      run_indentation(the_case, communicator, root);
+    else if (!run_indentation(the_case, communicator, root, options.resume))
+      return 130; // stopped by a signal: the shell's convention for SIGINT
     return 0;
   }
 

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <stdexcept>
+#include <string>
 
 namespace indentsim::contact
 {
@@ -319,6 +321,84 @@ namespace indentsim::contact
       {
         node.lambda = node.lambda_converged;
         node.traction_multiplier = node.traction_multiplier_converged;
+      }
+  }
+
+  namespace
+  {
+    constexpr std::size_t n_values_per_node = 28, n_global_values = 10;
+  } // namespace
+
+  std::vector<double> NodeToSurfaceContact::persistent_state() const
+  {
+    std::vector<double> state;
+    state.reserve(n_global_values + n_values_per_node * nodes_.size());
+    const auto put = [&state](const Tensor<1, 3> &t) {
+      for (unsigned int d = 0; d < 3; ++d)
+        state.push_back(t[d]);
+    };
+    state.push_back(depth_);
+    state.push_back(depth_converged_);
+    put(offset_);
+    put(offset_converged_);
+    state.push_back(n_changes_);
+    state.push_back(search_failed_ ? 1 : 0);
+    for (const ContactNode &node : nodes_)
+      {
+        state.push_back(node.lambda);
+        state.push_back(node.lambda_converged);
+        state.push_back(node.lambda_previous);
+        put(node.traction_multiplier);
+        put(node.traction_multiplier_converged);
+        put(node.x_converged);
+        state.push_back(node.gap);
+        state.push_back(node.pressure);
+        state.push_back(node.active ? 1 : 0);
+        state.push_back(static_cast<double>(node.status));
+        put(node.normal);
+        put(node.traction);
+        put(node.slip);
+        put(node.x);
+      }
+    return state;
+  }
+
+  void NodeToSurfaceContact::restore_state(const std::vector<double> &state)
+  {
+    if (state.size() != n_global_values + n_values_per_node * nodes_.size())
+      throw std::runtime_error("the contact state of the checkpoint has " +
+                               std::to_string(state.size()) + " values, this rank's " +
+                               std::to_string(nodes_.size()) + " contact nodes need " +
+                               std::to_string(n_global_values +
+                                              n_values_per_node * nodes_.size()));
+    std::size_t i = 0;
+    const auto  get = [&state, &i]() { return state[i++]; };
+    const auto  get_tensor = [&get](auto &t) {
+      for (unsigned int d = 0; d < 3; ++d)
+        t[d] = get();
+    };
+    depth_ = get();
+    depth_converged_ = get();
+    get_tensor(offset_);
+    get_tensor(offset_converged_);
+    n_changes_ = static_cast<unsigned int>(get());
+    search_failed_ = get() != 0;
+    for (ContactNode &node : nodes_)
+      {
+        node.lambda = get();
+        node.lambda_converged = get();
+        node.lambda_previous = get();
+        get_tensor(node.traction_multiplier);
+        get_tensor(node.traction_multiplier_converged);
+        get_tensor(node.x_converged);
+        node.gap = get();
+        node.pressure = get();
+        node.active = get() != 0;
+        node.status = static_cast<ContactStatus>(static_cast<unsigned char>(get()));
+        get_tensor(node.normal);
+        get_tensor(node.traction);
+        get_tensor(node.slip);
+        get_tensor(node.x);
       }
   }
 

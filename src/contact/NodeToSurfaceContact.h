@@ -160,6 +160,13 @@ namespace indentsim::contact
     void accept_increment();
     void reject_increment();
 
+    // Everything that persists between increments (multipliers, stick anchors, active status,
+    // the last evaluation), flattened for a checkpoint of a stopped run, and its restoration
+    // into a contact set up on the same mesh and partition. restore_state throws
+    // std::runtime_error if the size does not match this rank's nodes.
+    std::vector<double> persistent_state() const;
+    void                restore_state(const std::vector<double> &state);
+
     ContactSummary summary() const; // global (MPI-summed) values
     const std::vector<ContactNode> &nodes() const { return nodes_; }
     double penalty() const { return penalty_; }

@@ -139,6 +139,9 @@ namespace indentsim::io
     // analyze) overlaid on the plot and compared with the loading curve; "" for none. A
     // relative path is relative to the case file's directory; the reader stores it absolute.
     std::string  experimental_curve = "";
+    // Indentation: wall time between checkpoints of a run [s] (0: only when stopped by
+    // SIGINT/SIGTERM); `indentsim run CASE --resume` continues from the last one.
+    double checkpoint_interval_s = 300;
 
     bool operator==(const OutputParameters &) const = default;
   };

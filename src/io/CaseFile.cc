@@ -61,7 +61,7 @@ namespace indentsim::io
       {"solver",
        {"residual_tolerance", "absolute_tolerance", "max_newton_iterations", "linear_solver",
         "threads"}},
-      {"output", {"directory", "vtu_every", "experimental_curve"}}};
+      {"output", {"directory", "vtu_every", "experimental_curve", "checkpoint_interval_s"}}};
 
     const std::vector<std::string> allowed_tests = {"indentation", "tensile"};
     const std::vector<std::string> allowed_models = {"neo_hookean", "j2", "crystal"};
@@ -312,6 +312,8 @@ namespace indentsim::io
                           "the path of a CSV with depth and force columns",
                           output.experimental_curve))
             output.experimental_curve = relative_to_case_file(output.experimental_curve);
+          read_double(map, "output", "checkpoint_interval_s", "a wall time in s",
+                      output.checkpoint_interval_s);
         }
         return result;
       }
@@ -792,6 +794,9 @@ namespace indentsim::io
                          "the names, e.g. depth_nm,load_uN)");
               }
           }
+        if (!(o.checkpoint_interval_s >= 0) || !std::isfinite(o.checkpoint_interval_s))
+          reject("output.checkpoint_interval_s", format_number(o.checkpoint_interval_s),
+                 "must be a wall time >= 0 s (0: checkpoint only when stopped)");
       }
 
     private:
@@ -1036,7 +1041,9 @@ namespace indentsim::io
       std::vector<fs::path> found;
       std::error_code       error;
       for (const auto &entry : fs::directory_iterator(directory, error))
-        if (entry.is_regular_file(error) && is_known_output_file(entry.path()))
+        if ((entry.is_regular_file(error) && is_known_output_file(entry.path())) ||
+            (entry.is_directory(error) &&
+             entry.path().filename() == output_files::checkpoint_directory))
           found.push_back(entry.path());
       std::sort(found.begin(), found.end());
       return found;
@@ -1259,6 +1266,8 @@ namespace indentsim::io
          "VTU every k-th step (0: at max depth and end)");
     line("  experimental_curve: " + quoted(c.output.experimental_curve),
          "measured curve (CSV) to overlay and compare; \"\": none");
+    line("  checkpoint_interval_s: " + format_number(c.output.checkpoint_interval_s),
+         "[s] wall time between checkpoints (0: only when stopped)");
     return out.str();
   }
 
@@ -1307,7 +1316,10 @@ namespace indentsim::io
                               "(--output DIR or output.directory)");
         for (const auto &file : earlier)
           {
-            fs::remove(file, error);
+            if (fs::is_directory(file, error)) // only the checkpoint folder
+              fs::remove_all(file, error);
+            else
+              fs::remove(file, error);
             if (error)
               throw CaseFileError("output directory '" + directory + "': cannot remove '" +
                                   file.string() + "': " + error.message());

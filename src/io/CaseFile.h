@@ -92,12 +92,16 @@ namespace indentsim::io
     // The measured curve (output.experimental_curve) converted, and the comparison with it.
     inline constexpr const char *experimental_curve_csv     = "experimental_curve.csv";
     inline constexpr const char *experiment_comparison_json = "comparison_with_experiment.json";
+    // Checkpoint of a stopped indentation run (rank_<r>.bin), read by `run --resume`; removed
+    // when the run finishes.
+    inline constexpr const char *checkpoint_directory = "checkpoint";
     // ParaView series: specimen.pvd, specimen_<step>.pvtu, specimen_<step>.<rank>.vtu.
     inline constexpr const char *paraview_basename = "specimen";
 
     // Exact names that mark an earlier run and are removed by --overwrite.
     inline constexpr std::array<const char *, 19> known_names = {
-      {experimental_curve_csv, experiment_comparison_json, oliver_pharr_json, oliver_pharr_png, load_penetration_csv, load_penetration_png, stress_strain_csv, stress_strain_j2_csv,
+      {experimental_curve_csv, experiment_comparison_json, oliver_pharr_json, oliver_pharr_png,
+       load_penetration_csv, load_penetration_png, stress_strain_csv, stress_strain_j2_csv,
        stress_strain_png, resolved_case, log, run_summary, pileup_json, pileup_max_depth_csv,
        pileup_unloaded_csv, pileup_profiles_csv, pileup_max_depth_png, pileup_unloaded_png,
        pileup_profiles_png}};
@@ -110,6 +114,7 @@ namespace indentsim::io
   // probe file. If it already holds an earlier run's results (any of output_files) and
   // `overwrite` is false, throws CaseFileError telling the user to pass --overwrite or choose
   // another directory. With `overwrite` true, removes only our own known output files (the names
-  // above and specimen*.pvd/.vtu/.pvtu); nothing else, and no folder, is ever deleted.
+  // above, specimen*.pvd/.vtu/.pvtu and the folder `checkpoint` with its rank_*.bin files);
+  // nothing else, and no other folder, is ever deleted.
   void prepare_output_directory(const std::string &directory, bool overwrite);
 } // namespace indentsim::io

@@ -238,7 +238,7 @@ namespace indentsim::io
   std::string usage_text()
   {
     return "Usage:\n"
-           "  indentsim run CASE.yaml [--output DIR] [--overwrite] [--compare-j2]\n"
+           "  indentsim run CASE.yaml [--output DIR] [--overwrite | --resume] [--compare-j2]\n"
            "  indentsim check CASE.yaml [--output DIR] [--compare-j2]\n"
            "  indentsim analyze RUN_DIR_OR_CSV [--indenter SHAPE | --indenter-case CASE.yaml]\n"
            "                    [--epsilon E] [--beta B] [--fit-range LO,HI] [--poisson NU]\n"
@@ -297,6 +297,11 @@ namespace indentsim::io
            "  --overwrite       Replace the results of an earlier run in the output directory\n"
            "                    (without it, such a directory is refused; only indentsim's own\n"
            "                    output files are removed).\n"
+           "  --resume          Indentation: continue a run stopped with Ctrl-C (SIGINT) or\n"
+           "                    SIGTERM (exit code 130) from the checkpoint in its output\n"
+           "                    directory (output.checkpoint_interval_s: also written every\n"
+           "                    300 s). Needs the same case file and the same number of MPI\n"
+           "                    ranks; not with --overwrite.\n"
            "  --compare-j2      Tensile test: also run J2 plasticity (material.young_modulus,\n"
            "                    poisson_ratio, yield_stress, hardening_modulus) on the same\n"
            "                    mesh and loading; writes stress_strain_j2.csv (sets the case\n"
@@ -384,11 +389,17 @@ namespace indentsim::io
               bad_usage("--overwrite is only meaningful with 'run' ('check' writes nothing)");
             options.overwrite = true;
           }
+        else if (argument == "--resume")
+          {
+            if (options.command != Command::run)
+              bad_usage("--resume is only meaningful with 'run'");
+            options.resume = true;
+          }
         else if (argument == "--compare-j2")
           options.compare_j2 = true;
         else if (!argument.empty() && argument[0] == '-')
           bad_usage("unknown option '" + argument +
-                    "'; allowed: --output DIR, --overwrite, --compare-j2");
+                    "'; allowed: --output DIR, --overwrite, --resume, --compare-j2");
         else if (options.case_file.empty())
           options.case_file = argument;
         else
@@ -398,6 +409,9 @@ namespace indentsim::io
 
     if (options.case_file.empty())
       bad_usage("'" + first + "' needs a case file: indentsim " + first + " CASE.yaml");
+    if (options.resume && options.overwrite)
+      bad_usage("--resume continues the run in the output directory, --overwrite replaces it; "
+                "give one of them");
     return options;
   }
 

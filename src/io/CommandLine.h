@@ -1,5 +1,5 @@
 // The command line of the indentsim executable:
-//   indentsim run CASE.yaml [--output DIR] [--overwrite] [--compare-j2]
+//   indentsim run CASE.yaml [--output DIR] [--overwrite | --resume] [--compare-j2]
 //   indentsim check CASE.yaml [--output DIR] [--compare-j2]
 //   indentsim analyze RUN_DIR_OR_CSV [--indenter SHAPE | --indenter-case CASE.yaml] [...]
 //   indentsim study STUDY.yaml [--output DIR] [--ranks N] [--jobs J] [--dry-run] [--only NAMES]
@@ -52,6 +52,7 @@ namespace indentsim::io
     std::optional<std::string> output_directory;  // --output DIR: replaces output.directory
     bool                       overwrite = false; // --overwrite: replace an earlier run's results
     bool                       compare_j2 = false; // --compare-j2: sets the case's compare_j2
+    bool                       resume = false;     // --resume: continue from the checkpoint
     AnalyzeOptions             analyze;            // analyze
 
     // study (study/StudyRunner.h); output_directory above replaces the study's `output`.

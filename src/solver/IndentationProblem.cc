@@ -3,6 +3,7 @@
 #include "indenter/IndenterFactory.h"
 #include "io/CaseFile.h"
 #include "materials/MaterialFactory.h"
+#include "solver/Checkpoint.h"
 #include "solver/FiniteStrainElement.h"
 
 #include <deal.II/base/function.h>
@@ -21,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <filesystem>
 #include <iomanip>
@@ -788,31 +790,15 @@ namespace indentsim::solver
     }
   } // namespace
 
-  void IndentationProblem::run(const std::string &output_directory)
+  IndentationProblem::RunOutcome IndentationProblem::run(const std::string &output_directory,
+                                                         const bool         resume)
   {
     output_directory_ = output_directory;
     const bool    root = Utilities::MPI::this_mpi_process(communicator_) == 0;
+    if (resume && output_directory_.empty())
+      throw io::CaseFileError("--resume needs the output directory of the stopped run");
     // Collective (an MPI sum): every rank counts, rank 0 writes it.
     const unsigned int n_constrained = n_constrained_dofs();
-    std::ofstream csv, log;
-    if (root && !output_directory_.empty())
-      {
-        csv.open(output_directory_ + "/load_penetration.csv");
-        log.open(output_directory_ + "/run.log");
-        write_csv_header(csv);
-        log << "# indentsim " << INDENTSIM_VERSION << " run log. Units: um, mN, GPa, s.\n"
-            << "# cells " << n_cells() << ", DOFs " << n_dofs() << ", constrained DOFs "
-            << n_constrained << ", MPI ranks "
-            << Utilities::MPI::n_mpi_processes(communicator_) << '\n'
-            << "# step depth_um force_mN newton_iterations augmentations cutbacks "
-               "max_penetration_um wall_time_s\n";
-      }
-    wall_timer_.restart();
-
-    StepRecord initial;
-    records_.push_back(initial);
-    if (csv.is_open())
-      write_csv_row(csv, initial);
 
     // The loading programme: per cycle, load to the maximum, hold it, unload. The control value
     // is the indenter depth [um] or, under force control, the indenter force [mN] (whole
@@ -845,39 +831,99 @@ namespace indentsim::solver
     for (const Segment &segment : programme)
       nominal_steps += segment.steps;
 
-    double       depth = 0, value = 0; // current depth and control value
-    unsigned int step = 0, total_newton = 0, vtu_index = 0;
-    double       max_force = 0;
-    // Top-surface snapshots for the pile-up analysis (rank 0), at the maximum of the last cycle
-    // and at the end of unloading.
+    // The state of the loop: fresh, or where the checkpoint left it. Top-surface snapshots
+    // for the pile-up analysis (rank 0), at the maximum of the last cycle and at the end of
+    // unloading.
+    LoopState                    loop;
     std::vector<SurfaceSnapshot> pileup_snapshots;
-    double                       contact_radius_at_max = 0, value_at_max = 0;
     pileup_results_.clear();
+    if (resume)
+      read_checkpoint(loop, pileup_snapshots);
 
-    if (!output_directory_.empty())
+    std::ofstream csv, log;
+    if (root && !output_directory_.empty())
       {
-        const RunStatistics::Scope timer(statistics_.output);
-        write_vtu(vtu_index++);
+        csv.open(output_directory_ + "/load_penetration.csv");
+        log.open(output_directory_ + "/run.log");
+        write_csv_header(csv);
+        log << "# indentsim " << INDENTSIM_VERSION << " run log. Units: um, mN, GPa, s.\n"
+            << "# cells " << n_cells() << ", DOFs " << n_dofs() << ", constrained DOFs "
+            << n_constrained << ", MPI ranks "
+            << Utilities::MPI::n_mpi_processes(communicator_) << '\n'
+            << "# step depth_um force_mN newton_iterations augmentations cutbacks "
+               "max_penetration_um wall_time_s\n";
+      }
+    wall_timer_.restart();
+    const double wall_offset = loop.wall_time; // of the earlier sessions [s]
+    const auto   wall_time = [&]() { return wall_offset + wall_timer_.wall_time(); };
+
+    if (resume)
+      {
+        // The curve so far, from the saved records: the files are consistent with the state
+        // even if the stopped run went on beyond its last checkpoint.
+        for (const StepRecord &r : records_)
+          {
+            if (csv.is_open())
+              write_csv_row(csv, r);
+            if (log.is_open() && r.step > 0)
+              log << r.step << ' ' << std::setprecision(8) << r.depth << ' ' << r.force << ' '
+                  << r.newton_iterations << ' ' << r.augmentations << ' ' << r.cutbacks << ' '
+                  << r.max_penetration << ' ' << std::setprecision(4) << r.wall_time << '\n';
+          }
+        if (log.is_open())
+          log << "# resumed at step " << loop.step << std::endl;
+        pcout_ << "Resumed at step " << loop.step << " (depth " << std::setprecision(6)
+               << loop.depth
+               << " um) from the checkpoint in " << checkpoint_directory() << std::endl;
+      }
+    else
+      {
+        StepRecord initial;
+        records_.push_back(initial);
+        if (csv.is_open())
+          write_csv_row(csv, initial);
+        if (!output_directory_.empty())
+          {
+            const RunStatistics::Scope timer(statistics_.output);
+            write_vtu(loop.vtu_index++);
+          }
       }
 
+    // Stop requests: signals, the test hook, and INDENTSIM_STOP_AFTER_STEP.
+    const checkpoint::StopRequest stop_request;
+    std::optional<unsigned int>   stop_after = stop_after_step_;
+    if (const char *text = std::getenv("INDENTSIM_STOP_AFTER_STEP"); text != nullptr && *text)
+      stop_after = static_cast<unsigned int>(std::stoul(text));
+    const double interval = case_.output.checkpoint_interval_s;
+    double       last_checkpoint = wall_timer_.wall_time();
+
     const char *unit = force_control ? " mN" : " um";
-    for (const Segment &segment : programme)
+    while (loop.segment < programme.size())
       {
-        const bool   hold = std::string(segment.kind) == "hold";
-        const bool   unloading = std::string(segment.kind) == "unload";
-        const double nominal_increment = maximum / segment.steps;
-        double       increment = nominal_increment;
-        unsigned int easy_steps = 0, segment_steps = 0;
+        const Segment &segment = programme[loop.segment];
+        const bool     hold = std::string(segment.kind) == "hold";
+        const bool     unloading = std::string(segment.kind) == "unload";
+        const double   nominal_increment = maximum / segment.steps;
         // Depth-controlled unloading is paced by force: each step lowers the force by about
         // max_force / unload_points, with the depth increment from the last step's secant
         // unloading stiffness (the first step takes a quarter of the nominal increment). The
         // elastic recovery spans a small part of the depth, so uniform depth steps would leave
         // the Oliver-Pharr fit a handful of points.
         const bool force_paced = unloading && !force_control && loading.unload_points > 0;
-        double     paced_increment =
-          force_paced ? nominal_increment / 4 : std::numeric_limits<double>::infinity();
-        while (true)
+        if (!loop.in_segment)
           {
+            loop.in_segment = true;
+            loop.increment = nominal_increment;
+            loop.easy_steps = 0;
+            loop.segment_steps = 0;
+            loop.paced_increment =
+              force_paced ? nominal_increment / 4 : std::numeric_limits<double>::infinity();
+          }
+        double &value = loop.value, &depth = loop.depth, &increment = loop.increment;
+        unsigned int &step = loop.step;
+
+        // One converged step of this segment.
+        {
             increment = std::min(increment, nominal_increment);
             const double depth_before = depth, force_before = records_.back().force;
             StepRecord   record;
@@ -901,8 +947,8 @@ namespace indentsim::solver
                 record.step = step;
                 record.cycle = segment.cycle;
                 record.segment = segment.kind;
-                record.wall_time = wall_timer_.wall_time();
-                total_newton += record.newton_iterations;
+                record.wall_time = wall_time();
+                loop.total_newton += record.newton_iterations;
                 records_.push_back(record);
                 accept_increment();
                 if (csv.is_open())
@@ -918,8 +964,9 @@ namespace indentsim::solver
             while (true)
               {
                 if (!hold)
-                  new_value =
-                    unloading ? std::max(segment.target, value - std::min(increment, paced_increment)) :
+                  new_value = unloading ?
+                                std::max(segment.target,
+                                         value - std::min(increment, loop.paced_increment)) :
                                 std::min(segment.target, value + increment);
                 const IncrementStatus status =
                   force_control ?
@@ -943,17 +990,17 @@ namespace indentsim::solver
                 ++cutbacks;
                 pcout_ << "    step " << step + 1 << " to " << new_value << unit << ": "
                        << to_string(status) << "; cutting the increment back to "
-                       << std::min(increment, paced_increment) / 2 << unit << "\n";
+                       << std::min(increment, loop.paced_increment) / 2 << unit << "\n";
                 if (log.is_open())
                   log << "# step " << step + 1 << ": " << to_string(status)
-                      << ", increment cut back to " << std::min(increment, paced_increment) / 2
-                      << unit << "\n";
+                      << ", increment cut back to "
+                      << std::min(increment, loop.paced_increment) / 2 << unit << "\n";
                 if (cutbacks > loading.max_cutbacks || hold)
                   throw std::runtime_error(
                     std::string(hold ? "hold" : "increment") + " to " + std::to_string(new_value) +
                     unit + " failed after " + std::to_string(cutbacks - 1) + " cut-backs (" +
                     to_string(status) + ")");
-                increment = std::min(increment, paced_increment) / 2;
+                increment = std::min(increment, loop.paced_increment) / 2;
               }
             value = new_value;
             depth = record.depth;
@@ -965,34 +1012,34 @@ namespace indentsim::solver
                 " um, the depth the mesh is designed for; lower loading.max_force or raise "
                 "loading.max_depth with specimen.refined_region");
             ++step;
-            ++segment_steps;
+            ++loop.segment_steps;
             record.step = step;
             record.cycle = segment.cycle;
             record.segment = segment.kind;
             record.cutbacks = cutbacks;
-            record.wall_time = wall_timer_.wall_time();
-            total_newton += record.newton_iterations;
+            record.wall_time = wall_time();
+            loop.total_newton += record.newton_iterations;
             records_.push_back(record);
-            max_force = std::max(max_force, record.force);
+            loop.max_force = std::max(loop.max_force, record.force);
 
-            const bool reached = hold ? segment_steps >= segment.steps :
+            const bool reached = hold ? loop.segment_steps >= segment.steps :
                                         std::abs(value - segment.target) <= 1e-12 * maximum;
             // Depth-controlled unloading ends when contact is lost or the force has fallen below
             // 0.1 % of its maximum (the last node leaving the indenter makes the active set
             // toggle; nothing measurable happens below that force).
             const bool lost = unloading && !force_control &&
                               (record.n_active_nodes == 0 || depth <= 0 ||
-                               record.force <= 1e-3 * max_force);
+                               record.force <= 1e-3 * loop.max_force);
             const bool segment_done = reached || lost;
             const bool at_max = segment_done && std::string(segment.kind) == "load";
-            const bool finished = segment_done && &segment == &programme.back();
+            const bool finished = segment_done && loop.segment + 1 == programme.size();
             statistics_.steps = step;
             statistics_.cutbacks += cutbacks;
             std::optional<RunStatistics::Scope> output_timer(std::in_place, statistics_.output);
             if (!output_directory_.empty() &&
                 (at_max || finished ||
                  (case_.output.vtu_every > 0 && step % case_.output.vtu_every == 0)))
-              write_vtu(vtu_index++);
+              write_vtu(loop.vtu_index++);
             if (!output_directory_.empty() && at_max)
               {
                 std::erase_if(pileup_snapshots,
@@ -1003,8 +1050,8 @@ namespace indentsim::solver
               pileup_snapshots.push_back({"unloaded", depth, gather_top_surface()});
             if (at_max)
               {
-                contact_radius_at_max = record.contact_radius;
-                value_at_max = force_control ? depth : record.force;
+                loop.contact_radius_at_max = record.contact_radius;
+                loop.value_at_max = force_control ? depth : record.force;
               }
             output_timer.reset();
             accept_increment();
@@ -1038,31 +1085,71 @@ namespace indentsim::solver
                   << std::endl;
 
             if (segment_done)
-              break;
-            if (force_paced && depth_before - depth > 0 && force_before - record.force > 0)
-              paced_increment = (max_force / loading.unload_points) * (depth_before - depth) /
-                                (force_before - record.force);
-            // After a cut-back, grow the increment again only once three steps in a row have
-            // converged easily, so that a difficult stretch is not retried at every step.
-            easy_steps = (cutbacks == 0 && record.newton_iterations <= 6) ? easy_steps + 1 : 0;
-            if (easy_steps >= 3)
               {
-                increment *= 2;
-                easy_steps = 0;
+                ++loop.segment;
+                loop.in_segment = false;
               }
+            else
+              {
+                if (force_paced && depth_before - depth > 0 && force_before - record.force > 0)
+                  loop.paced_increment = (loop.max_force / loading.unload_points) *
+                                         (depth_before - depth) / (force_before - record.force);
+                // After a cut-back, grow the increment again only once three steps in a row
+                // have converged easily, so that a difficult stretch is not retried at every
+                // step.
+                loop.easy_steps =
+                  (cutbacks == 0 && record.newton_iterations <= 6) ? loop.easy_steps + 1 : 0;
+                if (loop.easy_steps >= 3)
+                  {
+                    increment *= 2;
+                    loop.easy_steps = 0;
+                  }
+              }
+        }
+
+        // Checkpoint and stop, decided together by all ranks (each rank's signal flag and
+        // clock may differ). Nothing is saved after the last step: the run is complete.
+        if (output_directory_.empty() || loop.segment == programme.size())
+          continue;
+        const bool stop_local = checkpoint::StopRequest::requested() ||
+                                (stop_after && loop.step >= *stop_after);
+        const bool due_local =
+          interval > 0 && wall_timer_.wall_time() - last_checkpoint >= interval;
+        const unsigned int stop = Utilities::MPI::max(stop_local ? 1u : 0u, communicator_);
+        const unsigned int due = Utilities::MPI::max(due_local ? 1u : 0u, communicator_);
+        if (stop || due)
+          {
+            loop.wall_time = wall_time();
+            const RunStatistics::Scope timer(statistics_.output);
+            write_checkpoint(loop, pileup_snapshots);
+            last_checkpoint = wall_timer_.wall_time();
+          }
+        if (stop)
+          {
+            const std::string case_name =
+              case_.source_file.empty() ? std::string("CASE.yaml") : case_.source_file;
+            pcout_ << "stopped at step " << loop.step << " (depth " << std::setprecision(6)
+                   << loop.depth
+                   << " um); resume with: indentsim run " << case_name << " --resume"
+                   << std::endl;
+            if (log.is_open())
+              log << "# stopped at step " << loop.step << "; checkpoint in "
+                  << checkpoint_directory() << std::endl;
+            return RunOutcome::stopped;
           }
       }
-    pcout_ << "Finished: " << step << " steps, " << total_newton << " Newton iterations, wall time "
-           << format_duration(wall_timer_.wall_time()) << '\n';
+    const unsigned int step = loop.step;
+    pcout_ << "Finished: " << step << " steps, " << loop.total_newton
+           << " Newton iterations, wall time " << format_duration(wall_time()) << '\n';
     if (log.is_open())
-      log << "# finished: " << step << " steps, " << total_newton << " Newton iterations, "
-          << wall_timer_.wall_time() << " s\n";
+      log << "# finished: " << step << " steps, " << loop.total_newton << " Newton iterations, "
+          << wall_time() << " s\n";
     if (root && !output_directory_.empty())
       {
         const RunStatistics::Scope timer(statistics_.output);
-        write_pileup(pileup_snapshots, contact_radius_at_max);
+        write_pileup(pileup_snapshots, loop.contact_radius_at_max);
       }
-    statistics_.total = statistics_.setup + wall_timer_.wall_time();
+    statistics_.total = statistics_.setup + wall_time();
     const RunStatistics &s = statistics_;
     pcout_ << "Time [s]: setup " << s.setup << ", assembly " << s.assembly << ", contact "
            << s.contact << ", linear solve " << s.linear_solve << " (" << s.linear_solves
@@ -1079,11 +1166,19 @@ namespace indentsim::solver
         description.dofs = n_dofs();
         description.mpi_ranks = Utilities::MPI::n_mpi_processes(communicator_);
         description.threads = MultithreadInfo::n_threads();
-        description.final_value = value_at_max;
+        description.final_value = loop.value_at_max;
         description.final_value_name =
           force_control ? "depth_at_max_force_um" : "force_at_max_depth_mN";
         write_run_summary(output_directory_ + "/" + io::output_files::run_summary, description, statistics_,
                           communicator_);
+        // A finished run needs no checkpoint (an earlier one, if any, is removed).
+        MPI_Barrier(communicator_);
+        if (root)
+          {
+            std::error_code error;
+            std::filesystem::remove_all(checkpoint_directory(), error);
+          }
       }
+    return RunOutcome::finished;
   }
 } // namespace indentsim::solver

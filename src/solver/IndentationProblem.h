@@ -31,6 +31,7 @@
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
 
+#include <cstdint>
 #include <fstream>
 #include <functional>
 #include <span>
@@ -73,9 +74,22 @@ namespace indentsim::solver
     // Builds mesh, dofs, constraints, history and contact nodes.
     void setup();
 
+    enum class RunOutcome
+    {
+      finished, // the whole programme ran; the end-of-run outputs are written
+      stopped   // a stop was requested (SIGINT/SIGTERM or stop_after_step): checkpoint written
+    };
     // Runs the whole loading programme; writes outputs into `output_directory` (which must exist)
-    // unless it is empty.
-    void run(const std::string &output_directory);
+    // unless it is empty. With an output directory, a checkpoint of the converged state is
+    // written into its folder `checkpoint` every output.checkpoint_interval_s seconds and when
+    // SIGINT or SIGTERM arrives; then the run stops after the current step (RunOutcome::stopped,
+    // no end-of-run outputs). With `resume`, the state is read from that checkpoint (setup()
+    // must have built the same case on the same number of ranks; otherwise io::CaseFileError
+    // explains why) and the programme continues from it. A finished run removes the checkpoint.
+    RunOutcome run(const std::string &output_directory, bool resume = false);
+    // Test hook: request a stop after the converged step `step` (as a signal would). The
+    // environment variable INDENTSIM_STOP_AFTER_STEP does the same for the command line.
+    void stop_after_step(unsigned int step) { stop_after_step_ = step; }
 
     // Solves one increment to depth `depth` from the last converged state (no cut-back). With
     // `extrapolate`, Newton starts from the linear extrapolation of the last two converged
@@ -159,6 +173,29 @@ namespace indentsim::solver
     // and the pile-up CSV files, then plots them with python/plot_pileup.py (a failing plot is
     // a warning).
     void write_pileup(const std::vector<SurfaceSnapshot> &snapshots, double contact_radius);
+
+    // Where run() is in the loading programme after a converged step: everything the next
+    // step needs besides the fields, histories and contact state of the problem.
+    struct LoopState
+    {
+      unsigned int segment = 0;         // index into the programme
+      bool         in_segment = false;  // false: `segment` starts afresh
+      double       value = 0, depth = 0; // control value (depth or force) and depth
+      double       increment = 0, paced_increment = 0;
+      unsigned int easy_steps = 0, segment_steps = 0;
+      unsigned int step = 0, total_newton = 0, vtu_index = 0;
+      double       max_force = 0, contact_radius_at_max = 0, value_at_max = 0;
+      double       wall_time = 0; // of the run so far, earlier sessions included [s]
+    };
+    // Collective. Writes <output>/checkpoint/rank_<r>.bin (atomically per rank).
+    void write_checkpoint(const LoopState &loop, const std::vector<SurfaceSnapshot> &snapshots);
+    // Collective. Reads the checkpoint into the problem; throws io::CaseFileError on every rank
+    // if any rank's file is missing, of another case, rank count or format.
+    void read_checkpoint(LoopState &loop, std::vector<SurfaceSnapshot> &snapshots);
+    // The fingerprint of the case as far as it determines the results (the resolved case
+    // without output.directory and output.checkpoint_interval_s).
+    std::uint64_t case_fingerprint() const;
+    std::string   checkpoint_directory() const;
     void           compute_cell_fields(dealii::Vector<float> &von_mises,
                                        dealii::Vector<float> &plastic_strain,
                                        std::vector<dealii::Vector<float>> &cauchy);
@@ -205,6 +242,7 @@ namespace indentsim::solver
     std::vector<pileup::PileUpResult>                pileup_results_;
     std::vector<std::pair<double, std::string>>      vtu_records_; // (output index, pvtu file)
     std::string                                      output_directory_;
+    std::optional<unsigned int>                      stop_after_step_;
     dealii::Timer                                    wall_timer_;
   };
 } // namespace indentsim::solver

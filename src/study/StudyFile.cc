@@ -28,8 +28,10 @@ namespace indentsim::study
     const std::vector<std::string> case_keys = {"name", "base", "overrides", "group", "label"};
     const std::vector<std::string> mesh_groups = {"mesh_j2", "mesh_crystal"};
 
-    // Paths of the resolved case that do not change a result and so stay out of the key.
-    const std::vector<std::string> paths_outside_key = {"output.directory", "solver.threads"};
+    // Paths of the resolved case that do not change a result and so stay out of the key (so
+    // the keys of studies finished before output.checkpoint_interval_s existed stay valid).
+    const std::vector<std::string> paths_outside_key = {"output.directory", "solver.threads",
+                                                        "output.checkpoint_interval_s"};
 
     using io::join;
     const auto &flow_text = io::node_text;

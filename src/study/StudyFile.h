@@ -106,7 +106,7 @@ namespace indentsim::study
   YAML::Node merge_overrides(const YAML::Node &base, const YAML::Node &overrides);
 
   // The canonical text that the key hashes: one "path: value" line per key of the resolved
-  // case, sorted, without output.directory and solver.threads.
+  // case, sorted, without output.directory, output.checkpoint_interval_s and solver.threads.
   std::string canonical_case_text(const io::Case &resolved_case);
 
   // 64-bit FNV-1a of `text`.

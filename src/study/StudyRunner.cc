@@ -2,6 +2,8 @@
 // the study index and the report. See StudyRunner.h. Units: um, mN, GPa; times in s.
 #include <study/StudyRunner.h>
 
+#include <io/CaseFile.h>
+
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -321,8 +323,23 @@ namespace indentsim::study
     command.push_back(settings_.executable);
     command.push_back("run");
     command.push_back((fs::path(study_case.directory) / study_files::case_input).string());
-    command.push_back("--overwrite");
+    command.push_back(resumable(study_case) ? "--resume" : "--overwrite");
     return command;
+  }
+
+  // An interrupted indentation case continues from its checkpoint when that was written by
+  // the same number of MPI ranks (rank_<N-1>.bin present, rank_<N>.bin absent); otherwise it
+  // reruns from the start.
+  bool StudyRunner::resumable(const StudyCase &study_case) const
+  {
+    const fs::path checkpoint =
+      fs::path(study_case.directory) / io::output_files::checkpoint_directory;
+    const auto rank_file = [&](const unsigned int rank) {
+      return checkpoint / ("rank_" + std::to_string(rank) + ".bin");
+    };
+    std::error_code error;
+    return fs::exists(rank_file(settings_.ranks - 1), error) &&
+           !fs::exists(rank_file(settings_.ranks), error);
   }
 
   void StudyRunner::print_plan(const std::vector<CaseState> &states) const
@@ -341,7 +358,8 @@ namespace indentsim::study
         else if (states[i] == CaseState::finished)
           action = "finished: skipped";
         else if (states[i] == CaseState::unfinished)
-          action = "interrupted: rerun from the start";
+          action = resumable(c) ? "interrupted: resumed from its checkpoint" :
+                                  "interrupted: rerun from the start";
         else if (states[i] == CaseState::failed)
           action = "failed before: rerun";
         else

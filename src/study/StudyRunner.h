@@ -80,6 +80,7 @@ namespace indentsim::study
 
     void print_plan(const std::vector<CaseState> &states) const;
     std::vector<std::string> case_command(const StudyCase &study_case) const;
+    bool                     resumable(const StudyCase &study_case) const;
     void write_index(const std::vector<CaseState> &states,
                      const std::vector<bool>      &ran_now) const;
     int  write_report() const;

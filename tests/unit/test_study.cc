@@ -451,6 +451,22 @@ TEST(StudyRunner, RerunsInterruptedCaseOnlySelectsAndDryRunWritesNothing)
   EXPECT_EQ(count(fixture.runs(), "ok1-"), 1u);
   EXPECT_EQ(count(fixture.runs(), "ok2-"), 2u);
 
+  // Interrupted with a checkpoint of the same rank count: resumed (--resume); of another rank
+  // count: rerun from the start (--overwrite).
+  fs::remove(fs::path(s.cases[1].directory) / study::study_files::case_mark);
+  const fs::path checkpoint = fs::path(s.cases[1].directory) / "checkpoint";
+  fs::create_directories(checkpoint);
+  write_text(checkpoint / "rank_0.bin", "x");
+  fixture.settings.dry_run = true;
+  EXPECT_EQ(fixture.run(s, output), study::exit_ok);
+  EXPECT_NE(output.find("interrupted: resumed from its checkpoint"), std::string::npos) << output;
+  EXPECT_NE(output.find("case.yaml --resume"), std::string::npos) << output;
+  write_text(checkpoint / "rank_1.bin", "x"); // written by 2 ranks, the study runs 1
+  EXPECT_EQ(fixture.run(s, output), study::exit_ok);
+  EXPECT_NE(output.find("interrupted: rerun from the start"), std::string::npos) << output;
+  EXPECT_NE(output.find("case.yaml --overwrite"), std::string::npos) << output;
+  fixture.settings.dry_run = false;
+
   fixture.settings.only = {"nonesuch"};
   EXPECT_THROW(study::StudyRunner(s, fixture.settings, std::cout), study::StudyFileError);
 }

@@ -1,5 +1,7 @@
 #include "analysis/CurveComparison.h"
 
+#include "io/JsonText.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -87,7 +89,7 @@ namespace indentsim::analysis
     std::ostringstream out;
     out << "{\n"
         << "  \"units\": \"depths um, forces mN\",\n"
-        << "  \"measured_curve\": \"" << measured_source << "\",\n"
+        << "  \"measured_curve\": " << io::json_string(measured_source) << ",\n"
         << "  \"compared\": \"loading branches at the measured depths within the computed range; "
            "computed force interpolated linearly\",\n"
         << "  \"n_points\": " << d.n_points << ",\n"

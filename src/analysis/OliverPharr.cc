@@ -1,6 +1,7 @@
 // Oliver-Pharr analysis (see OliverPharr.h for the equations and units).
 #include "analysis/OliverPharr.h"
 
+#include "io/JsonText.h"
 #include "io/TextNumber.h"
 
 #include <algorithm>
@@ -440,8 +441,8 @@ namespace indentsim::analysis
     out << "{\n"
         << "  \"units\": \"depths um, forces mN, areas um^2, stiffness mN/um, hardness and moduli "
            "GPa, work mN*um (= nJ)\",\n"
-        << "  \"source\": \"" << source << "\",\n"
-        << "  \"indenter\": \"" << indenter_description << "\",\n"
+        << "  \"source\": " << io::json_string(source) << ",\n"
+        << "  \"indenter\": " << io::json_string(indenter_description) << ",\n"
         << "  \"method\": \"Oliver-Pharr: P = alpha (h - h_f)^m on the unloading points with "
         << format(100 * settings.fit_lower) << "-" << format(100 * settings.fit_upper)
         << " % of P_max; S = dP/dh at h_max; h_c = h_max - epsilon P_max/S; "

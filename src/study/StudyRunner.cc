@@ -3,6 +3,7 @@
 #include <study/StudyRunner.h>
 
 #include <io/CaseFile.h>
+#include <io/JsonText.h>
 
 #include <fcntl.h>
 #include <signal.h>
@@ -67,35 +68,7 @@ namespace indentsim::study
       return value;
     }
 
-    std::string json_string(const std::string &text)
-    {
-      std::ostringstream out;
-      out << '"';
-      for (const unsigned char c : text)
-        switch (c)
-          {
-            case '"':
-              out << "\\\"";
-              break;
-            case '\\':
-              out << "\\\\";
-              break;
-            case '\n':
-              out << "\\n";
-              break;
-            case '\t':
-              out << "\\t";
-              break;
-            default:
-              if (c < 0x20)
-                out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c)
-                    << std::dec << std::setfill(' ');
-              else
-                out << c;
-          }
-      out << '"';
-      return out.str();
-    }
+    using io::json_string;
 
     std::string json_number_text(const double value)
     {

@@ -349,3 +349,13 @@ TEST(CurveComparison, ScaledMeasurementGivesClosedFormDeviation)
     h *= 1000;
   EXPECT_THROW(analysis::compare_loading(computed, measured), std::invalid_argument);
 }
+
+// The JSON names its source file as a valid JSON string, quotes and backslashes escaped.
+TEST(OliverPharr, JsonEscapesTheSourcePath)
+{
+  const analysis::OliverPharrResult   result;
+  const analysis::OliverPharrSettings settings;
+  const std::string json =
+    analysis::to_json(result, settings, "vickers", "data/run \"A\"\\1.csv");
+  EXPECT_NE(json.find("\"source\": \"data/run \\\"A\\\"\\\\1.csv\""), std::string::npos) << json;
+}

@@ -1,0 +1,40 @@
+// A string as a JSON string literal (quoted, with JSON escapes), for the JSON files the tool
+// writes (study index, Oliver-Pharr analysis, comparison with a measured curve).
+#pragma once
+
+#include <iomanip>
+#include <sstream>
+#include <string>
+
+namespace indentsim::io
+{
+  inline std::string json_string(const std::string &text)
+  {
+    std::ostringstream out;
+    out << '"';
+    for (const unsigned char c : text)
+      switch (c)
+        {
+          case '"':
+            out << "\\\"";
+            break;
+          case '\\':
+            out << "\\\\";
+            break;
+          case '\n':
+            out << "\\n";
+            break;
+          case '\t':
+            out << "\\t";
+            break;
+          default:
+            if (c < 0x20)
+              out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec
+                  << std::setfill(' ');
+            else
+              out << c;
+        }
+    out << '"';
+    return out.str();
+  }
+} // namespace indentsim::io

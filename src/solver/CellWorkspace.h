@@ -66,6 +66,7 @@ namespace indentsim::solver
     dealii::FullMatrix<double>                   matrix; // left unused without a matrix
     dealii::Vector<double>                       vector;
     std::vector<dealii::types::global_dof_index> dof_indices;
+    unsigned int cell_index = 0; // active cell index
     std::array<double, 2> sums = {{0., 0.}}; // problem-specific cell sums (reactions, volume)
   };
 

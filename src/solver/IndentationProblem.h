@@ -18,6 +18,7 @@
 #include "solver/FiniteStrainElement.h"
 #include "solver/IncrementStatus.h"
 #include "solver/LinearSolver.h"
+#include "solver/MatrixScatter.h"
 #include "solver/PileUp.h"
 #include "solver/RunStatistics.h"
 
@@ -237,6 +238,7 @@ namespace indentsim::solver
     std::vector<double> state_old_, state_new_;
 
     LinearSolver                                     linear_solver_;
+    MatrixScatter                                    scatter_; // fast path of the matrix assembly
     RunStatistics                                    statistics_;
     std::vector<StepRecord>                          records_;
     std::vector<pileup::PileUpResult>                pileup_results_;

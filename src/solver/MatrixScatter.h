@@ -1,0 +1,93 @@
+// Adds cell matrices to the global PETSc matrix through precomputed positions in its CSR
+// arrays, instead of MatSetValues. Units of the matrix (mN/um for the indentation tangent).
+//
+// Why: the copier of the threaded cell loop (CellWorkspace.h) runs on one thread at a time,
+// and MatSetValues searches every one of a cell's 576 entries in its row. Measured with perf
+// on the paper's J2 case at 24 x 24 (full model, one process, two threads): MatSetValues took
+// as much CPU time as the element kernels (24 % against 23 %), and being serial it bounded the
+// assembly. With the positions found once per sparsity pattern, a cell costs 576 indexed
+// additions.
+//
+// A cell takes the fast path when this rank owns all rows its entries reach; the others (at
+// the boundaries between ranks' cells) go through AffineConstraints::distribute_local_to_global
+// as before. Constraints are resolved as that function does: a constrained DoF's row and
+// column are distributed to its masters with their weights (hanging nodes) or dropped
+// (supports), and the constrained row gets |K_ii| on its diagonal (the mean |K_jj| of the cell
+// if K_ii = 0). Cells without constrained DoFs make their additions in the same order as
+// MatSetValues, bitwise the same matrix; the others differ by the order of summation (tested
+// against distribute_local_to_global).
+//
+// Use: build once after the matrix is created (positions for this rank's owned cells), then
+// per assembly: begin() after zeroing the matrix, add() per cell from the copier, end() before
+// anything else touches the matrix (compress).
+#pragma once
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/petsc_sparse_matrix.h>
+
+#include <petscmat.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace indentsim::solver
+{
+  class MatrixScatter
+  {
+  public:
+    MatrixScatter() = default;
+    // Positions for the locally owned cells of `dof_handler` in `matrix` (assembled at least
+    // once, with its final sparsity pattern; PETSc MPIAIJ). Collective over nothing.
+    void build(const dealii::DoFHandler<3>                   &dof_handler,
+               const dealii::AffineConstraints<double>       &constraints,
+               const dealii::PETScWrappers::MPI::SparseMatrix &matrix);
+
+    // True if `cell` (active cell index) takes the fast path.
+    bool is_fast(unsigned int active_cell_index) const
+    {
+      return active_cell_index < plan_.size() && plan_[active_cell_index].positions >= 0;
+    }
+    // Fraction of this rank's owned cells on the fast path (diagnostics).
+    double fast_fraction() const { return fast_fraction_; }
+
+    // Opens the CSR value arrays of `matrix` (the one passed to build). Between begin() and
+    // end(), other cells may still be added with MatSetValues (it writes the same arrays).
+    void begin(dealii::PETScWrappers::MPI::SparseMatrix &matrix);
+    // Adds the cell matrix of a fast cell (is_fast(active_cell_index)), dofs in cell order.
+    void add(unsigned int active_cell_index, const dealii::FullMatrix<double> &cell_matrix);
+    void end();
+
+  private:
+    // Where a fast cell's entries go. Positions are diagonal-block positions, or n_diagonal_ +
+    // off-diagonal-block positions.
+    struct CellPlan
+    {
+      long positions = -1; // first of the cell's positions in positions_; -1: slow path
+      long targets = -1;   // first of its n_cell_dofs_ target counts and their weights in
+                           // counts_ / weights_; -1: no constrained DoF (one target each)
+      long weights = -1;
+      long diagonals = -1; // first (local DoF, position) of its constrained rows' diagonals
+      unsigned int n_diagonals = 0;
+    };
+    double &value(std::uint32_t position)
+    {
+      return position < n_diagonal_ ? diagonal_values_[position] :
+                                      off_diagonal_values_[position - n_diagonal_];
+    }
+
+    std::vector<CellPlan>      plan_;      // per active cell
+    std::vector<std::uint32_t> positions_; // unconstrained cell: n x n; constrained cell: for
+                                           // each row target of each DoF, each column target
+    std::vector<std::uint8_t>  counts_;    // targets per DoF of constrained cells (0: support)
+    std::vector<double>        weights_;   // the targets' weights
+    std::vector<std::pair<unsigned int, std::uint32_t>> diagonals_;
+    std::uint32_t n_diagonal_ = 0;         // nonzeros of the diagonal block
+    unsigned int  n_cell_dofs_ = 0;
+    double        fast_fraction_ = 0;
+
+    Mat          diagonal_block_ = nullptr, off_diagonal_block_ = nullptr;
+    PetscScalar *diagonal_values_ = nullptr, *off_diagonal_values_ = nullptr;
+  };
+} // namespace indentsim::solver

@@ -87,6 +87,8 @@ namespace indentsim::solver
     void destroy();
     void use_gmres(); // right-preconditioned, true-residual test
     void use_cg();    // true-residual test
+    void dump_system(const dealii::PETScWrappers::MPI::SparseMatrix &matrix,
+                     const dealii::PETScWrappers::MPI::Vector       &rhs);
 
     MPI_Comm                                        communicator_;
     Kind                                            kind_ = Kind::direct;
@@ -96,5 +98,6 @@ namespace indentsim::solver
     std::vector<dealii::PETScWrappers::MPI::Vector> rigid_body_modes_;   // orthonormal
     bool         rebuild_preconditioner_ = true;
     unsigned int iterations_after_build_ = 0; // Krylov iterations of the first solve after it
+    unsigned long n_solves_ = 0;              // solves so far (INDENTSIM_DUMP_LINEAR_SYSTEMS)
   };
 } // namespace indentsim::solver

@@ -32,6 +32,20 @@ namespace indentsim::solver
 {
   using dealii::Tensor;
 
+  // One quadrature point's factors of the tangent (hexahedron: 8 nodes, 24 DOFs), laid out
+  // for the vectorized accumulation in FiniteStrainElement.cc: arrays over the nodes j last.
+  struct PointTangentTerms
+  {
+    alignas(64) double gT[3][8];    // g_jL
+    alignas(64) double YT[4][3][8]; // F-bar factors Y_k of DOF (j, d)
+    alignas(64) double hT[3][8], h0T[3][8]; // (F^-T g_j)_c, (F_0^-T g0_j)_c
+    double P[24][3][3];             // theta^2 w g_iJ A_cJdL of row a = 3 i + c
+    double X[24][4];                // F-bar factors X_k of row a
+    double h[8][3], h0[8][3];
+    double weighted_geometric_p = 0; // w theta / 3 P : F
+    bool   f_bar = false;
+  };
+
   struct ElementScratch
   {
     explicit ElementScratch(unsigned int n_nodes = 8, unsigned int n_q_points = 8);
@@ -40,13 +54,12 @@ namespace indentsim::solver
     std::vector<Tensor<1, 3>>              grad0; // [i] grad_X N_i at the element centre
     std::vector<double>                    JxW;   // [q] reference volume weights
     // Work arrays (allocated once).
-    std::vector<Tensor<1, 3>>              h, h0, Pg, AFg, FAg; // [i]
-    std::vector<Tensor<3, 3>>              Ag;                  // [i] g_iJ A_cJdL
+    std::vector<Tensor<1, 3>>              h, h0, Pg;           // [i]
     std::vector<double>                    c, beta;             // [a]
-    std::vector<std::array<double, 4>>     X, Y;                // [a] F-bar product factors
-    // Upper node blocks (j >= i) of the symmetric quadrature points' contributions, mirrored
-    // into the tangent once per element (row-major n_dofs x n_dofs).
-    std::vector<double>                    K_symmetric;
+    PointTangentTerms                      point;
+    // The element tangent with its columns ordered by component (row a, column d 8 + j),
+    // copied into deal.II's order at the end of the element.
+    std::vector<double>                    K_columns_by_component;
   };
 
   // F = 1 + sum_i u_i (x) g_i at quadrature point q (q = n_q_points: the element centre).

@@ -36,6 +36,7 @@
 #include <fstream>
 #include <functional>
 #include <span>
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -239,6 +240,10 @@ namespace indentsim::solver
 
     LinearSolver                                     linear_solver_;
     MatrixScatter                                    scatter_; // fast path of the matrix assembly
+    // |R_it| / |R_it-1| of Newton iteration it of augmentation pass `pass` in the last increment
+    // that reached it ([pass][it], the last slots shared by the later ones; 0: unknown). Steers
+    // which iterates assemble their residual first (solve_increment); no effect on results.
+    std::array<std::array<double, 6>, 6>             newton_reduction_{};
     RunStatistics                                    statistics_;
     std::vector<StepRecord>                          records_;
     std::vector<pileup::PileUpResult>                pileup_results_;

@@ -48,6 +48,8 @@ namespace indentsim::solver
         << "  \"newton_iterations\": " << s.newton_iterations << ",\n"
         << "  \"augmentations\": " << s.augmentations << ",\n"
         << "  \"assemblies\": " << s.assemblies << ",\n"
+        << "  \"residual_only_assemblies\": " << s.residual_only_assemblies << ",\n"
+        << "  \"residual_first_misses\": " << s.residual_first_misses << ",\n"
         << "  \"predictor_retries\": " << s.predictor_retries << ",\n"
         << "  \"linear_solves\": " << s.linear_solves << ",\n"
         << "  \"linear_iterations\": " << s.linear_iterations << ",\n"

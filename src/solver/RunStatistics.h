@@ -25,7 +25,9 @@ namespace indentsim::solver
 
     unsigned long steps = 0, cutbacks = 0, newton_iterations = 0, linear_iterations = 0,
                   linear_solves = 0, augmentations = 0, assemblies = 0,
-                  predictor_retries = 0; // increments retried without the extrapolated start
+                  predictor_retries = 0, // increments retried without the extrapolated start
+                  residual_only_assemblies = 0, // residual without matrix (Newton's end predicted)
+                  residual_first_misses = 0;    // of those, iterates that needed the matrix after all
 
     // Accumulates the wall time of its lifetime into `target`.
     class Scope

@@ -124,7 +124,7 @@ namespace indentsim::io
     unsigned int max_newton_iterations = 25;
     // Linear solver of the Newton iterations (solver/LinearSolver.h): auto (direct below
     // LinearSolver::iterative_threshold_dofs unknowns, else iterative) | direct (MUMPS LU) |
-    // iterative (CG/GMRES with smoothed-aggregation AMG, rigid-body modes).
+    // iterative (CG/GMRES with ML smoothed-aggregation AMG, rigid-body modes).
     std::string  linear_solver = "auto";
     unsigned int threads = 0; // assembly threads per MPI rank; 0: the cores divided by the ranks
 

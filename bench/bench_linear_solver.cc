@@ -2,12 +2,14 @@
 // INDENTSIM_DUMP_LINEAR_SYSTEMS=DIR:K (PETSc binary: matrix, right-hand side, rigid-body modes),
 // to compare preconditioners and their options without rerunning the Newton iterations.
 //
-//   build/bench_linear_solver [-rtol R] [-reuse] FILE... [PETSc options]
+//   build/bench_linear_solver [-rtol R] [-reuse | -keep] FILE... [PETSc options]
 //
 // Defaults: the options indentsim itself uses (GMRES, right-preconditioned, true-residual test,
 // GAMG with the rigid-body modes as near-null space, Chebyshev/Jacobi smoothing); any PETSc
 // option overrides them (e.g. -pc_type hypre, -mg_levels_pc_type sor). -reuse keeps the first
-// system's preconditioner for the following ones (indentsim reuses it within a load step).
+// system's preconditioner for the following ones (indentsim reuses it while it works); -keep
+// keeps one solver object and sets its preconditioner up again for each system (what options
+// such as -pc_ml_reuse_interpolation act on).
 // Prints per system: DOFs, preconditioner setup [s], Krylov solve [s], iterations, and the
 // true relative residual. Units of the systems: mN/um, mN, um.
 #include <petscksp.h>
@@ -39,6 +41,7 @@ int main(int argc, char **argv)
   std::vector<std::string> files;
   double                   rtol = 1e-4;
   bool                     reuse = false;
+  bool                     keep = false; // one KSP for all systems, set up again for each
   std::vector<char *>      petsc_arguments{argv[0]};
   for (int i = 1; i < argc; ++i)
     {
@@ -46,6 +49,8 @@ int main(int argc, char **argv)
         rtol = std::atof(argv[++i]);
       else if (std::strcmp(argv[i], "-reuse") == 0)
         reuse = true;
+      else if (std::strcmp(argv[i], "-keep") == 0)
+        keep = true;
       else if (argv[i][0] == '-')
         {
           petsc_arguments.push_back(argv[i]);
@@ -115,7 +120,7 @@ int main(int argc, char **argv)
           MatNullSpaceDestroy(&near_null_space);
         }
       const bool fresh = ksp == nullptr || !reuse;
-      if (fresh)
+      if (ksp == nullptr || (!reuse && !keep))
         {
           if (ksp)
             KSPDestroy(&ksp);

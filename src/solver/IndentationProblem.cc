@@ -565,16 +565,19 @@ namespace indentsim::solver
               }
 
             // Newton update K du = -R. Inexact Newton: the linear relative tolerance follows
-            // the residual (0.1 |R|/|R_ref|, within [1e-10, 1e-4]), so that the linear error
+            // the residual (0.1 |R|/|R_ref|, within [1e-10, 1e-3]), so that the linear error
             // stays below the quadratic Newton error and the last iterations keep their rate.
-            // The cap 1e-4 (not 1e-2) keeps the contact active-set iteration on the path of the
-            // direct solver: looser solves made the small test case cycle and cut back.
+            // The cap 1e-3 (not 1e-2) keeps the contact active-set iteration on the path of the
+            // direct solver: looser solves made the small test case cycle and cut back, and
+            // cost the paper's J2 case at 24 x 24 10 % more Newton iterations (361 against 331);
+            // 1e-3 against 1e-4 there: the same Newton iterations, 7 % fewer linear ones and
+            // 20 % less time in the linear solve, the force at 6.0 um the same to 8e-8.
             residual_ *= -1.0;
             LinearSolver::Result linear;
             {
               const RunStatistics::Scope timer(statistics_.linear_solve);
               linear = linear_solver_.solve(
-                matrix_, du, residual_, std::clamp(0.1 * norm / reference, 1e-10, 1e-4));
+                matrix_, du, residual_, std::clamp(0.1 * norm / reference, 1e-10, 1e-3));
             }
             ++statistics_.linear_solves;
             statistics_.linear_iterations += linear.iterations;
@@ -596,7 +599,7 @@ namespace indentsim::solver
                 {
                   const RunStatistics::Scope timer(statistics_.linear_solve);
                   linear = linear_solver_.solve(matrix_, coupled_update, residual_derivative,
-                                                std::clamp(0.1 * norm / reference, 1e-10, 1e-4));
+                                                std::clamp(0.1 * norm / reference, 1e-10, 1e-3));
                 }
                 ++statistics_.linear_solves;
                 statistics_.linear_iterations += linear.iterations;

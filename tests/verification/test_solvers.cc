@@ -45,6 +45,29 @@ namespace
       }
   }
 
+  // The same curve to the contact tolerance: the augmented Lagrangian meets the constraints to
+  // the penetration tolerance, so two solutions whose linear solves differ (direct, or
+  // iterative to a relative tolerance) may end at states a tolerance apart: at depth h the
+  // forces agree to (penetration tolerance) x (contact stiffness dF/dh), the stiffness taken
+  // as the steeper secant of the curve next to the step.
+  void expect_same_curve_to_contact_tolerance(const std::vector<solver::StepRecord> &a,
+                                              const std::vector<solver::StepRecord> &b,
+                                              const double penetration_tolerance)
+  {
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i)
+      {
+        double stiffness = 0;
+        for (const std::size_t j : {i - 1, i + 1})
+          if (j < a.size() && std::abs(a[j].depth - a[i].depth) > 0)
+            stiffness = std::max(stiffness, std::abs((a[j].force - a[i].force) /
+                                                     (a[j].depth - a[i].depth)));
+        EXPECT_NEAR(a[i].depth, b[i].depth, 1e-12) << "step " << i;
+        EXPECT_NEAR(a[i].force, b[i].force, penetration_tolerance * stiffness)
+          << "step " << i << " (contact stiffness " << stiffness << " mN/um)";
+      }
+  }
+
   // The numbers of a flat JSON object (key -> value), as run_summary.json writes them.
   std::map<std::string, double> json_numbers(const std::string &text)
   {
@@ -57,9 +80,10 @@ namespace
   }
 } // namespace
 
-// Smoothed-aggregation AMG with CG (symmetric J2 tangent) reproduces the direct solver's curve;
-// the Newton tolerance (1e-8 relative residual) bounds the difference. Measured: 5e-9 on the
-// paper's 12 x 12 case.
+// Smoothed-aggregation AMG with GMRES reproduces the direct solver's curve to the contact
+// tolerance (the Newton tolerance, 1e-8 relative residual, is far tighter). Measured: the
+// largest difference is 0.2 of the bound (J2: 7.5e-6 mN where 1e-6 um x 35 mN/um allows 3.5e-5
+// mN), 1.4e-7 of the largest force.
 namespace
 {
   void expect_iterative_matches_direct(io::Case c)
@@ -68,7 +92,7 @@ namespace
     const auto direct = run_indentation(c);
     c.solver.linear_solver = "iterative";
     const auto iterative = run_indentation(c);
-    expect_same_curve(direct, iterative, 1e-7);
+    expect_same_curve_to_contact_tolerance(direct, iterative, c.contact.penetration_tolerance);
   }
 } // namespace
 

@@ -5,8 +5,8 @@
 //   build/bench_linear_solver [-rtol R] [-reuse | -keep] FILE... [PETSc options]
 //
 // Defaults: the options indentsim itself uses (GMRES, right-preconditioned, true-residual test,
-// GAMG with the rigid-body modes as near-null space, Chebyshev/Jacobi smoothing); any PETSc
-// option overrides them (e.g. -pc_type hypre, -mg_levels_pc_type sor). -reuse keeps the first
+// ML smoothed aggregation with the rigid-body modes as near-null space, Chebyshev/Jacobi
+// smoothing); any PETSc option overrides them (e.g. -pc_type gamg, -mg_levels_pc_type sor). -reuse keeps the first
 // system's preconditioner for the following ones (indentsim reuses it while it works); -keep
 // keeps one solver object and sets its preconditioner up again for each system (what options
 // such as -pc_ml_reuse_interpolation act on).
@@ -68,7 +68,7 @@ int main(int argc, char **argv)
   PetscInitialize(&petsc_argc, &petsc_argv, nullptr, nullptr);
   if (files.empty())
     {
-      PetscPrintf(PETSC_COMM_WORLD, "usage: bench_linear_solver [-rtol R] [-reuse] FILE... [PETSc options]\n");
+      PetscPrintf(PETSC_COMM_WORLD, "usage: bench_linear_solver [-rtol R] [-reuse | -keep] FILE... [PETSc options]\n");
       PetscFinalize();
       return 2;
     }
@@ -76,7 +76,8 @@ int main(int argc, char **argv)
   set_default("-ksp_gmres_restart", "200");
   set_default("-ksp_pc_side", "right");
   set_default("-ksp_norm_type", "unpreconditioned");
-  set_default("-pc_type", "gamg");
+  set_default("-pc_type", "ml");
+  set_default("-pc_ml_nullspace", "user");
   set_default("-pc_gamg_threshold", "0.01");
   set_default("-pc_gamg_square_graph", "1");
   set_default("-mg_levels_ksp_type", "chebyshev");

@@ -6,6 +6,9 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdlib>
 
 #include <stdexcept>
@@ -252,6 +255,17 @@ namespace indentsim::solver
         check(KSPSetTolerances(ksp_, relative_tolerance, 0.0, PETSC_DEFAULT, 1000),
               "KSPSetTolerances");
       }
+    Result result;
+    // The preconditioner (AMG hierarchy or LU factors) is built by KSPSetUp; timed on its own.
+    const auto set_up = [&]() {
+      const auto start = std::chrono::steady_clock::now();
+      check(KSPSetUp(ksp_), "KSPSetUp");
+      result.setup_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      ++result.preconditioner_setups;
+    };
+    if (rebuilt)
+      set_up();
     const auto run = [&]() {
       check(KSPSolve(ksp_, static_cast<const Vec &>(rhs), static_cast<const Vec &>(x)),
             "KSPSolve");
@@ -275,21 +289,33 @@ namespace indentsim::solver
         check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
         total_iterations += iterations;
       }
+    bool fresh_after_failure = false;
     if (kind_ == Kind::iterative && !rebuilt && reason < 0)
       {
+        fresh_after_failure = true;
         // The reused preconditioner failed: a fresh one for the same matrix.
         check(KSPSetReusePreconditioner(ksp_, PETSC_FALSE), "KSPSetReusePreconditioner");
+        set_up();
         reason = run();
         check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
         total_iterations += iterations;
-        iterations_after_build_ = static_cast<unsigned int>(iterations);
       }
-    else if (rebuilt)
-      iterations_after_build_ = static_cast<unsigned int>(iterations);
-    rebuild_preconditioner_ =
-      static_cast<unsigned int>(iterations) > 2 * iterations_after_build_ + 10;
+    // Staleness of a reused preconditioner, measured in Krylov iterations per decade of residual
+    // reduction (the tolerance varies from solve to solve): the iterations a solve needs beyond
+    // the rate of the first solve after the build are the price of not rebuilding. Once they add
+    // up to the price of a build, it is rebuilt (the rent-or-buy rule: at most twice the
+    // cost of the best choice made in hindsight).
+    const double decades = std::max(1.0, -std::log10(relative_tolerance));
+    if (kind_ == Kind::iterative && (rebuilt || (reason > 0 && fresh_after_failure)))
+      {
+        iterations_per_decade_ = static_cast<double>(iterations) / decades;
+        stale_iterations_ = 0;
+      }
+    else if (kind_ == Kind::iterative)
+      stale_iterations_ +=
+        std::max(0.0, static_cast<double>(iterations) - iterations_per_decade_ * decades);
+    rebuild_preconditioner_ = stale_iterations_ >= setup_cost_in_iterations;
     iterations = total_iterations;
-    Result result;
     result.converged = reason > 0;
     result.iterations = kind_ == Kind::direct ? 1u : static_cast<unsigned int>(iterations);
     result.reason = KSPConvergedReasons[reason];

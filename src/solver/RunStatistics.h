@@ -20,6 +20,7 @@ namespace indentsim::solver
                                 // its spread over ranks is the load imbalance
     double contact = 0;         // contact search, augmentation and its assembly
     double linear_solve = 0;    // factorization or preconditioner setup and Krylov iterations
+    double preconditioner_setup = 0; // of which AMG setups or LU factorizations
     double output = 0;          // VTU, pile-up snapshots and analysis, CSV
     double total = 0;           // whole run, setup included
 
@@ -27,7 +28,18 @@ namespace indentsim::solver
                   linear_solves = 0, augmentations = 0, assemblies = 0,
                   predictor_retries = 0, // increments retried without the extrapolated start
                   residual_only_assemblies = 0, // residual without matrix (Newton's end predicted)
-                  residual_first_misses = 0;    // of those, iterates that needed the matrix after all
+                  residual_first_misses = 0,    // of those, iterates that needed the matrix after all
+                  preconditioner_setups = 0;    // AMG builds or LU factorizations
+
+    // Counts one linear solve: its Krylov iterations, preconditioner setups and their time [s].
+    void add_linear_solve(const unsigned int iterations, const unsigned int setups,
+                          const double setup_seconds)
+    {
+      ++linear_solves;
+      linear_iterations += iterations;
+      preconditioner_setups += setups;
+      preconditioner_setup += setup_seconds;
+    }
 
     // Accumulates the wall time of its lifetime into `target`.
     class Scope

@@ -315,9 +315,9 @@ namespace indentsim::solver
           linear = linear_solver_.solve(
             matrix_, du, rhs_, std::clamp(0.1 * norm / reference, 1e-10, 1e-4));
         }
-        ++statistics_.linear_solves;
+        statistics_.add_linear_solve(linear.iterations, linear.preconditioner_setups,
+                                     linear.setup_seconds);
         ++statistics_.newton_iterations;
-        statistics_.linear_iterations += linear.iterations;
         if (!linear.converged)
           {
             pcout_ << "      linear solver: " << linear.reason << std::endl;

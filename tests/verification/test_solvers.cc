@@ -201,6 +201,13 @@ TEST(RunSummary, CountersAndTimesAreConsistentWithTheRun)
   EXPECT_EQ(numbers.at("dofs"), double(problem.n_dofs()));
   EXPECT_EQ(numbers.at("cells"), double(problem.n_cells()));
   EXPECT_EQ(numbers.at("linear_solves"), numbers.at("newton_iterations")); // one per iteration
+  // The small case is solved directly: one LU factorization per solve that has a right-hand
+  // side (each counts one "iteration"; a zero right-hand side is answered without a solve),
+  // timed inside the solve.
+  EXPECT_EQ(numbers.at("preconditioner_setups"), numbers.at("linear_iterations"));
+  EXPECT_LE(numbers.at("preconditioner_setups"), numbers.at("linear_solves"));
+  EXPECT_GT(numbers.at("time_preconditioner_setup_s"), 0.0);
+  EXPECT_LE(numbers.at("time_preconditioner_setup_s"), numbers.at("time_linear_solve_s"));
   EXPECT_NEAR(numbers.at("force_at_max_depth_mN"), force_at_max, 1e-8 * force_at_max);
   double phases = 0;
   for (const char *phase : {"time_setup_s", "time_assembly_s", "time_contact_s",

@@ -30,6 +30,7 @@ namespace
   using namespace dealii;
   using indentsim::solver::LinearSolver;
 
+  // The systems and a solver of the given kind for them.
   struct Systems
   {
     parallel::distributed::Triangulation<3> triangulation{MPI_COMM_WORLD};
@@ -38,8 +39,10 @@ namespace
     AffineConstraints<double>               constraints;
     PETScWrappers::MPI::SparseMatrix        matrix;
     PETScWrappers::MPI::Vector              rhs;
+    PETScWrappers::MPI::Vector              x;
+    LinearSolver                            solver{MPI_COMM_WORLD};
 
-    Systems()
+    explicit Systems(const LinearSolver::Kind kind)
     {
       GridGenerator::subdivided_hyper_cube(triangulation, 12, 0., 1., /*colorize=*/true);
       dof_handler.distribute_dofs(fe);
@@ -54,6 +57,13 @@ namespace
       SparsityTools::distribute_sparsity_pattern(dsp, owned, MPI_COMM_WORLD, relevant);
       matrix.reinit(owned, owned, dsp, MPI_COMM_WORLD);
       rhs.reinit(owned, MPI_COMM_WORLD);
+      x.reinit(owned, MPI_COMM_WORLD);
+      solver.setup(dof_handler, kind, /*symmetric=*/false);
+    }
+
+    LinearSolver::Result solve(const double relative_tolerance)
+    {
+      return solver.solve(matrix, x, rhs, relative_tolerance);
     }
 
     // The operator with conductivity 1 for x < 0.5 and `contrast` beyond; right-hand side 1.
@@ -91,20 +101,17 @@ namespace
 
 TEST(LinearSolver, KeepsAWorkingPreconditionerAndRebuildsAStaleOne)
 {
-  Systems systems;
-  LinearSolver solver(MPI_COMM_WORLD);
-  solver.setup(systems.dof_handler, LinearSolver::Kind::iterative, /*symmetric=*/false);
-  PETScWrappers::MPI::Vector x(systems.dof_handler.locally_owned_dofs(), MPI_COMM_WORLD);
+  Systems systems(LinearSolver::Kind::iterative);
 
   // The same matrix again and again: built once, the same iterations each time.
   systems.assemble(1.0);
-  const auto first = solver.solve(systems.matrix, x, systems.rhs, 1e-8);
+  const auto first = systems.solve(1e-8);
   ASSERT_TRUE(first.converged);
   EXPECT_EQ(first.preconditioner_setups, 1u);
   EXPECT_GT(first.setup_seconds, 0.0);
   for (int k = 0; k < 3; ++k)
     {
-      const auto again = solver.solve(systems.matrix, x, systems.rhs, 1e-8);
+      const auto again = systems.solve(1e-8);
       ASSERT_TRUE(again.converged);
       EXPECT_EQ(again.preconditioner_setups, 0u);
       EXPECT_EQ(again.setup_seconds, 0.0);
@@ -119,7 +126,7 @@ TEST(LinearSolver, KeepsAWorkingPreconditionerAndRebuildsAStaleOne)
   LinearSolver::Result result;
   while (builds == 0 && excess.size() < 50)
     {
-      result = solver.solve(systems.matrix, x, systems.rhs, 1e-8);
+      result = systems.solve(1e-8);
       ASSERT_TRUE(result.converged);
       builds += result.preconditioner_setups;
       if (builds == 0)
@@ -141,13 +148,10 @@ TEST(LinearSolver, KeepsAWorkingPreconditionerAndRebuildsAStaleOne)
 // A looser tolerance with a kept preconditioner: fewer iterations, and no build.
 TEST(LinearSolver, LooserToleranceIsNotStaleness)
 {
-  Systems systems;
-  LinearSolver solver(MPI_COMM_WORLD);
-  solver.setup(systems.dof_handler, LinearSolver::Kind::iterative, /*symmetric=*/false);
-  PETScWrappers::MPI::Vector x(systems.dof_handler.locally_owned_dofs(), MPI_COMM_WORLD);
+  Systems systems(LinearSolver::Kind::iterative);
   systems.assemble(1.0);
-  const auto tight = solver.solve(systems.matrix, x, systems.rhs, 1e-8);
-  const auto loose = solver.solve(systems.matrix, x, systems.rhs, 1e-3);
+  const auto tight = systems.solve(1e-8);
+  const auto loose = systems.solve(1e-3);
   ASSERT_TRUE(tight.converged && loose.converged);
   EXPECT_EQ(loose.preconditioner_setups, 0u);
   EXPECT_LT(loose.iterations, tight.iterations);
@@ -156,14 +160,11 @@ TEST(LinearSolver, LooserToleranceIsNotStaleness)
 // The direct solver factorizes for every solve and counts it.
 TEST(LinearSolver, DirectSolverCountsAFactorizationPerSolve)
 {
-  Systems systems;
-  LinearSolver solver(MPI_COMM_WORLD);
-  solver.setup(systems.dof_handler, LinearSolver::Kind::direct, /*symmetric=*/true);
-  PETScWrappers::MPI::Vector x(systems.dof_handler.locally_owned_dofs(), MPI_COMM_WORLD);
+  Systems systems(LinearSolver::Kind::direct);
   systems.assemble(1.0);
   for (int k = 0; k < 2; ++k)
     {
-      const auto result = solver.solve(systems.matrix, x, systems.rhs, 1e-8);
+      const auto result = systems.solve(1e-8);
       ASSERT_TRUE(result.converged);
       EXPECT_EQ(result.preconditioner_setups, 1u);
       EXPECT_GT(result.setup_seconds, 0.0);

@@ -413,23 +413,19 @@ namespace indentsim::solver
             const unsigned int pass_slot = std::min<unsigned int>(pass, newton_reduction_.size() - 1),
                                it_slot = std::min<unsigned int>(it, newton_reduction_[0].size() - 1);
             bool matrix_assembled = true;
-            // |R| at which this pass ends: converged, or (a pass that is not the last) cut by
-            // 1e-3 for the inexact augmentation below.
-            const auto end_threshold = [&]() {
-              return std::max({solver_parameters.residual_tolerance * reference,
-                               solver_parameters.absolute_tolerance,
-                               pass < case_.contact.max_augmentations ? 1e-3 * pass_start_norm :
-                                                                        0.0});
-            };
             if (!predictor && !force_control && !frozen && alpha == 1 && norm_one_back > 0)
               {
+                const double end_threshold = std::max(
+                  {solver_parameters.residual_tolerance * reference,
+                   solver_parameters.absolute_tolerance,
+                   pass < case_.contact.max_augmentations ? 1e-3 * pass_start_norm : 0.0});
                 double predicted = std::numeric_limits<double>::infinity();
                 if (norm_two_back > 0)
                   predicted = norm_one_back * norm_one_back * norm_one_back /
                               (norm_two_back * norm_two_back);
                 else if (newton_reduction_[pass_slot][it_slot] > 0)
                   predicted = norm_one_back * newton_reduction_[pass_slot][it_slot];
-                matrix_assembled = !(predicted <= 0.5 * end_threshold());
+                matrix_assembled = !(predicted <= 0.5 * end_threshold);
               }
             using ActiveSet = contact::NodeToSurfaceContact::ActiveSet;
             std::optional<RunStatistics::Scope> contact_timer(std::in_place, statistics_.contact);

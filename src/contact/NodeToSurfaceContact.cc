@@ -289,6 +289,16 @@ namespace indentsim::contact
     return Utilities::MPI::max(largest_change, communicator_);
   }
 
+  double NodeToSurfaceContact::augmentation_jump() const
+  {
+    double sum_of_squares = 0;
+    for (const ContactNode &node : nodes_)
+      sum_of_squares += ((node.pressure - node.lambda) * node.normal + node.traction -
+                         node.traction_multiplier).norm_square() *
+                        node.area * node.area;
+    return std::sqrt(Utilities::MPI::sum(sum_of_squares, communicator_));
+  }
+
   void NodeToSurfaceContact::accept_increment()
   {
     // The converged pressures and tractions are the multipliers of the next increment (a last

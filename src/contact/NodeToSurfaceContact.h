@@ -151,6 +151,10 @@ namespace indentsim::contact
     // (global).
     double augment();
 
+    // The residual change the next augment() would make: the l2 norm over the nodes of the
+    // nodal force change A_i |(p_i - lambda_i) n_i + t_i - t^lambda_i| (global) [mN].
+    double augmentation_jump() const;
+
     // Predictor of the normal multipliers: lambda = lambda_n + ratio (lambda_n - lambda_{n-1})
     // on the nodes that carried pressure in both of the last two increments, so that the first
     // augmentation pass starts from the pressure the increment is heading for.

@@ -512,13 +512,17 @@ namespace indentsim::solver
               pass_start_norm = norm;
             // Inexact augmentation: a pass that is not the last need not converge to the final
             // tolerance. Once Newton has cut this pass's residual by 1e-3 (its quadratic phase),
-            // an iterate that still penetrates clearly (twice the tolerance) is augmented at
-            // once: the multiplier jump of the next pass is far larger than what the skipped
-            // iteration would have removed. The last pass always converges fully, and the
-            // constraints are checked on its converged state (below), so the answer is the same
-            // to the tolerances; this saves one Newton iteration per augmentation.
+            // or once the residual is below a tenth of the residual the multiplier update will
+            // create (augmentation_jump), an iterate that still penetrates clearly (twice the
+            // tolerance) is augmented at once: the next pass starts from a residual that the
+            // skipped iteration would hardly have changed. The last pass always converges
+            // fully, and the constraints are checked on its converged state (below), so the
+            // answer is the same to the tolerances. The second test, measured (1 rank, same
+            // forces to 2e-6 relative at loading, 2e-4 mN at unloading): Newton iterations of
+            // the paper's cases j2 12 x 12 250 -> 209, 24 x 24 304 -> 270; crystal 278 -> 237,
+            // 314 -> 276. A tenth against 0.03 and 0.3: 227 and 208 on j2 12 x 12.
             if (!predictor && !frozen && it > 0 && pass < case_.contact.max_augmentations &&
-                norm <= 1e-3 * pass_start_norm)
+                (norm <= 1e-3 * pass_start_norm || norm <= 0.1 * contact_->augmentation_jump()))
               {
                 const contact::ContactSummary summary = contact_->summary();
                 const double tolerance = 2 * case_.contact.penetration_tolerance;

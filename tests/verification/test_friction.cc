@@ -108,30 +108,11 @@ namespace
     void solve(const double depth, const double offset_x)
     {
       contact.set_lateral_offset(Tensor<1, 3>({offset_x, 0., 0.}));
-      const unsigned int n = dof_handler.n_dofs();
-      residual_values.assign(n, 0.);
       bool augmented_enough = false;
       for (unsigned int pass = 0; pass < 60 && !augmented_enough; ++pass)
         {
-          bool converged = false;
-          for (unsigned int it = 0; it < 30; ++it)
-            {
-              FullMatrix<double> tangent;
-              const double       norm =
-                assemble(contact::NodeToSurfaceContact::ActiveSet::free, depth, &tangent);
-              if (norm < 1e-14)
-                {
-                  converged = true;
-                  break;
-                }
-              tangent.gauss_jordan();
-              Vector<double> r(residual_values.begin(), residual_values.end()), du(n);
-              tangent.vmult(du, r);
-              for (unsigned int i = 0; i < n; ++i)
-                shift(i, -du(i));
-            }
-          ASSERT_TRUE(converged) << "Newton did not converge at depth " << depth
-                                 << ", offset " << offset_x;
+          ASSERT_TRUE(newton(depth)) << "Newton did not converge at depth " << depth
+                                     << ", offset " << offset_x;
           const auto s = contact.summary();
           augmented_enough = s.max_penetration <= 1e-12 && s.max_stick_slip <= 1e-12;
           if (!augmented_enough)
@@ -139,6 +120,28 @@ namespace
         }
       ASSERT_TRUE(augmented_enough);
       contact.accept_increment();
+    }
+
+    // Newton with fixed multipliers (one augmentation pass) to |R| < 1e-14 mN; false if it
+    // does not get there in 30 iterations.
+    bool newton(const double depth)
+    {
+      const unsigned int n = dof_handler.n_dofs();
+      residual_values.assign(n, 0.);
+      for (unsigned int it = 0; it < 30; ++it)
+        {
+          FullMatrix<double> tangent;
+          const double       norm =
+            assemble(contact::NodeToSurfaceContact::ActiveSet::free, depth, &tangent);
+          if (norm < 1e-14)
+            return true;
+          tangent.gauss_jordan();
+          Vector<double> r(residual_values.begin(), residual_values.end()), du(n);
+          tangent.vmult(du, r);
+          for (unsigned int i = 0; i < n; ++i)
+            shift(i, -du(i));
+        }
+      return false;
     }
 
     // u_i += delta (serial PETSc vector, insert mode).
@@ -362,4 +365,26 @@ TEST(FrictionIndentation, CoulombConditionsHoldAtConvergence)
             << " slipping nodes" << std::endl;
   EXPECT_GT(n_stick, 0u);
   EXPECT_GT(n_slip, 0u);
+}
+
+// Requirement: augmentation_jump() is the residual the next Uzawa update creates. Frictionless,
+// with every node in contact, the update lambda <- p = lambda - eps g changes each nodal force by
+// A eps |g| at the converged state of the pass (where |R| ~ 0): after augment() the residual at
+// the same displacement must have exactly that norm. First pass (lambda = 0) of the spring block
+// pressed by d: each node penetrates by p = k d / (eps A + k).
+TEST(Friction, AugmentationJumpIsTheResidualOfTheNextPass)
+{
+  const Plane  plane;
+  const double d = 0.01;
+  SpringBlock  block(plane, 0.0, 100.0);
+  ASSERT_TRUE(block.newton(d));
+  const double jump = block.contact.augmentation_jump();
+  // Each of the 4 nodes: spring force k (d - p) = eps A p for penetration p, A = 1/4 um^2.
+  const double area = 0.25, penetration = block.k * d / (100.0 * area + block.k);
+  EXPECT_NEAR(jump, 2 * 100.0 * area * penetration, 1e-12); // sqrt(4) nodes
+  block.contact.augment();
+  const double norm = block.assemble(contact::NodeToSurfaceContact::ActiveSet::free, d, nullptr);
+  EXPECT_NEAR(norm, jump, 1e-12 * jump);
+  // The gaps have not moved, so the next update would change the forces by the same amount.
+  EXPECT_NEAR(block.contact.augmentation_jump(), jump, 1e-12 * jump);
 }

@@ -123,6 +123,22 @@ def depth_at_force(depth, force, target):
     return None
 
 
+def curve_difference(depth_ref, force_ref, depth, force):
+    """How far a load-penetration curve lies from a reference curve: (RMS, largest |difference|,
+    number of points) of force(d) - force_ref(d) over the reference's points d inside both depth
+    ranges, force(d) interpolated linearly; (None, None, 0) if they do not overlap. Pass loading
+    branches (depth increasing). Units of the forces."""
+    differences = []
+    for d, f_ref in zip(depth_ref, force_ref):
+        f = interpolate(d, depth, force)
+        if f is not None:
+            differences.append(f - f_ref)
+    if not differences:
+        return None, None, 0
+    rms = math.sqrt(sum(x * x for x in differences) / len(differences))
+    return rms, max(abs(x) for x in differences), len(differences)
+
+
 def spread(values):
     """(smallest, largest, mean, (largest - smallest) / mean) of a list of numbers."""
     smallest, largest = min(values), max(values)
@@ -506,18 +522,35 @@ class Report:
                         f"Load–penetration curves of {title} per mesh (force [mN] against "
                         f"depth [µm]).")
 
+            finest = cases[-1]
+            finest_depth, finest_force = self.loading_branch(finest)
+            finest_max = max(finest_force) if finest_force else None
             rows, previous = [], None
             for case in cases:
                 f = self.data.force_at_max_depth(case)
+                rms, largest, n = curve_difference(finest_depth, finest_force,
+                                                   *self.loading_branch(case))
                 rows.append([f"{case['contact_elements']}×{case['contact_elements']}",
                              format_number(case["h_um"], 3), case["symmetry"],
                              f"{case['max_depth_um']:g}", (case["summary"] or {}).get("dofs", "–"),
                              format_number(f, 1),
                              format_percent((f - previous) / previous, 2)
-                             if previous and f is not None else "–"])
+                             if previous and f is not None else "–",
+                             "–" if case is finest or rms is None else
+                             f"{rms:.1f} ({100.0 * rms / finest_max:.1f} %) / {largest:.1f}"])
                 previous = f
             self.table(["contact elements", "h [µm]", "symmetry", "max depth [µm]", "DOFs",
-                        "force at max depth [mN]", "change vs previous mesh"], rows)
+                        "force at max depth [mN]", "change vs previous mesh",
+                        f"loading curve vs {finest['contact_elements']}×"
+                        f"{finest['contact_elements']}: RMS (/ its max force) / largest [mN]"],
+                       rows)
+            self.add("Node-to-surface contact makes each curve a sawtooth: the force rises "
+                     "faster each time a new ring of nodes touches the indenter, so the force "
+                     "at one depth depends on where that depth falls between two ring entries "
+                     "(the rings are h apart; see the `n_active_nodes` column of each "
+                     "`load_penetration.csv`). The last column compares whole loading curves "
+                     "(the finest curve's points, the coarser curve interpolated linearly), "
+                     "which that timing affects far less than the force at one depth.", "")
 
             h = [c["h_um"] for c in cases]
             f = [self.data.force_at_max_depth(c) for c in cases]
@@ -539,6 +572,12 @@ class Report:
                         "crosses: Richardson-extrapolated values (h → 0).")
         else:
             self.plt.close(force_figure)
+
+    def loading_branch(self, case):
+        """Depth [um] and force [mN] of the loading rows of a finished indentation."""
+        depth, force, loading = self.data.load_curve(case)
+        return ([d for d, keep in zip(depth, loading) if keep],
+                [f for f, keep in zip(force, loading) if keep])
 
     def convergence_table(self, h, f, cases):
         """Observed order and extrapolation: the three finest meshes (any ratios) and every

@@ -102,3 +102,27 @@ class Html(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class CurveDifference(unittest.TestCase):
+    """The RMS and largest difference of two curves, for a difference linear in the depth (so
+    that the linear interpolation is exact): c h at h = 0, 1/4, ..., 1 has the RMS
+    c sqrt(mean h^2) = c sqrt(0.375) and the largest value c."""
+
+    def test_linear_difference(self):
+        c = 3.0
+        ref_depth = [0.0, 0.25, 0.5, 0.75, 1.0]
+        ref_force = [100.0 * h for h in ref_depth]
+        depth = [0.0, 0.5, 1.0]  # coarser sampling of 100 h + c h
+        force = [(100.0 + c) * h for h in depth]
+        rms, largest, n = sr.curve_difference(ref_depth, ref_force, depth, force)
+        self.assertEqual(n, 5)
+        self.assertAlmostEqual(rms, c * 0.375 ** 0.5, places=12)
+        self.assertAlmostEqual(largest, c, places=12)
+
+    def test_only_the_overlap_counts(self):
+        rms, largest, n = sr.curve_difference([0.0, 1.0, 2.0, 3.0], [0.0, 1.0, 2.0, 3.0],
+                                              [1.0, 2.0], [2.0, 3.0])
+        self.assertEqual(n, 2)
+        self.assertAlmostEqual(rms, 1.0, places=12)
+        self.assertEqual(sr.curve_difference([5.0], [1.0], [0.0, 1.0], [0.0, 1.0]), (None, None, 0))

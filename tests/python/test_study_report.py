@@ -100,10 +100,6 @@ class Html(unittest.TestCase):
         self.assertNotIn("|---|", page)
 
 
-if __name__ == "__main__":
-    unittest.main()
-
-
 class CurveDifference(unittest.TestCase):
     """The RMS and largest difference of two curves, for a difference linear in the depth (so
     that the linear interpolation is exact): c h at h = 0, 1/4, ..., 1 has the RMS
@@ -126,3 +122,7 @@ class CurveDifference(unittest.TestCase):
         self.assertEqual(n, 2)
         self.assertAlmostEqual(rms, 1.0, places=12)
         self.assertEqual(sr.curve_difference([5.0], [1.0], [0.0, 1.0], [0.0, 1.0]), (None, None, 0))
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -2,13 +2,10 @@
 // reads the case and hands it on.
 #include <io/CommandLine.h>
 #include <io/TextNumber.h>
+#include <io/Version.h>
 
 #include <algorithm>
 #include <cmath>
-
-#ifndef INDENTSIM_VERSION
-#  define INDENTSIM_VERSION "unknown"
-#endif
 
 namespace indentsim::io
 {
@@ -320,7 +317,7 @@ namespace indentsim::io
            "Parallel runs: mpirun -np 2 indentsim run CASE.yaml\n";
   }
 
-  std::string version_text() { return std::string("indentsim ") + INDENTSIM_VERSION + "\n"; }
+  std::string version_text() { return std::string("indentsim ") + indentsim::version() + "\n"; }
 
   CommandLineOptions parse_command_line(const std::vector<std::string> &arguments)
   {

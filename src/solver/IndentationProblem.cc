@@ -2,6 +2,7 @@
 
 #include "indenter/IndenterFactory.h"
 #include "io/CaseFile.h"
+#include "io/Version.h"
 #include "materials/MaterialFactory.h"
 #include "solver/Checkpoint.h"
 #include "solver/FiniteStrainElement.h"
@@ -918,7 +919,7 @@ namespace indentsim::solver
         csv.open(output_directory_ + "/load_penetration.csv");
         log.open(output_directory_ + "/run.log");
         write_csv_header(csv);
-        log << "# indentsim " << INDENTSIM_VERSION << " run log. Units: um, mN, GPa, s.\n"
+        log << "# indentsim " << indentsim::version() << " run log. Units: um, mN, GPa, s.\n"
             << "# cells " << n_cells() << ", DOFs " << n_dofs() << ", constrained DOFs "
             << n_constrained << ", MPI ranks "
             << Utilities::MPI::n_mpi_processes(communicator_) << '\n'

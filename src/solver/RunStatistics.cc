@@ -1,5 +1,7 @@
 #include "solver/RunStatistics.h"
 
+#include "io/Version.h"
+
 #include <deal.II/base/mpi.h>
 
 #include <sys/resource.h>
@@ -35,7 +37,7 @@ namespace indentsim::solver
     const auto text = [](const std::string &value) { return "\"" + value + "\""; };
     out << std::setprecision(10) << "{\n"
         << "  \"units\": \"times in s, memory in MiB, force in mN, stress in GPa\",\n"
-        << "  \"version\": " << text(INDENTSIM_VERSION) << ",\n"
+        << "  \"version\": " << text(indentsim::version()) << ",\n"
         << "  \"test\": " << text(d.test) << ",\n"
         << "  \"material_model\": " << text(d.material_model) << ",\n"
         << "  \"linear_solver\": " << text(d.linear_solver) << ",\n"

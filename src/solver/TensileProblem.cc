@@ -1,6 +1,7 @@
 #include "solver/TensileProblem.h"
 
 #include "io/CaseFile.h"
+#include "io/Version.h"
 #include "materials/MaterialFactory.h"
 #include "materials/Orientation.h"
 
@@ -361,7 +362,7 @@ namespace indentsim::solver
           throw std::runtime_error("cannot write " + csv_file_name + " or run.log in '" +
                                    output_directory + "'");
         write_csv_header(csv);
-        log << "# indentsim " << INDENTSIM_VERSION << " tensile run log, model " << model
+        log << "# indentsim " << indentsim::version() << " tensile run log, model " << model
             << ". Units: um, mN, GPa, s.\n"
             << "# cube " << n_per_side_ << "^3 elements, edge " << edge_length_ << " um, DOFs "
             << n_dofs() << ", MPI ranks " << Utilities::MPI::n_mpi_processes(communicator_)

@@ -4,6 +4,7 @@
 
 #include <io/CaseFile.h>
 #include <io/JsonText.h>
+#include <io/Version.h>
 
 #include <fcntl.h>
 #include <signal.h>
@@ -26,9 +27,6 @@
 #include <system_error>
 #include <thread>
 
-#ifndef INDENTSIM_VERSION
-#  define INDENTSIM_VERSION "unknown"
-#endif
 #ifndef INDENTSIM_SOURCE_DIR
 #  define INDENTSIM_SOURCE_DIR "."
 #endif
@@ -446,7 +444,7 @@ namespace indentsim::study
            << "  \"wall_time_s\": " << json_number_text(seconds) << ",\n"
            << "  \"mpi_ranks\": " << settings_.ranks << ",\n"
            << "  \"command\": " << json_string(shell_words(case_command(c))) << ",\n"
-           << "  \"version\": " << json_string(std::string("indentsim ") + INDENTSIM_VERSION)
+           << "  \"version\": " << json_string(std::string("indentsim ") + indentsim::version())
            << "\n}\n";
       mark.close();
       ++n_done;
@@ -570,7 +568,7 @@ namespace indentsim::study
         << "  \"study_file\": " << json_string(fs::absolute(study_.source_file).string())
         << ",\n"
         << "  \"output_directory\": " << json_string(study_.output_directory) << ",\n"
-        << "  \"version\": " << json_string(std::string("indentsim ") + INDENTSIM_VERSION)
+        << "  \"version\": " << json_string(std::string("indentsim ") + indentsim::version())
         << ",\n"
         << "  \"mpi_ranks\": " << settings_.ranks << ",\n"
         << "  \"jobs\": " << settings_.jobs << ",\n"

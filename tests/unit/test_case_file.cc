@@ -1,11 +1,13 @@
 // Case files, the resolved case, output-directory protection and the command line.
 #include <io/CaseFile.h>
 #include <io/CommandLine.h>
+#include <io/Version.h>
 
 #include "../test_files.h"
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -1064,6 +1066,37 @@ TEST(CommandLine, HelpListsCommandsOptionsAndUnits)
         "--help", "--version", "um", "mN", "GPa", "stress_strain.csv"})
     EXPECT_NE(help.find(fragment), std::string::npos) << fragment;
   EXPECT_NE(version_text().find("indentsim"), std::string::npos);
+}
+
+// The version names the project version and the commit the build came from: compared with what
+// git itself says of the source tree (the build refreshes the generated file before every build,
+// so a stale version fails here).
+TEST(CommandLine, VersionNamesTheGitCommit)
+{
+  const std::string version = indentsim::version();
+  const std::string project = std::string(INDENTSIM_PROJECT_VERSION) + " (";
+  ASSERT_EQ(version.rfind(project, 0), 0u) << version;
+  ASSERT_EQ(version.back(), ')') << version;
+  EXPECT_EQ(version_text(), "indentsim " + version + "\n");
+
+  const std::string source = INDENTSIM_SOURCE_DIR;
+  if (!std::filesystem::exists(source + "/.git") || std::system("git --version > /dev/null 2>&1") != 0)
+    {
+      EXPECT_EQ(version, project + "no git checkout)");
+      return;
+    }
+  std::string head;
+  {
+    FILE *pipe = popen(("git -C '" + source + "' rev-parse HEAD 2>/dev/null").c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    char buffer[128];
+    while (std::fgets(buffer, sizeof buffer, pipe) != nullptr)
+      head += buffer;
+    pclose(pipe);
+  }
+  ASSERT_GE(head.size(), 40u) << "git rev-parse HEAD printed '" << head << "'";
+  const std::string expected = project + "git " + head.substr(0, 12);
+  EXPECT_EQ(version.rfind(expected, 0), 0u) << version << " does not start with " << expected;
 }
 
 // output.experimental_curve: relative to the case file's directory, stored absolute, read and

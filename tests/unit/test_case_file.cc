@@ -1094,7 +1094,11 @@ TEST(CommandLine, VersionNamesTheGitCommit)
       head += buffer;
     pclose(pipe);
   }
-  ASSERT_GE(head.size(), 40u) << "git rev-parse HEAD printed '" << head << "'";
+  if (head.size() < 40) // git refuses the tree (e.g. another owner): so does the build
+    {
+      EXPECT_EQ(version, project + "no git checkout)");
+      return;
+    }
   const std::string expected = project + "git " + head.substr(0, 12);
   EXPECT_EQ(version.rfind(expected, 0), 0u) << version << " does not start with " << expected;
 }

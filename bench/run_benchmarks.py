@@ -4,13 +4,17 @@
 Usage (from anywhere; the program is <repo>/build/indentsim, built beforehand):
   python3 bench/run_benchmarks.py --list
   python3 bench/run_benchmarks.py CASE [CASE ...] [--ranks N] [--threads N]
-      [--linear-solver auto|direct|iterative] [--steps N] [--out DIR] [--dry-run]
+      [--linear-solver auto|direct|iterative] [--steps N] [--set KEY=VALUE ...] [--out DIR]
+      [--dry-run]
 
   --ranks N          MPI ranks (default 1); N > 1 runs under
                      mpirun --oversubscribe -np N, with solver.threads 1 unless --threads is given
   --threads N        solver.threads, assembly threads per rank (0: automatic, the default for 1 rank)
   --linear-solver S  solver.linear_solver (default auto)
   --steps N          override loading.steps (quick tries; results are then not comparable)
+  --set KEY=VALUE    override one case-file key, dotted (e.g. contact.penetration_tolerance=1e-7);
+                     the value is a number, true/false or text; repeatable. The row's case name
+                     gets the overrides appended, so that such rows are not mistaken for the case
   --out DIR          results directory (default <repo>/bench/results; git-ignored)
   --dry-run          write the case files and print the commands, run nothing
 
@@ -183,6 +187,40 @@ def check_csv_header(out):
 # Running
 
 
+def parse_setting(text):
+    """'a.b=1e-7' -> (['a', 'b'], 1e-07); raises ValueError naming the text if malformed."""
+    key, separator, value = text.partition("=")
+    path = key.strip().split(".")
+    if not separator or not all(path) or not value.strip():
+        raise ValueError(f"--set {text!r}: expected KEY=VALUE with a dotted key, "
+                         "e.g. contact.penetration_tolerance=1e-7")
+    value = value.strip()
+    if value in ("true", "false"):
+        return path, value == "true"
+    for convert in (int, float):
+        try:
+            return path, convert(value)
+        except ValueError:
+            pass
+    return path, value
+
+
+def apply_settings(case, settings):
+    """Sets each (path, value) of `settings` in the nested dict `case`, creating sections."""
+    for path, value in settings:
+        section = case
+        for key in path[:-1]:
+            if not isinstance(section.setdefault(key, {}), dict):
+                raise ValueError(f"--set {'.'.join(path)}: '{key}' is a value, not a section")
+            section = section[key]
+        section[path[-1]] = value
+
+
+def case_label(name, options):
+    """The case name as recorded: with the --set overrides appended."""
+    return name + "".join(f" [{text}]" for text in options.set)
+
+
 def prepare(name, options):
     """Creates the run directory with case.yaml; returns (directory, command, threads)."""
     ranks = options.ranks
@@ -191,6 +229,7 @@ def prepare(name, options):
     if options.steps is not None:
         case["loading"]["steps"] = options.steps
     case["solver"] = {"linear_solver": options.linear_solver, "threads": threads}
+    apply_settings(case, options.settings)
 
     stamp = datetime.datetime.now().strftime("%Y%m%d-%H%M%S")
     directory = options.out / f"{name}_np{ranks}_{stamp}"
@@ -213,7 +252,8 @@ def run_case(name, options):
     """Runs one case, streaming its output; returns its record row."""
     directory, command, threads = prepare(name, options)
     print(f"[{name}] $ {' '.join(command)}", flush=True)
-    row = {"date": datetime.datetime.now().strftime("%Y-%m-%d %H:%M"), "case": name,
+    row = {"date": datetime.datetime.now().strftime("%Y-%m-%d %H:%M"),
+           "case": case_label(name, options),
            "machine": machine(), "mpi_ranks": options.ranks, "threads_per_rank": threads,
            "linear_solver": options.linear_solver}
     if options.dry_run:
@@ -268,6 +308,8 @@ def main():
     parser.add_argument("--linear-solver", choices=("auto", "direct", "iterative"),
                         default="auto", help="solver.linear_solver (default auto)")
     parser.add_argument("--steps", type=int, default=None, help="override loading.steps")
+    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                        help="override a case-file key, e.g. contact.penetration_tolerance=1e-7")
     parser.add_argument("--out", type=Path, default=REPO / "bench" / "results",
                         help="results directory (default <repo>/bench/results)")
     parser.add_argument("--list", action="store_true", help="list the cases and exit")
@@ -287,6 +329,12 @@ def main():
     if options.ranks < 1 or (options.threads is not None and options.threads < 0) or (
             options.steps is not None and options.steps < 1):
         parser.error("--ranks and --steps must be >= 1, --threads >= 0")
+    try:
+        options.settings = [parse_setting(text) for text in options.set]
+        for name in options.cases:
+            apply_settings(copy.deepcopy(CASES[name][1]), options.settings)
+    except ValueError as error:
+        parser.error(str(error))
     if not options.dry_run and not PROGRAM.exists():
         sys.exit(f"error: {PROGRAM} not found; build the project first")
     options.out = options.out.resolve()

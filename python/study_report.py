@@ -747,9 +747,7 @@ class Report:
                 self.add(f"Depth at {target:g} mN: no finished J2 mesh case.", "")
                 return
             case = cases[-1]
-            depth, force, loading = self.data.load_curve(case)
-            branch_depth = [d for d, keep in zip(depth, loading) if keep]
-            branch_force = [f for f, keep in zip(force, loading) if keep]
+            branch_depth, branch_force = self.loading_branch(case)
             reached = depth_at_force(branch_depth, branch_force, target)
             mesh = f"{case['contact_elements']}×{case['contact_elements']}"
             if reached is None:

@@ -180,9 +180,11 @@ namespace indentsim::contact
   void NodeToSurfaceContact::assemble(const AffineConstraints<double>     &constraints,
                                       PETScWrappers::MPI::Vector          &residual,
                                       PETScWrappers::MPI::SparseMatrix    *matrix,
-                                      DepthCoupling                       *coupling) const
+                                      DepthCoupling                       *coupling)
   {
     Assert(!coupling || matrix, ExcMessage("the depth coupling needs the tangent"));
+    kept_.clear();
+    kept_valid_ = matrix != nullptr && coupling == nullptr;
     FullMatrix<double>                   local_matrix(3, 3);
     Vector<double>                       local_residual(3);
     std::vector<types::global_dof_index> dofs(3);
@@ -242,6 +244,18 @@ namespace indentsim::contact
               }
             constraints.distribute_local_to_global(
               local_matrix, local_residual, dofs, *matrix, residual);
+            if (kept_valid_)
+              {
+                Contribution kept;
+                for (unsigned int i = 0; i < 3; ++i)
+                  {
+                    kept.dofs[i] = dofs[i];
+                    kept.vector[i] = local_residual[i];
+                    for (unsigned int j = 0; j < 3; ++j)
+                      kept.matrix[3 * i + j] = local_matrix(i, j);
+                  }
+                kept_.push_back(kept);
+              }
             if (coupling)
               {
                 // d(-f)/dh by central differences of the nodal response at the frozen status;
@@ -267,6 +281,59 @@ namespace indentsim::contact
         else
           constraints.distribute_local_to_global(local_residual, dofs, residual);
       }
+  }
+
+  bool NodeToSurfaceContact::retract(const AffineConstraints<double>  &constraints,
+                                     PETScWrappers::MPI::Vector       &residual,
+                                     PETScWrappers::MPI::SparseMatrix &matrix)
+  {
+    // A kept node with a constrained dof whose constraint has entries or an inhomogeneity
+    // would need the constraint's full treatment undone: then nothing is retracted (on any rank).
+    bool possible = kept_valid_;
+    for (const Contribution &kept : kept_)
+      for (const types::global_dof_index dof : kept.dofs)
+        if (constraints.is_constrained(dof) &&
+            (constraints.is_inhomogeneously_constrained(dof) ||
+             !constraints.get_constraint_entries(dof)->empty()))
+          possible = false;
+    if (Utilities::MPI::min(static_cast<unsigned int>(possible), communicator_) == 0)
+      return false;
+    FullMatrix<double>                   local_matrix(3, 3);
+    Vector<double>                       local_residual(3);
+    std::vector<types::global_dof_index> dofs(3);
+    for (const Contribution &kept : kept_)
+      {
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            dofs[i] = kept.dofs[i];
+            local_residual[i] = -kept.vector[i];
+            for (unsigned int j = 0; j < 3; ++j)
+              local_matrix(i, j) = -kept.matrix[3 * i + j];
+          }
+        constraints.distribute_local_to_global(local_matrix, local_residual, dofs, matrix,
+                                               residual);
+        // The diagonal entry a constrained (homogeneous) row received is |K_ii| of the local
+        // matrix, or the mean |K_jj| if K_ii = 0 (AffineConstraints::distribute_local_to_global),
+        // whatever the sign: the subtraction above added it once more, so take it off twice.
+        double mean_diagonal = 0;
+        for (unsigned int i = 0; i < 3; ++i)
+          mean_diagonal += std::abs(local_matrix(i, i));
+        mean_diagonal /= 3;
+        if (mean_diagonal == 0)
+          mean_diagonal = local_matrix.l1_norm() / 3;
+        if (mean_diagonal == 0)
+          mean_diagonal = 1;
+        for (unsigned int i = 0; i < 3; ++i)
+          if (constraints.is_constrained(dofs[i]))
+            {
+              const double diagonal = local_matrix(i, i) != 0 ? std::abs(local_matrix(i, i)) :
+                                                                mean_diagonal;
+              matrix.add(dofs[i], dofs[i], -2 * diagonal);
+            }
+      }
+    kept_.clear();
+    kept_valid_ = false;
+    return true;
   }
 
   unsigned int NodeToSurfaceContact::n_status_changes() const

@@ -139,10 +139,19 @@ namespace indentsim::contact
 
     // Adds residual -f and tangent for the active nodes through `constraints`; with `coupling`
     // (and a matrix), also the depth coupling of force control.
+    // Without coupling, the contributions added to the matrix are also kept, for retract().
     void assemble(const dealii::AffineConstraints<double>   &constraints,
                   dealii::PETScWrappers::MPI::Vector        &residual,
                   dealii::PETScWrappers::MPI::SparseMatrix  *matrix,
-                  DepthCoupling                             *coupling = nullptr) const;
+                  DepthCoupling                             *coupling = nullptr);
+
+    // Subtracts what the last assemble() with a matrix and without coupling added to `residual`
+    // and `matrix` (both compressed since): after an augmentation at an unchanged displacement,
+    // the element part of the system stands and only the contact part is replaced. Returns
+    // false (and changes nothing) if there is nothing kept to subtract.
+    bool retract(const dealii::AffineConstraints<double>  &constraints,
+                 dealii::PETScWrappers::MPI::Vector       &residual,
+                 dealii::PETScWrappers::MPI::SparseMatrix &matrix);
 
     // Smallest gap over the nodes at the last evaluation (global) [um].
     double min_gap() const;
@@ -203,5 +212,14 @@ namespace indentsim::contact
     double                           depth_converged_ = 0;
     Tensor<1, 3>                     offset_, offset_converged_; // lateral indenter position
     unsigned int                     n_changes_ = 0; // local status changes of the last evaluate()
+    // What the last assemble() with a matrix and without coupling added, node by node (retract).
+    struct Contribution
+    {
+      std::array<dealii::types::global_dof_index, 3> dofs;
+      std::array<double, 9>                          matrix; // row-major 3 x 3
+      std::array<double, 3>                          vector;
+    };
+    std::vector<Contribution> kept_;
+    bool                      kept_valid_ = false;
   };
 } // namespace indentsim::contact

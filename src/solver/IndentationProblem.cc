@@ -292,6 +292,18 @@ namespace indentsim::solver
     return result;
   }
 
+  bool IndentationProblem::reassemble_contact()
+  {
+    const RunStatistics::Scope timer(statistics_.contact);
+    if (!contact_->retract(constraints_all_, residual_, matrix_))
+      return false;
+    contact_->assemble(constraints_all_, residual_, &matrix_);
+    matrix_.compress(VectorOperation::add);
+    residual_.compress(VectorOperation::add);
+    ++statistics_.contact_only_assemblies;
+    return true;
+  }
+
   double IndentationProblem::depth_guess_for_force(const double target_force) const
   {
     if (target_force > force_converged_ && force_converged_ > 0 && depth_converged_ > 0)
@@ -382,6 +394,10 @@ namespace indentsim::solver
           }
       }
 
+    // The element part of residual_ and matrix_ belongs to solution_ and was assembled with the
+    // matrix: a pass that starts right after an augmentation replaces the contact part only.
+    bool element_system_current = false;
+    AssemblyResult last_assembly;
     for (unsigned int pass = 0; pass <= case_.contact.max_augmentations; ++pass)
       {
         bool converged = false;
@@ -437,6 +453,17 @@ namespace indentsim::solver
             contact_timer.reset();
             const bool search_failed =
               Utilities::MPI::max(static_cast<unsigned int>(!searched), communicator_) > 0;
+            // An iterate predicted to end its pass while the contact conditions are not met
+            // yet ends it by an augmentation: its matrix serves the next pass's first iterate
+            // (below), at the same displacement, so it is assembled now.
+            if (!matrix_assembled && !search_failed && pass < case_.contact.max_augmentations)
+              {
+                const contact::ContactSummary summary = contact_->summary();
+                const double tolerance = case_.contact.penetration_tolerance;
+                matrix_assembled = summary.max_penetration > tolerance ||
+                                   summary.max_active_gap > tolerance ||
+                                   summary.max_stick_slip > tolerance;
+              }
             if (force_control)
               {
                 residual_derivative = 0;
@@ -444,9 +471,15 @@ namespace indentsim::solver
                 coupling.force_derivative = 0;
                 depth_coupling_ = &coupling;
               }
-            const AssemblyResult assembly =
-              search_failed ? AssemblyResult{} : assemble(matrix_assembled);
+            const bool contact_only = pass > 0 && it == 0 && element_system_current &&
+                                      !search_failed && reassemble_contact();
+            const AssemblyResult assembly = search_failed ? AssemblyResult{} :
+                                            contact_only  ? last_assembly :
+                                                            assemble(matrix_assembled);
             depth_coupling_ = nullptr;
+            element_system_current = !force_control && matrix_assembled &&
+                                     assembly.status == materials::UpdateStatus::success;
+            last_assembly = assembly;
             const bool   failed = search_failed ||
                                 assembly.status != materials::UpdateStatus::success;
             // Force control adds the force equation F(u, h) - F* = 0 to the residual [mN].

@@ -141,6 +141,10 @@ namespace indentsim::solver
       double                  bottom_reaction = 0; // z reaction on the bottom face [mN]
     };
     AssemblyResult assemble(bool with_matrix);
+    // After an augmentation at an unchanged displacement (and depth): the element part of
+    // residual_ and matrix_ (last assembled with the matrix) stands; only the contact part is
+    // replaced. Returns false, changing nothing, if the contact kept nothing to replace.
+    bool reassemble_contact();
     // With several MPI ranks: repartitions the mesh with the expected plastic zone's cells
     // weighted by the material's relative plastic cost.
     void balance_plastic_zone();

@@ -52,6 +52,7 @@ namespace indentsim::solver
         << "  \"assemblies\": " << s.assemblies << ",\n"
         << "  \"residual_only_assemblies\": " << s.residual_only_assemblies << ",\n"
         << "  \"residual_first_misses\": " << s.residual_first_misses << ",\n"
+        << "  \"contact_only_assemblies\": " << s.contact_only_assemblies << ",\n"
         << "  \"predictor_retries\": " << s.predictor_retries << ",\n"
         << "  \"linear_solves\": " << s.linear_solves << ",\n"
         << "  \"linear_iterations\": " << s.linear_iterations << ",\n"

@@ -29,6 +29,7 @@ namespace indentsim::solver
                   predictor_retries = 0, // increments retried without the extrapolated start
                   residual_only_assemblies = 0, // residual without matrix (Newton's end predicted)
                   residual_first_misses = 0,    // of those, iterates that needed the matrix after all
+                  contact_only_assemblies = 0,  // after an augmentation: element part kept
                   preconditioner_setups = 0;    // AMG builds or LU factorizations
 
     // Counts one linear solve: its Krylov iterations, preconditioner setups and their time [s].

@@ -388,3 +388,78 @@ TEST(Friction, AugmentationJumpIsTheResidualOfTheNextPass)
   // The gaps have not moved, so the next update would change the forces by the same amount.
   EXPECT_NEAR(block.contact.augmentation_jump(), jump, 1e-12 * jump);
 }
+
+// Requirement: after an augmentation at an unchanged displacement, retract() takes off exactly
+// what the last assemble() added, so that retract + assemble leaves the system a fresh assembly
+// gives (the element part plus the new contact part): with friction (a non-symmetric tangent)
+// and with a dof under a homogeneous constraint, whose row AffineConstraints gives a diagonal
+// entry of either sign of the local matrix. Without a kept contribution nothing is retracted.
+TEST(Friction, RetractThenAssembleEqualsAFreshAssembly)
+{
+  using ActiveSet = contact::NodeToSurfaceContact::ActiveSet;
+  const Plane plane;
+  SpringBlock block(plane, 0.3, 100.0);
+  AffineConstraints<double> symmetry; // u_y = 0 at one top node, as on a symmetry plane
+  symmetry.add_line(block.contact.nodes()[0].dofs[1]);
+  symmetry.close();
+  for (const auto &node : block.contact.nodes())
+    {
+      block.shift(node.dofs[2], -0.002 * (1 + node.X[0])); // inside the indenter (z > -depth)
+      block.shift(node.dofs[0], 0.002 * (1 + node.X[1]));
+    }
+  block.contact.set_lateral_offset(Tensor<1, 3>({0.001, 0., 0.}));
+  const double depth = 0.01;
+  const unsigned int n = block.dof_handler.n_dofs();
+
+  // An arbitrary "element part" in every entry of the (dense) pattern.
+  const auto element_part = [n](PETScWrappers::MPI::SparseMatrix &A, PETScWrappers::MPI::Vector &r) {
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        for (unsigned int j = 0; j < n; ++j)
+          A.set(i, j, 1.0 + i + 0.1 * j);
+        r(i) = 0.5 - 0.01 * i;
+      }
+    A.compress(VectorOperation::insert);
+    r.compress(VectorOperation::insert);
+  };
+  PETScWrappers::MPI::SparseMatrix &A = block.matrix;
+  PETScWrappers::MPI::Vector       &r = block.residual;
+  element_part(A, r);
+  ASSERT_TRUE(block.contact.evaluate(block.u, depth, ActiveSet::free));
+  EXPECT_FALSE(block.contact.retract(symmetry, r, A)); // nothing assembled yet
+  block.contact.assemble(symmetry, r, &A);
+  A.compress(VectorOperation::add);
+  r.compress(VectorOperation::add);
+  ASSERT_EQ(block.contact.summary().n_active, 4u);
+
+  // Augment and evaluate again at the same displacement: new pressures and tractions.
+  block.contact.augment();
+  ASSERT_TRUE(block.contact.evaluate(block.u, depth, ActiveSet::free));
+  ASSERT_TRUE(block.contact.retract(symmetry, r, A));
+  EXPECT_FALSE(block.contact.retract(symmetry, r, A)); // retracted once only
+  block.contact.assemble(symmetry, r, &A);
+  A.compress(VectorOperation::add);
+  r.compress(VectorOperation::add);
+
+  PETScWrappers::MPI::SparseMatrix fresh_A;
+  fresh_A.reinit(A);
+  PETScWrappers::MPI::Vector fresh_r(block.owned, MPI_COMM_SELF);
+  element_part(fresh_A, fresh_r);
+  block.contact.assemble(symmetry, fresh_r, &fresh_A);
+  fresh_A.compress(VectorOperation::add);
+  fresh_r.compress(VectorOperation::add);
+
+  double largest_contact_entry = 0;
+  for (unsigned int i = 0; i < n; ++i)
+    for (unsigned int j = 0; j < n; ++j)
+      largest_contact_entry =
+        std::max(largest_contact_entry, std::abs(fresh_A.el(i, j) - (1.0 + i + 0.1 * j)));
+  ASSERT_GT(largest_contact_entry, 10.0); // the contact part is there (penalty 100 GPa/um)
+  for (unsigned int i = 0; i < n; ++i)
+    {
+      EXPECT_NEAR(r(i), fresh_r(i), 1e-12) << "residual row " << i;
+      for (unsigned int j = 0; j < n; ++j)
+        EXPECT_NEAR(A.el(i, j), fresh_A.el(i, j), 1e-12 * largest_contact_entry)
+          << "entry " << i << ", " << j;
+    }
+}

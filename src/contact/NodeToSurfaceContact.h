@@ -148,7 +148,9 @@ namespace indentsim::contact
     // Subtracts what the last assemble() with a matrix and without coupling added to `residual`
     // and `matrix` (both compressed since): after an augmentation at an unchanged displacement,
     // the element part of the system stands and only the contact part is replaced. Returns
-    // false (and changes nothing) if there is nothing kept to subtract.
+    // false (and changes nothing, on every rank) if there is nothing kept to subtract, or if a
+    // kept dof has a constraint with entries or an inhomogeneity (only homogeneous ones such as
+    // the symmetry planes' are undone exactly). Collective.
     bool retract(const dealii::AffineConstraints<double>  &constraints,
                  dealii::PETScWrappers::MPI::Vector       &residual,
                  dealii::PETScWrappers::MPI::SparseMatrix &matrix);

@@ -87,6 +87,14 @@ namespace indentsim::contact
     unsigned int n_stick = 0;
     unsigned int n_slip = 0;
     bool         search_failed = false;
+
+    // Eqs. 17-18 to `tolerance` [um]: no node penetrates, no node carrying pressure stands off
+    // the indenter, no sticking node slips.
+    bool conditions_met(const double tolerance) const
+    {
+      return max_penetration <= tolerance && max_active_gap <= tolerance &&
+             max_stick_slip <= tolerance;
+    }
   };
 
   class NodeToSurfaceContact

@@ -458,11 +458,8 @@ namespace indentsim::solver
             // (below), at the same displacement, so it is assembled now.
             if (!matrix_assembled && !search_failed && pass < case_.contact.max_augmentations)
               {
-                const contact::ContactSummary summary = contact_->summary();
-                const double tolerance = case_.contact.penetration_tolerance;
-                matrix_assembled = summary.max_penetration > tolerance ||
-                                   summary.max_active_gap > tolerance ||
-                                   summary.max_stick_slip > tolerance;
+                matrix_assembled =
+                  !contact_->summary().conditions_met(case_.contact.penetration_tolerance);
               }
             if (force_control)
               {
@@ -560,8 +557,7 @@ namespace indentsim::solver
               {
                 const contact::ContactSummary summary = contact_->summary();
                 const double tolerance = 2 * case_.contact.penetration_tolerance;
-                if (summary.max_penetration > tolerance || summary.max_active_gap > tolerance ||
-                    summary.max_stick_slip > tolerance)
+                if (!summary.conditions_met(tolerance))
                   {
                     pcout_ << "      pass " << pass << " it " << std::setw(2) << it
                            << "  inexact pass: augmented before full convergence" << std::endl;
@@ -680,8 +676,7 @@ namespace indentsim::solver
         // (p g = 0 of eq. 17: a multiplier from an earlier pass can hold a node that has
         // separated) and the sticking nodes do not slip (eq. 18), to the tolerance.
         const double tolerance = case_.contact.penetration_tolerance;
-        if (converged && summary.max_penetration <= tolerance &&
-            summary.max_active_gap <= tolerance && summary.max_stick_slip <= tolerance)
+        if (converged && summary.conditions_met(tolerance))
           {
             trial_force_scale_ = std::abs(summary.force_z);
             depth_trial_ = depth;

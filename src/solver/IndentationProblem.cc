@@ -909,6 +909,17 @@ namespace indentsim::solver
     }
   } // namespace
 
+  unsigned int expected_steps(const io::LoadingParameters &loading)
+  {
+    const bool         force_control = loading.control == "force";
+    const unsigned int unload_steps =
+      !loading.unload                                   ? 0 :
+      !force_control && loading.unload_points > 0       ? loading.unload_points + 1 :
+      loading.unload_steps > 0                          ? loading.unload_steps :
+                                                          loading.steps;
+    return loading.cycles * (loading.steps + loading.hold_steps + unload_steps);
+  }
+
   IndentationProblem::RunOutcome IndentationProblem::run(const std::string &output_directory,
                                                          const bool         resume)
   {
@@ -946,9 +957,7 @@ namespace indentsim::solver
             {"unload", unload_target,
              loading.unload_steps > 0 ? loading.unload_steps : loading.steps, cycle});
       }
-    unsigned int nominal_steps = 0;
-    for (const Segment &segment : programme)
-      nominal_steps += segment.steps;
+    const unsigned int nominal_steps = expected_steps(loading);
 
     // The state of the loop: fresh, or where the checkpoint left it. Top-surface snapshots
     // for the pile-up analysis (rank 0), at the maximum of the last cycle and at the end of
@@ -1028,7 +1037,7 @@ namespace indentsim::solver
         // unloading stiffness (the first step takes a quarter of the nominal increment). The
         // elastic recovery spans a small part of the depth, so uniform depth steps would leave
         // the Oliver-Pharr fit a handful of points.
-        const bool force_paced = unloading && !force_control && loading.unload_points > 0;
+        const bool paced = unloading && !force_control && loading.unload_points > 0;
         if (!loop.in_segment)
           {
             loop.in_segment = true;
@@ -1036,7 +1045,7 @@ namespace indentsim::solver
             loop.easy_steps = 0;
             loop.segment_steps = 0;
             loop.paced_increment =
-              force_paced ? nominal_increment / 4 : std::numeric_limits<double>::infinity();
+              paced ? nominal_increment / 4 : std::numeric_limits<double>::infinity();
           }
         double &value = loop.value, &depth = loop.depth, &increment = loop.increment;
         unsigned int &step = loop.step;
@@ -1210,7 +1219,7 @@ namespace indentsim::solver
               }
             else
               {
-                if (force_paced && depth_before - depth > 0 && force_before - record.force > 0)
+                if (paced && depth_before - depth > 0 && force_before - record.force > 0)
                   loop.paced_increment = (loop.max_force / loading.unload_points) *
                                          (depth_before - depth) / (force_before - record.force);
                 // After a cut-back, grow the increment again only once three steps in a row

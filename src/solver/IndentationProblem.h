@@ -67,6 +67,10 @@ namespace indentsim::solver
     double       wall_time = 0;       // [s] since the start of the run
   };
 
+  // The number of steps a loading programme is expected to take without cut-backs (for the
+  // ETA): depth-controlled unloading is paced by force and takes about unload_points + 1.
+  unsigned int expected_steps(const io::LoadingParameters &loading);
+
   class IndentationProblem
   {
   public:

@@ -280,6 +280,11 @@ TEST(OliverPharr, ElasticIndentationRecoversTheReducedModulus)
       n_unload += r.segment == "unload";
     }
   EXPECT_GE(n_unload, 10u);
+  // The progress line's ETA counts on unload_points + 1 force-paced unloading steps (not the
+  // loading's step count): the run took that many, within one.
+  const unsigned int n_steps = problem.records().size() - 1; // without the initial state
+  EXPECT_NEAR(double(n_steps), double(solver::expected_steps(c.loading)), 1.0);
+  EXPECT_EQ(solver::expected_steps(c.loading), 4u + 13u);
   const auto indenter = indenter::create_indenter(c.indenter);
   analysis::OliverPharrSettings settings;
   settings.epsilon = 0.75; // paraboloid (the spherical tip)

@@ -910,14 +910,22 @@ namespace indentsim::solver
     }
   } // namespace
 
+  namespace
+  {
+    // Increments of an unloading segment in uniform steps (unload_steps, 0: as loading).
+    unsigned int uniform_unload_steps(const io::LoadingParameters &loading)
+    {
+      return loading.unload_steps > 0 ? loading.unload_steps : loading.steps;
+    }
+  } // namespace
+
   unsigned int expected_steps(const io::LoadingParameters &loading)
   {
-    const bool         force_control = loading.control == "force";
+    const bool   force_control = loading.control == "force";
     unsigned int unload_steps = 0;
     if (loading.unload)
       unload_steps = !force_control && loading.unload_points > 0 ? loading.unload_points + 1 :
-                     loading.unload_steps > 0                    ? loading.unload_steps :
-                                                                   loading.steps;
+                                                                   uniform_unload_steps(loading);
     return loading.cycles * (loading.steps + loading.hold_steps + unload_steps);
   }
 
@@ -955,8 +963,7 @@ namespace indentsim::solver
           programme.push_back({"hold", maximum, loading.hold_steps, cycle});
         if (loading.unload)
           programme.push_back(
-            {"unload", unload_target,
-             loading.unload_steps > 0 ? loading.unload_steps : loading.steps, cycle});
+            {"unload", unload_target, uniform_unload_steps(loading), cycle});
       }
     const unsigned int nominal_steps = expected_steps(loading);
 

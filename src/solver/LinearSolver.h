@@ -110,6 +110,7 @@ namespace indentsim::solver
     KSP                                             ksp_ = nullptr;
     Mat                                             operator_ = nullptr; // the matrix of ksp_
     std::vector<dealii::PETScWrappers::MPI::Vector> rigid_body_modes_;   // orthonormal
+    bool   nodal_blocks_ = false;          // the unknowns come in 3 x 3 nodal blocks
     bool   rebuild_preconditioner_ = true;
     double iterations_per_decade_ = 0; // of the first solve after the last build
     double stale_iterations_ = 0;      // iterations beyond that rate since the build

@@ -119,7 +119,7 @@ namespace indentsim::io
 
   struct SolverParameters
   {
-    double       residual_tolerance = 1e-8;  // relative to the first residual of the increment (indentation: or the last indenter force, if larger)
+    double       residual_tolerance = 1e-7;  // relative to the first residual of the increment (indentation: or the last indenter force, if larger)
     double       absolute_tolerance = 1e-10; // [mN]
     unsigned int max_newton_iterations = 25;
     // Linear solver of the Newton iterations (solver/LinearSolver.h): auto (direct below

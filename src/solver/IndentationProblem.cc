@@ -569,8 +569,14 @@ namespace indentsim::solver
                     break;
                   }
               }
-            if (!predictor && norm <= std::max(solver_parameters.residual_tolerance * reference,
-                                               solver_parameters.absolute_tolerance))
+            // A pass converges only after a Newton iteration of its own: the first iterate of a
+            // pass after an augmentation is the previous pass's displacement, on which the
+            // contact conditions just failed. Accepting it unmoved (its residual can be below
+            // the tolerance when the multipliers changed little) would augment again on the
+            // same displacement until max_augmentations (seen with friction and a contact
+            // tolerance of 1e-9 um: the same gap 2.67e-9 um in passes 3 to 30).
+            if (it > 0 && norm <= std::max(solver_parameters.residual_tolerance * reference,
+                                           solver_parameters.absolute_tolerance))
               {
                 if (!frozen)
                   {

@@ -5,8 +5,11 @@
 //   build/bench_linear_solver [-rtol R] [-reuse | -keep] FILE... [PETSc options]
 //
 // Defaults: the options indentsim itself uses (GMRES, right-preconditioned, true-residual test,
-// ML smoothed aggregation with the rigid-body modes as near-null space, Chebyshev/Jacobi
-// smoothing); any PETSc option overrides them (e.g. -pc_type gamg, -mg_levels_pc_type sor). -reuse keeps the first
+// ML smoothed aggregation with the rigid-body modes as near-null space, Chebyshev smoothing
+// with point-block Jacobi on the matrix's block size: 3, the nodal blocks, in systems dumped
+// since session 19; older dumps say 1 in their .info file, override it with
+// -viewer_binary_skip_info -matload_block_size 3 -vecload_block_size 3); any PETSc option
+// overrides them (e.g. -pc_type gamg, -mg_levels_pc_type sor). -reuse keeps the first
 // system's preconditioner for the following ones (indentsim reuses it while it works); -keep
 // keeps one solver object and sets its preconditioner up again for each system (what options
 // such as -pc_ml_reuse_interpolation act on).
@@ -81,7 +84,7 @@ int main(int argc, char **argv)
   set_default("-pc_gamg_threshold", "0.01");
   set_default("-pc_gamg_square_graph", "1");
   set_default("-mg_levels_ksp_type", "chebyshev");
-  set_default("-mg_levels_pc_type", "jacobi");
+  set_default("-mg_levels_pc_type", "pbjacobi");
   set_default("-mg_levels_ksp_max_it", "2");
 
   KSP ksp = nullptr;

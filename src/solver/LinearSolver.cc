@@ -131,7 +131,7 @@ namespace indentsim::solver
     const IndexSet &owned = dof_handler.locally_owned_dofs();
     // The three unknowns of a node are consecutive and start at a multiple of three (deal.II
     // numbers a vertex's DoFs together; nothing here renumbers them), so the matrix has 3 x 3
-    // nodal blocks: the smoother inverts them (point-block Jacobi) and ML aggregates by node.
+    // nodal blocks, which the smoother inverts (point-block Jacobi). Checked, not assumed.
     nodal_blocks_ = owned.n_elements() % 3 == 0;
     rigid_body_modes_.resize(6);
     for (auto &mode : rigid_body_modes_)
@@ -144,7 +144,8 @@ namespace indentsim::solver
             for (unsigned int c = 0; c < 3; ++c)
               {
                 const types::global_dof_index dof = cell->vertex_dof_index(v, c);
-                if (dof != cell->vertex_dof_index(v, 0) + c || cell->vertex_dof_index(v, 0) % 3 != 0)
+                const types::global_dof_index first = cell->vertex_dof_index(v, 0);
+                if (dof != first + c || first % 3 != 0)
                   nodal_blocks_ = false;
                 if (!owned.is_element(dof))
                   continue;

@@ -259,7 +259,13 @@ namespace indentsim::solver
     // The same Mat with new values: the direct solver refactors numerically (the symbolic
     // analysis is kept); the iterative one keeps its preconditioner unless it must be rebuilt
     // (ML rebuilds its hierarchy; GAMG recomputes the coarse operators on the kept interpolation).
-    check(KSPSetOperators(ksp_, petsc_matrix, petsc_matrix), "KSPSetOperators");
+    // With nodal blocks, the Krylov method and the smoothers apply a BAIJ copy of the matrix
+    // (BlockMatrixCopy.h: 38 % less time per solve on j2_48); ML builds its hierarchy from the
+    // AIJ matrix itself.
+    const Mat applied = (kind_ == Kind::iterative && nodal_blocks_) ?
+                          block_copy_.update(petsc_matrix) :
+                          petsc_matrix;
+    check(KSPSetOperators(ksp_, applied, petsc_matrix), "KSPSetOperators");
     const bool rebuilt = kind_ == Kind::direct || rebuild_preconditioner_;
     if (kind_ == Kind::iterative)
       {

@@ -12,7 +12,9 @@
 //    faster on the paper's systems (bench/bench_linear_solver). The levels are smoothed by two
 //    Chebyshev steps on point-block Jacobi: the matrix is told its 3 x 3 nodal blocks
 //    (MatSetBlockSize), whose inverses the smoother applies (30 % fewer Krylov iterations
-//    than point Jacobi on the paper's 48 x 48 systems).
+//    than point Jacobi on the paper's 48 x 48 systems). The Krylov method and the smoothers
+//    apply a copy of the matrix in PETSc's block format (BlockMatrixCopy.h), which multiplies
+//    faster; ML builds its hierarchy from the assembled AIJ matrix.
 //    The preconditioner is built for one Newton matrix and reused for the following ones as
 //    long as that pays: the iterations the reused one costs beyond the rate (iterations per
 //    decade of residual reduction) of the first solve after its build are added up, and it is
@@ -27,6 +29,7 @@
 #pragma once
 
 #include "io/Case.h"
+#include "solver/BlockMatrixCopy.h"
 
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/lac/petsc_sparse_matrix.h>
@@ -114,6 +117,7 @@ namespace indentsim::solver
     Mat                                             operator_ = nullptr; // the matrix of ksp_
     std::vector<dealii::PETScWrappers::MPI::Vector> rigid_body_modes_;   // orthonormal
     bool   nodal_blocks_ = false;          // the unknowns come in 3 x 3 nodal blocks
+    BlockMatrixCopy block_copy_;           // the matrix the iterative solver applies (blocks)
     bool   rebuild_preconditioner_ = true;
     double iterations_per_decade_ = 0; // of the first solve after the last build
     double stale_iterations_ = 0;      // iterations beyond that rate since the build

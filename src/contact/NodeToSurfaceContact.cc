@@ -148,14 +148,22 @@ namespace indentsim::contact
         for (unsigned int d = 0; d < 3; ++d)
           node.x[d] = node.X[d] + u(node.dofs[d]);
         int normal_active = -1; // decided by the augmented pressure
-        if (mode == ActiveSet::predictor)
-          normal_active = node.lambda_converged > 0;
+        if (mode == ActiveSet::predictor && node.lambda_converged > 0)
+          normal_active = 1;
         else if (mode == ActiveSet::frozen)
           normal_active = node.active;
         const ContactStatus  previous = node.status;
         const ContactStatus *fixed =
           (mode == ActiveSet::frozen && node.active) ? &previous : nullptr;
-        const NodeResponse response = respond(node, node.x, normal_active, fixed, depth_);
+        NodeResponse response = respond(node, node.x, normal_active, fixed, depth_);
+        // A node that carried no pressure in the last converged increment joins the
+        // predictor's set only if the predicted state clearly penetrates: by more than the
+        // activation depth (the contact tolerance), so that a node touching the indenter
+        // within round-off is not active on one partition and open on another.
+        if (mode == ActiveSet::predictor && normal_active == -1 &&
+            response.status != ContactStatus::open &&
+            !(response.projection.gap < -predictor_activation_depth_))
+          response = respond(node, node.x, 0, fixed, depth_);
         if (!response.projection.converged || !std::isfinite(response.projection.gap))
           {
             search_failed_ = true;

@@ -159,6 +159,7 @@ namespace indentsim::solver
                                mesh_info_.contact_element_size;
     contact_ = std::make_unique<contact::NodeToSurfaceContact>(
       *indenter_, penalty, case_.contact.friction_coefficient);
+    contact_->set_predictor_activation_depth(case_.contact.penetration_tolerance);
     contact_->setup(dof_handler_,
                     constraints_hanging_,
                     mesh::boundary::top,

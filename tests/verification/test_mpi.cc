@@ -24,12 +24,18 @@ namespace
 } // namespace
 
 
-// One rank and several ranks give the same curve to 1e-8 relative.
+// One rank and several ranks give the same curve to 1e-8 relative, with the contact and Newton
+// tolerances at 1e-8 (README, Performance: the partitions take different paths within the
+// tolerances; on this coarse case the extrapolated start of step 6 fails by a material point
+// on one side and by the iteration limit on the other, both retry from the converged state, and
+// at the default tolerances the curves then differ by up to 9e-7 of the force).
 TEST(Mpi, OneVersusManyRanksGiveTheSameCurve)
 {
   // 8 increments: no cut-backs on either side (a cut-back triggered by round-off on one side
   // only would change the plastic path).
-  const io::Case c = test_cases::small_j2_case();
+  io::Case c = test_cases::small_j2_case();
+  c.contact.penetration_tolerance = 1e-8;
+  c.solver.residual_tolerance = 1e-8;
   const auto     parallel = run(c, MPI_COMM_WORLD), serial = run(c, MPI_COMM_SELF);
   ASSERT_EQ(parallel.size(), serial.size());
   for (std::size_t i = 1; i < serial.size(); ++i)

@@ -5,20 +5,13 @@
 // supports, whose rows hold only their diagonal: partial blocks. One rank here, two in Mpi.*.
 #include "solver/BlockMatrixCopy.h"
 
-#include <deal.II/base/index_set.h>
-#include <deal.II/distributed/tria.h>
+#include "../test_constrained_cube.h"
+
 #include <deal.II/dofs/dof_handler.h>
-#include <deal.II/dofs/dof_tools.h>
-#include <deal.II/fe/fe_q.h>
-#include <deal.II/fe/fe_system.h>
-#include <deal.II/grid/grid_generator.h>
 #include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
-#include <deal.II/lac/sparsity_tools.h>
-#include <deal.II/numerics/vector_tools.h>
 
 #include <gtest/gtest.h>
 
@@ -75,28 +68,14 @@ namespace
 
   void check_block_copy(const MPI_Comm communicator)
   {
-    parallel::distributed::Triangulation<3> triangulation(communicator);
-    GridGenerator::subdivided_hyper_cube(triangulation, 4, 0., 1., /*colorize=*/true);
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned() && cell->center().norm() < 0.45)
-        cell->set_refine_flag();
-    triangulation.execute_coarsening_and_refinement();
-    const FESystem<3> fe(FE_Q<3>(1), 3);
-    DoFHandler<3>     dof_handler(triangulation);
-    dof_handler.distribute_dofs(fe);
-    const IndexSet owned = dof_handler.locally_owned_dofs();
-    const IndexSet relevant = DoFTools::extract_locally_relevant_dofs(dof_handler);
-    AffineConstraints<double> constraints(relevant);
-    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-    VectorTools::interpolate_boundary_values(dof_handler, 4, Functions::ZeroFunction<3>(3),
-                                             constraints); // the face z = 0
-    constraints.close();
+    const indentsim::test_meshes::ConstrainedCube cube(communicator, 1);
+    const auto &dof_handler = cube.dof_handler;
+    const auto &fe = cube.fe;
+    const auto &owned = cube.owned;
+    const auto &constraints = cube.constraints;
     ASSERT_GT(constraints.n_constraints(), 0u);
-    DynamicSparsityPattern dsp(relevant);
-    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
-    SparsityTools::distribute_sparsity_pattern(dsp, owned, communicator, relevant);
     PETScWrappers::MPI::SparseMatrix matrix;
-    matrix.reinit(owned, owned, dsp, communicator);
+    matrix.reinit(owned, owned, cube.sparsity, communicator);
 
     const unsigned int                   n = fe.n_dofs_per_cell();
     std::vector<types::global_dof_index> dofs(n);

@@ -54,7 +54,7 @@ namespace indentsim::solver
     if (copy_ != nullptr)
       MatDestroy(&copy_);
     copy_ = nullptr;
-    source_ = nullptr;
+    source_id_ = 0;
     diagonal_map_.clear();
     off_diagonal_map_.clear();
   }
@@ -181,19 +181,23 @@ namespace indentsim::solver
           ++seen[k >= 0 ? k : n_diagonal_values + (-2 - k)];
     if (std::any_of(seen.begin(), seen.end(), [](unsigned char s) { return s != 1; }))
       throw std::runtime_error("BlockMatrixCopy: the block copy does not hold the pattern");
-    source_ = source;
+    check(PetscObjectGetId(reinterpret_cast<PetscObject>(source), &source_id_),
+          "PetscObjectGetId");
     check(MatGetNonzeroState(source, &source_nonzero_state_), "MatGetNonzeroState");
   }
 
   Mat BlockMatrixCopy::update(const Mat source)
   {
     PetscObjectState nonzero_state;
+    PetscObjectId    id;
     check(MatGetNonzeroState(source, &nonzero_state), "MatGetNonzeroState");
+    // The object's id, not its address: a new matrix can take the address of a destroyed one.
+    check(PetscObjectGetId(reinterpret_cast<PetscObject>(source), &id), "PetscObjectGetId");
     // Collective decision: every rank rebuilds if one must.
     MPI_Comm communicator;
     check(PetscObjectGetComm(reinterpret_cast<PetscObject>(source), &communicator),
           "PetscObjectGetComm");
-    int must_build = copy_ == nullptr || source != source_ ||
+    int must_build = copy_ == nullptr || id != source_id_ ||
                      nonzero_state != source_nonzero_state_;
     MPI_Allreduce(MPI_IN_PLACE, &must_build, 1, MPI_INT, MPI_MAX, communicator);
     if (must_build)

@@ -38,15 +38,12 @@ namespace indentsim::solver
     // otherwise only the values are copied. Collective.
     Mat update(Mat source);
 
-    // The copy (nullptr before the first update).
-    Mat matrix() const { return copy_; }
-
     void clear();
 
   private:
     void build(Mat source);
 
-    Mat              source_ = nullptr;
+    PetscObjectId    source_id_ = 0; // the source the map belongs to (0: none)
     Mat              copy_ = nullptr;
     PetscObjectState source_nonzero_state_ = 0;
     // For each value of the copy's diagonal / off-diagonal local block (in its storage order):

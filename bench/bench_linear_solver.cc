@@ -138,13 +138,12 @@ int main(int argc, char **argv)
       PetscBool has_operator_type = PETSC_FALSE;
       PetscOptionsGetString(nullptr, nullptr, "-operator_type", operator_type,
                             sizeof(operator_type), &has_operator_type);
-      double convert = 0;
       if (has_operator_type)
         {
           const auto convert_start = std::chrono::steady_clock::now();
           MatConvert(A, operator_type, MAT_INITIAL_MATRIX, &op);
-          convert = seconds_since(convert_start);
-          PetscPrintf(PETSC_COMM_WORLD, "converted to %s in %.3f s\n", operator_type, convert);
+          PetscPrintf(PETSC_COMM_WORLD, "converted to %s in %.3f s\n", operator_type,
+                      seconds_since(convert_start));
         }
       KSPSetOperators(ksp, op, A);
       KSPSetReusePreconditioner(ksp, fresh ? PETSC_FALSE : PETSC_TRUE);

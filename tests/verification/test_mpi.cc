@@ -36,7 +36,7 @@ TEST(Mpi, OneVersusManyRanksGiveTheSameCurve)
   io::Case c = test_cases::small_j2_case();
   c.contact.penetration_tolerance = 1e-8;
   c.solver.residual_tolerance = 1e-8;
-  const auto     parallel = run(c, MPI_COMM_WORLD), serial = run(c, MPI_COMM_SELF);
+  const auto parallel = run(c, MPI_COMM_WORLD), serial = run(c, MPI_COMM_SELF);
   ASSERT_EQ(parallel.size(), serial.size());
   for (std::size_t i = 1; i < serial.size(); ++i)
     {

@@ -412,6 +412,54 @@ namespace indentsim::materials
       return S;
     }
 
+    // The starting point of the local Newton from a hint state (F_p, tau_c, Gamma) of the same
+    // increment, written into x (unknowns as CrystalLocalProblem: E_e (6), Delta lambda / tau0,
+    // tau_c / tau0): E_e of the hint's F_p at the new F, C_e = (F F_p^-1)^T (F F_p^-1), its
+    // tau_c, and Delta lambda from its Delta Gamma = Delta lambda sum_r |Delta gamma^r(lambda=1)|.
+    // False when the hint is not plastic relative to state_old (Gamma_hint <= Gamma_n, e.g.
+    // state_new == state_old at the start of an increment) or not usable (not finite, F_p far
+    // from isochoric, tau_c <= 0).
+    template <int n_slip>
+    bool warm_start_guess(const SlipLawData              &law,
+                          const Matrix<double>           &F,
+                          std::span<const double>         state_old,
+                          std::span<const double>         hint,
+                          std::array<double, 7 + n_slip> &x)
+    {
+      const double delta_Gamma = hint[9 + n_slip] - state_old[9 + n_slip];
+      if (!(delta_Gamma > 0.0) || !std::isfinite(delta_Gamma))
+        return false;
+      Tensor<2, 3> F_p_hint;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          {
+            F_p_hint[i][j] = hint[3 * i + j];
+            if (!std::isfinite(F_p_hint[i][j]))
+              return false;
+          }
+      if (!(std::abs(dealii::determinant(F_p_hint) - 1.0) < 0.5))
+        return false;
+      const Matrix<double> F_e = multiply(F, to_matrix(inverse_3x3(F_p_hint)));
+      const auto           C_e = multiply_transposed_first(F_e, F_e);
+      for (unsigned int k = 0; k < 6; ++k)
+        x[k] = 0.5 * (C_e[sym_i[k]][sym_j[k]] - (k < 3 ? 1.0 : 0.0));
+      for (int r = 0; r < n_slip; ++r)
+        {
+          x[7 + r] = hint[9 + r] / law.tau0;
+          if (!(x[7 + r] > 0.0) || !std::isfinite(x[7 + r]))
+            return false;
+        }
+      SlipResponse<n_slip, double> unit;
+      slip_response<n_slip, double>(law, x.data(), &x[7], 1.0, unit);
+      double unit_Gamma = 0.0;
+      for (int r = 0; r < n_slip; ++r)
+        unit_Gamma += std::abs(unit.delta_gamma[r]);
+      if (!(unit_Gamma > 0.0) || !std::isfinite(unit_Gamma))
+        return false;
+      x[6] = delta_Gamma / unit_Gamma;
+      return true;
+    }
+
     // A trial state is certainly elastic when Phi <= n_slip^(1/2n) max_r |rho_r| (eq. 14) is
     // below 1: most points of an indentation are, and the powers of Phi are then not needed.
     // S_e as slip_response computes it.
@@ -1047,13 +1095,28 @@ namespace indentsim::materials
     settings.tolerance = std::max(1e-13 * strain_scale, 2e-15);
     settings.stagnation_tolerance = std::max(1e-10 * strain_scale, 1e-13);
 
-    for (unsigned int k = 0; k < 6; ++k)
-      unknowns[k] = E_trial[k];
-    unknowns[LocalProblem::lambda_index] = 0.0;
-    for (int r = 0; r < n_slip; ++r)
-      unknowns[LocalProblem::tau_c_index + r] = tau_c_n_scaled[r];
     typename LocalProblem::Jacobian jacobian;
-    const LocalNewtonResult newton = Newton::solve_with_jacobian(problem, unknowns, jacobian, settings);
+    LocalNewtonResult               newton;
+    // Warm start from the hint in state_new (see MaterialModel::update): the previous global
+    // Newton iterate of this increment, if it was plastic. Close to convergence of the global
+    // Newton this takes 2-3 local iterations instead of 5 or more from the elastic trial
+    // (crystal_24: 2.7 against 5.1 on average); a hint that does not converge to
+    // Delta lambda > 0 is dropped and the Newton starts again from the trial.
+    if (warm_start_guess<n_slip>(law, F_matrix, state_old, state_new, unknowns))
+      {
+        newton = Newton::solve_with_jacobian(problem, unknowns, jacobian, settings);
+        if (!newton.converged || !(unknowns[LocalProblem::lambda_index] > 0.0))
+          newton.converged = false;
+      }
+    if (!newton.converged)
+      {
+        for (unsigned int k = 0; k < 6; ++k)
+          unknowns[k] = E_trial[k];
+        unknowns[LocalProblem::lambda_index] = 0.0;
+        for (int r = 0; r < n_slip; ++r)
+          unknowns[LocalProblem::tau_c_index + r] = tau_c_n_scaled[r];
+        newton = Newton::solve_with_jacobian(problem, unknowns, jacobian, settings);
+      }
     const double lambda_scaled = unknowns[LocalProblem::lambda_index];
     if (!newton.converged || !(lambda_scaled >= 0.0))
       {

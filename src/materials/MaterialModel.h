@@ -56,7 +56,11 @@ namespace indentsim::materials
 
     // Stress and consistent tangent for deformation gradient F at the end of the increment,
     // starting from the converged state of the previous increment. `state_new` receives the
-    // updated internal state. Inputs are never modified. When `compute_tangent` is false the
+    // updated internal state. Inputs are never modified. On entry `state_new` may hold a hint:
+    // this point's state from an earlier evaluation of the same increment (the solvers keep the
+    // previous global Newton iterate there, and state_old itself at the start of an increment).
+    // A model may start its local iteration from it (CrystalPlasticity does); the result is
+    // the same to the local tolerance whatever the hint holds, and an unusable hint is ignored. When `compute_tangent` is false the
     // tangent member of `response` is left untouched (used for stress recovery and output).
     virtual UpdateStatus update(const Tensor<2, 3>           &F,
                                 std::span<const double>       state_old,

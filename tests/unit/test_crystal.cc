@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -445,6 +446,88 @@ namespace
     report("largest relative difference in the state", worst_state);
     report("largest relative difference in the tangent", worst_tangent);
     EXPECT_GE(n_plastic, 12u);
+  }
+
+  // The hint in state_new (MaterialModel::update): the solvers leave the previous global Newton
+  // iterate of the increment there and the crystal update starts its local Newton from it. The
+  // result must be that of the cold start (state_new holding nothing usable) to the local
+  // tolerance, for hints near and far from the solution, the solution itself, a hint from the
+  // elastic side, and unusable ones (NaN, negative critical shears, a singular F_p).
+  TEST(CrystalPlasticityModel, HintInStateNewChangesNothingButTheStart)
+  {
+    const CrystalPlasticity model = table2_model();
+    std::mt19937            generator(23);
+    double                  worst = 0;
+    unsigned int            n_compared = 0;
+    for (unsigned int sample = 0; sample < 12; ++sample)
+      {
+        auto state = oriented_state(model, random_rotation(generator));
+        const Tensor<2, 3> F_history = random_deformation(generator, 0.02);
+        for (unsigned int step = 1; step <= sample % 3; ++step)
+          {
+            MaterialPointResponse response;
+            std::vector<double>   state_new(state);
+            ASSERT_EQ(model.update(identity() + (F_history - identity()) * (step / 3.0), state,
+                                   response, state_new, false),
+                      UpdateStatus::success);
+            state = state_new;
+          }
+        const Tensor<2, 3> F =
+          F_history + (random_deformation(generator, std::array<double, 3>{{0.005, 0.03, 0.1}}[sample % 3]) - identity());
+        MaterialPointResponse cold;
+        std::vector<double>   state_cold(state); // the hint of an increment's first iteration
+        ASSERT_EQ(model.update(F, state, cold, state_cold, true), UpdateStatus::success);
+        ASSERT_GT(state_cold[21], state[21]) << "sample " << sample << " must be plastic";
+
+        std::vector<std::vector<double>> hints;
+        for (const double distance : {1e-6, 1e-3, 0.05, 0.3})
+          {
+            // The update at a nearby deformation, as a previous global iterate leaves it.
+            const Tensor<2, 3> F_near = F + distance * (random_deformation(generator, 1.0) - identity());
+            MaterialPointResponse response;
+            std::vector<double>   hint(state);
+            if (model.update(F_near, state, response, hint, false) == UpdateStatus::success)
+              hints.push_back(hint);
+          }
+        hints.push_back(state_cold);
+        auto garbage = state_cold;
+        garbage[4] = std::numeric_limits<double>::quiet_NaN();
+        hints.push_back(garbage);
+        garbage = state_cold;
+        garbage[10] = -garbage[10];
+        hints.push_back(garbage);
+        garbage = state_cold;
+        std::fill(garbage.begin(), garbage.begin() + 9, 0.0);
+        hints.push_back(garbage);
+        garbage = state_cold;
+        garbage[21] = 1e30; // a huge slip increment
+        hints.push_back(garbage);
+
+        for (const auto &hint : hints)
+          {
+            MaterialPointResponse warm;
+            std::vector<double>   state_warm(hint);
+            ASSERT_EQ(model.update(F, state, warm, state_warm, true), UpdateStatus::success)
+              << "sample " << sample;
+            const double error_P = (warm.P - cold.P).norm() / cold.P.norm();
+            const double error_tangent = (warm.dP_dF - cold.dP_dF).norm() / cold.dP_dF.norm();
+            double       difference = 0, change = 0;
+            for (unsigned int k = 0; k < state.size(); ++k)
+              {
+                difference += std::pow(state_warm[k] - state_cold[k], 2);
+                change += std::pow(state_cold[k] - state[k], 2);
+              }
+            const double error_state = std::sqrt(difference / change);
+            EXPECT_LT(error_P, 1e-10) << "sample " << sample;
+            EXPECT_LT(error_tangent, 1e-9) << "sample " << sample;
+            EXPECT_LT(error_state, 1e-9) << "sample " << sample;
+            worst = std::max({worst, error_P, error_tangent, error_state});
+            ++n_compared;
+          }
+      }
+    report("hinted updates compared", n_compared);
+    report("largest relative difference to the cold start", worst);
+    EXPECT_GE(n_compared, 12u * 8u);
   }
 
   // Objectivity: a superposed rigid rotation Q F rotates P (Q P) and the Kirchhoff stress

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -39,11 +40,19 @@ namespace indentsim::solver
                             const AffineConstraints<double>               &constraints,
                             const PETScWrappers::MPI::SparseMatrix        &matrix)
   {
+    release_communicator();
     plan_.assign(dof_handler.get_triangulation().n_active_cells(), CellPlan());
     positions_.clear();
     counts_.clear();
     weights_.clear();
     diagonals_.clear();
+    send_ranks_.clear();
+    send_offsets_.clear();
+    send_values_.clear();
+    receive_ranks_.clear();
+    receive_offsets_.clear();
+    receive_positions_.clear();
+    receive_values_.clear();
     fast_fraction_ = 0;
     n_cell_dofs_ = dof_handler.get_fe().n_dofs_per_cell();
 
@@ -79,14 +88,44 @@ namespace indentsim::solver
       check(MatGetSize(off_diagonal, nullptr, &n_off_diagonal_columns), "MatGetSize");
     const long n_diagonal = d.row_start[d.n_rows];
     const long n_off = o.row_start[o.n_rows];
-    if (n_diagonal + n_off >= static_cast<long>(std::numeric_limits<std::uint32_t>::max()))
-      throw std::runtime_error("MatrixScatter: more than 2^32 nonzeros on one rank");
+    // Positions and send slots share the uint32 range; the slots are at most a rank's
+    // interface entries, far fewer than its nonzeros.
+    if (2 * (n_diagonal + n_off) >= static_cast<long>(std::numeric_limits<std::uint32_t>::max()))
+      throw std::runtime_error("MatrixScatter: more than 2^31 nonzeros on one rank");
     n_diagonal_ = static_cast<std::uint32_t>(n_diagonal);
+    n_local_ = static_cast<std::uint32_t>(n_diagonal + n_off);
 
-    // Position of global entry (row, column), or -1 if this rank does not hold it.
+    // Entries of other ranks' rows go to slots of a send buffer, in the order first met here;
+    // they are renumbered by destination after the cell loop.
+    int n_ranks = 1, this_rank = 0;
+    MPI_Comm matrix_communicator = MPI_COMM_SELF;
+    check(PetscObjectGetComm(reinterpret_cast<PetscObject>(global), &matrix_communicator),
+          "PetscObjectGetComm");
+    MPI_Comm_size(matrix_communicator, &n_ranks);
+    MPI_Comm_rank(matrix_communicator, &this_rank);
+    const PetscInt *row_ranges = nullptr; // n_ranks + 1 starts of the ranks' rows
+    check(MatGetOwnershipRanges(global, &row_ranges), "MatGetOwnershipRanges");
+    std::map<std::pair<PetscInt, PetscInt>, std::uint32_t> slot_of_entry;
+    std::vector<int>                                       slot_owner;
+    std::vector<std::pair<PetscInt, PetscInt>>             slot_entry;
+    const std::uint64_t n_local = static_cast<std::uint64_t>(n_diagonal) + n_off;
+    const auto slot = [&](const PetscInt row, const PetscInt column) -> long {
+      const auto [it, inserted] =
+        slot_of_entry.try_emplace({row, column}, static_cast<std::uint32_t>(slot_entry.size()));
+      if (inserted)
+        {
+          slot_owner.push_back(static_cast<int>(
+            std::upper_bound(row_ranges, row_ranges + n_ranks + 1, row) - row_ranges - 1));
+          slot_entry.emplace_back(row, column);
+        }
+      return static_cast<long>(n_local + it->second);
+    };
+
+    // Position of global entry (row, column): in this rank's arrays, -1 if they do not hold
+    // it, or a send slot for another rank's row.
     const auto find = [&](const PetscInt row, const PetscInt column) -> long {
       if (row < row_begin || row >= row_end)
-        return -1;
+        return slot(row, column);
       if (column >= column_begin && column < column_end)
         return d.find(row - row_begin, column - column_begin);
       const PetscInt *end = off_diagonal_columns + n_off_diagonal_columns;
@@ -169,6 +208,93 @@ namespace indentsim::solver
           }
         ++n_fast;
       }
+    if (slot_entry.size() >= std::numeric_limits<std::uint32_t>::max() - n_local_)
+      throw std::runtime_error("MatrixScatter: too many entries of other ranks' rows");
+
+    // Send slots grouped by destination rank, each group in the order first met: renumber.
+    std::vector<std::uint32_t> new_slot(slot_entry.size());
+    {
+      std::vector<std::uint32_t> count(n_ranks, 0);
+      for (const int owner : slot_owner)
+        ++count[owner];
+      std::vector<std::uint32_t> start(n_ranks + 1, 0);
+      for (int q = 0; q < n_ranks; ++q)
+        start[q + 1] = start[q] + count[q];
+      std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+      for (std::size_t k = 0; k < slot_entry.size(); ++k)
+        new_slot[k] = next[slot_owner[k]]++;
+      for (auto &position : positions_)
+        if (position >= n_local_)
+          position = n_local_ + new_slot[position - n_local_];
+      for (auto &diagonal_entry : diagonals_)
+        if (diagonal_entry.second >= n_local_)
+          diagonal_entry.second = n_local_ + new_slot[diagonal_entry.second - n_local_];
+      for (int q = 0; q < n_ranks; ++q)
+        if (count[q] > 0)
+          {
+            send_ranks_.push_back(q);
+            send_offsets_.push_back(start[q]);
+          }
+      send_offsets_.push_back(start[n_ranks]);
+      send_values_.assign(slot_entry.size(), 0.0);
+    }
+    std::vector<PetscInt> send_entries(2 * slot_entry.size());
+    for (std::size_t k = 0; k < slot_entry.size(); ++k)
+      {
+        send_entries[2 * new_slot[k]] = slot_entry[k].first;
+        send_entries[2 * new_slot[k] + 1] = slot_entry[k].second;
+      }
+
+    // Each rank learns which entries of its rows the others will send, and where they go.
+    MPI_Comm_dup(matrix_communicator, &communicator_);
+    std::vector<int> send_counts(n_ranks, 0), receive_counts(n_ranks, 0);
+    for (std::size_t k = 0; k < send_ranks_.size(); ++k)
+      send_counts[send_ranks_[k]] = static_cast<int>(send_offsets_[k + 1] - send_offsets_[k]);
+    MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, communicator_);
+    receive_offsets_.assign(1, 0);
+    for (int q = 0; q < n_ranks; ++q)
+      if (receive_counts[q] > 0)
+        {
+          receive_ranks_.push_back(q);
+          receive_offsets_.push_back(receive_offsets_.back() + receive_counts[q]);
+        }
+    std::vector<PetscInt>    receive_entries(2 * receive_offsets_.back());
+    std::vector<MPI_Request> requests;
+    for (std::size_t k = 0; k < receive_ranks_.size(); ++k)
+      {
+        requests.emplace_back();
+        MPI_Irecv(receive_entries.data() + 2 * receive_offsets_[k],
+                  static_cast<int>(2 * (receive_offsets_[k + 1] - receive_offsets_[k])), MPIU_INT,
+                  receive_ranks_[k], exchange_tag, communicator_, &requests.back());
+      }
+    for (std::size_t k = 0; k < send_ranks_.size(); ++k)
+      {
+        requests.emplace_back();
+        MPI_Isend(send_entries.data() + 2 * send_offsets_[k],
+                  static_cast<int>(2 * (send_offsets_[k + 1] - send_offsets_[k])), MPIU_INT,
+                  send_ranks_[k], exchange_tag, communicator_, &requests.back());
+      }
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    receive_positions_.resize(receive_offsets_.back());
+    receive_values_.assign(receive_offsets_.back(), 0.0);
+    std::pair<PetscInt, PetscInt> missing{-1, -1};
+    for (std::size_t k = 0; k < receive_positions_.size(); ++k)
+      {
+        const long position = find(receive_entries[2 * k], receive_entries[2 * k + 1]);
+        if (position < 0 || position >= static_cast<long>(n_local_))
+          missing = {receive_entries[2 * k], receive_entries[2 * k + 1]};
+        receive_positions_[k] = static_cast<std::uint32_t>(std::max(position, 0l));
+      }
+    int all_found = missing.first < 0 ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &all_found, 1, MPI_INT, MPI_MIN, communicator_);
+    if (!all_found)
+      throw std::runtime_error(
+        "MatrixScatter: another rank adds to entries that are not in the sparsity pattern" +
+        (missing.first >= 0 ? " (row " + std::to_string(missing.first) + ", column " +
+                                std::to_string(missing.second) + " on rank " +
+                                std::to_string(this_rank) + ")" :
+                              std::string()));
+
     check(MatRestoreRowIJ(diagonal, 0, PETSC_FALSE, PETSC_FALSE, &d.n_rows, &d.row_start,
                           &d.columns, &done),
           "MatRestoreRowIJ (diagonal block)");
@@ -182,10 +308,28 @@ namespace indentsim::solver
     fast_fraction_ = n_owned > 0 ? double(n_fast) / double(n_owned) : 0.0;
   }
 
+  MatrixScatter::~MatrixScatter()
+  {
+    release_communicator();
+  }
+
+  void MatrixScatter::release_communicator()
+  {
+    if (communicator_ != MPI_COMM_NULL)
+      {
+        int finalized = 0;
+        MPI_Finalized(&finalized);
+        if (!finalized)
+          MPI_Comm_free(&communicator_);
+        communicator_ = MPI_COMM_NULL;
+      }
+  }
+
   void MatrixScatter::begin(PETScWrappers::MPI::SparseMatrix &matrix)
   {
-    if (positions_.empty())
-      return;
+    std::fill(send_values_.begin(), send_values_.end(), 0.0);
+    if (communicator_ == MPI_COMM_NULL)
+      return; // not built for an MPIAIJ matrix
     check(MatMPIAIJGetSeqAIJ(matrix.petsc_matrix(), &diagonal_block_, &off_diagonal_block_, nullptr),
           "MatMPIAIJGetSeqAIJ");
     check(MatSeqAIJGetArray(diagonal_block_, &diagonal_values_), "MatSeqAIJGetArray");
@@ -250,6 +394,30 @@ namespace indentsim::solver
 
   void MatrixScatter::end()
   {
+    if (communicator_ != MPI_COMM_NULL && diagonal_values_)
+      {
+        // The other ranks' rows: one message per neighbouring rank each way, added where the
+        // build found the entries.
+        std::vector<MPI_Request> requests;
+        requests.reserve(receive_ranks_.size() + send_ranks_.size());
+        for (std::size_t k = 0; k < receive_ranks_.size(); ++k)
+          {
+            requests.emplace_back();
+            MPI_Irecv(receive_values_.data() + receive_offsets_[k],
+                      static_cast<int>(receive_offsets_[k + 1] - receive_offsets_[k]), MPI_DOUBLE,
+                      receive_ranks_[k], exchange_tag, communicator_, &requests.back());
+          }
+        for (std::size_t k = 0; k < send_ranks_.size(); ++k)
+          {
+            requests.emplace_back();
+            MPI_Isend(send_values_.data() + send_offsets_[k],
+                      static_cast<int>(send_offsets_[k + 1] - send_offsets_[k]), MPI_DOUBLE,
+                      send_ranks_[k], exchange_tag, communicator_, &requests.back());
+          }
+        MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+        for (std::size_t k = 0; k < receive_positions_.size(); ++k)
+          value(receive_positions_[k]) += receive_values_[k];
+      }
     if (diagonal_values_)
       check(MatSeqAIJRestoreArray(diagonal_block_, &diagonal_values_), "MatSeqAIJRestoreArray");
     if (off_diagonal_values_)

@@ -37,6 +37,10 @@ namespace indentsim::solver
                                    const dealii::IndexSet                   &owned,
                                    const dealii::IndexSet                   &relevant,
                                    MPI_Comm                                  communicator);
+  // The same into an existing vector with the layout of `source` (not collective: the
+  // partitioner, whose construction is, is built once).
+  void copy_to_thread_readable(const dealii::PETScWrappers::MPI::Vector &source,
+                               GhostedVector                            &result);
 
   struct CellWorkspace
   {

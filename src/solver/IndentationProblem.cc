@@ -139,6 +139,7 @@ namespace indentsim::solver
     scatter_.build(dof_handler_, constraints_all_, matrix_);
 
     solution_.reinit(locally_owned_, locally_relevant_, communicator_);
+    solution_readable_.reinit(locally_owned_, locally_relevant_, communicator_);
     solution_converged_.reinit(locally_owned_, locally_relevant_, communicator_);
     solution_previous_.reinit(locally_owned_, communicator_);
     residual_.reinit(locally_owned_, communicator_);
@@ -220,8 +221,8 @@ namespace indentsim::solver
     residual_ = 0;
     double local_reaction = 0;
 
-    const GhostedVector u =
-      to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
+    copy_to_thread_readable(solution_, solution_readable_);
+    const GhostedVector &u = solution_readable_;
     const auto worker = [&](const DoFHandler<3>::active_cell_iterator &cell,
                             CellWorkspace                             &workspace,
                             CellContribution                          &contribution) {
@@ -272,9 +273,11 @@ namespace indentsim::solver
       if (with_matrix)
         scatter_.begin(matrix_);
       run_on_owned_cells(dof_handler_, n_q_points_, worker, copier);
-      if (with_matrix)
-        scatter_.end();
     }
+    // After the cell loop's timer: end() waits for the other ranks, so that the cell loop's
+    // spread over the ranks shows their imbalance.
+    if (with_matrix)
+      scatter_.end();
     timer.emplace(statistics_.contact);
     contact_->assemble(constraints_all_, residual_, with_matrix ? &matrix_ : nullptr,
                        with_matrix ? depth_coupling_ : nullptr);

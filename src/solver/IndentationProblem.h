@@ -228,6 +228,7 @@ namespace indentsim::solver
 
     dealii::PETScWrappers::MPI::SparseMatrix matrix_;
     dealii::PETScWrappers::MPI::Vector       solution_;           // ghosted
+    GhostedVector                            solution_readable_;  // its copy for the threads
     dealii::PETScWrappers::MPI::Vector       solution_converged_; // ghosted
     // The converged solution before it (owned) and the depths of both: the predictor of the
     // next increment extrapolates linearly from them.

@@ -3,6 +3,7 @@
 // with hanging nodes. Units: um, mN, GPa.
 #include "io/Case.h"
 #include "materials/MaterialFactory.h"
+#include "solver/CellWorkspace.h"
 #include "solver/FiniteStrainElement.h"
 #include "solver/IndentationProblem.h"
 
@@ -169,4 +170,61 @@ TEST(PatchTest, AffinePlasticFlowOnHangingNodeMesh)
   G[0][0] = 0.03, G[1][1] = -0.02, G[0][1] = 0.01, G[2][2] = -0.012;
   problem.set_displacement([&](const Point<3> &X) { return G * X; });
   EXPECT_LT(problem.interior_residual_norm(), 1e-9 * 8.0);
+}
+
+// The gradients and weights that CellWorkspace computes from the vertices (a constant Jacobian
+// for parallelepipeds, the trilinear map point by point otherwise) against FEValues with
+// deal.II's MappingQ1, on an axis-parallel box, a sheared and rotated parallelepiped and a
+// randomly distorted hexahedron; and the displacement values read from the vector.
+TEST(CellWorkspace, GradientsMatchFEValuesOnBoxesParallelepipedsAndDistortedCells)
+{
+  for (const unsigned int shape : {0u, 1u, 2u})
+    {
+      Triangulation<3> tria;
+      GridGenerator::hyper_rectangle(tria, Point<3>(0.5, -1, 2), Point<3>(2.5, 0.5, 3));
+      if (shape == 1)
+        GridTools::transform(
+          [](const Point<3> &p) {
+            return Point<3>(0.8 * p[0] + 0.3 * p[1] - 0.2 * p[2], 0.1 * p[0] + 1.1 * p[1],
+                            0.25 * p[0] - 0.4 * p[1] + 0.9 * p[2]);
+          },
+          tria);
+      if (shape == 2)
+        GridTools::distort_random(0.2, tria, false, 11);
+      const FESystem<3> fe(FE_Q<3>(1), 3);
+      DoFHandler<3>     dof_handler(tria);
+      dof_handler.distribute_dofs(fe);
+      solver::GhostedVector u(dof_handler.n_dofs());
+      for (unsigned int k = 0; k < u.size(); ++k)
+        u[k] = std::sin(1.7 * k);
+
+      solver::CellWorkspace workspace(fe, 8);
+      const auto            cell = dof_handler.begin_active();
+      workspace.reinit(cell, u);
+      FEValues<3> fe_values(fe, QGauss<3>(2), update_gradients | update_JxW_values);
+      FEValues<3> fe_centre(fe, QGauss<3>(1), update_gradients);
+      fe_values.reinit(cell);
+      fe_centre.reinit(cell);
+      double error = 0, scale = 0;
+      for (unsigned int q = 0; q < 8; ++q)
+        {
+          EXPECT_NEAR(workspace.scratch.JxW[q], fe_values.JxW(q), 1e-13 * fe_values.JxW(q))
+            << "shape " << shape;
+          for (unsigned int i = 0; i < 8; ++i)
+            {
+              // node i is dof 3 i (component 0)
+              const Tensor<1, 3> expected = fe_values.shape_grad_component(3 * i, q, 0);
+              error = std::max(error, (workspace.scratch.grad[q][i] - expected).norm());
+              scale = std::max(scale, expected.norm());
+            }
+        }
+      for (unsigned int i = 0; i < 8; ++i)
+        error = std::max(error, (workspace.scratch.grad0[i] -
+                                 fe_centre.shape_grad_component(3 * i, 0, 0)).norm());
+      EXPECT_LT(error, 1e-13 * scale) << "shape " << shape;
+      std::vector<types::global_dof_index> dofs(24);
+      cell->get_dof_indices(dofs);
+      for (unsigned int a = 0; a < 24; ++a)
+        EXPECT_EQ(workspace.u_local[a], u[dofs[a]]);
+    }
 }

@@ -60,8 +60,9 @@ namespace indentsim::materials
     // this point's state from an earlier evaluation of the same increment (the solvers keep the
     // previous global Newton iterate there, and state_old itself at the start of an increment).
     // A model may start its local iteration from it (CrystalPlasticity does); the result is
-    // the same to the local tolerance whatever the hint holds, and an unusable hint is ignored. When `compute_tangent` is false the
-    // tangent member of `response` is left untouched (used for stress recovery and output).
+    // the same to the local tolerance whatever the hint holds, and an unusable hint is ignored.
+    // When `compute_tangent` is false the tangent member of `response` is left untouched (used
+    // for stress recovery and output).
     virtual UpdateStatus update(const Tensor<2, 3>           &F,
                                 std::span<const double>       state_old,
                                 MaterialPointResponse        &response,

@@ -258,23 +258,8 @@ namespace indentsim::solver
           receive_ranks_.push_back(q);
           receive_offsets_.push_back(receive_offsets_.back() + receive_counts[q]);
         }
-    std::vector<PetscInt>    receive_entries(2 * receive_offsets_.back());
-    std::vector<MPI_Request> requests;
-    for (std::size_t k = 0; k < receive_ranks_.size(); ++k)
-      {
-        requests.emplace_back();
-        MPI_Irecv(receive_entries.data() + 2 * receive_offsets_[k],
-                  static_cast<int>(2 * (receive_offsets_[k + 1] - receive_offsets_[k])), MPIU_INT,
-                  receive_ranks_[k], exchange_tag, communicator_, &requests.back());
-      }
-    for (std::size_t k = 0; k < send_ranks_.size(); ++k)
-      {
-        requests.emplace_back();
-        MPI_Isend(send_entries.data() + 2 * send_offsets_[k],
-                  static_cast<int>(2 * (send_offsets_[k + 1] - send_offsets_[k])), MPIU_INT,
-                  send_ranks_[k], exchange_tag, communicator_, &requests.back());
-      }
-    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    std::vector<PetscInt> receive_entries(2 * receive_offsets_.back());
+    exchange(send_entries.data(), receive_entries.data(), 2, MPIU_INT);
     receive_positions_.resize(receive_offsets_.back());
     receive_values_.assign(receive_offsets_.back(), 0.0);
     std::pair<PetscInt, PetscInt> missing{-1, -1};
@@ -325,6 +310,25 @@ namespace indentsim::solver
       }
   }
 
+  void MatrixScatter::exchange(const void        *send,
+                               void              *receive,
+                               const int          width,
+                               const MPI_Datatype type) const
+  {
+    int type_size = 0;
+    MPI_Type_size(type, &type_size);
+    std::vector<MPI_Request> requests(receive_ranks_.size() + send_ranks_.size());
+    for (std::size_t k = 0; k < receive_ranks_.size(); ++k)
+      MPI_Irecv(static_cast<char *>(receive) + std::size_t(width) * type_size * receive_offsets_[k],
+                static_cast<int>(width * (receive_offsets_[k + 1] - receive_offsets_[k])), type,
+                receive_ranks_[k], exchange_tag, communicator_, &requests[k]);
+    for (std::size_t k = 0; k < send_ranks_.size(); ++k)
+      MPI_Isend(static_cast<const char *>(send) + std::size_t(width) * type_size * send_offsets_[k],
+                static_cast<int>(width * (send_offsets_[k + 1] - send_offsets_[k])), type,
+                send_ranks_[k], exchange_tag, communicator_, &requests[receive_ranks_.size() + k]);
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  }
+
   void MatrixScatter::begin(PETScWrappers::MPI::SparseMatrix &matrix)
   {
     std::fill(send_values_.begin(), send_values_.end(), 0.0);
@@ -334,6 +338,7 @@ namespace indentsim::solver
           "MatMPIAIJGetSeqAIJ");
     check(MatSeqAIJGetArray(diagonal_block_, &diagonal_values_), "MatSeqAIJGetArray");
     check(MatSeqAIJGetArray(off_diagonal_block_, &off_diagonal_values_), "MatSeqAIJGetArray");
+    open_ = true;
   }
 
   void MatrixScatter::add(const unsigned int active_cell_index, const FullMatrix<double> &cell_matrix)
@@ -394,29 +399,14 @@ namespace indentsim::solver
 
   void MatrixScatter::end()
   {
-    if (communicator_ != MPI_COMM_NULL && diagonal_values_)
+    if (open_)
       {
         // The other ranks' rows: one message per neighbouring rank each way, added where the
         // build found the entries.
-        std::vector<MPI_Request> requests;
-        requests.reserve(receive_ranks_.size() + send_ranks_.size());
-        for (std::size_t k = 0; k < receive_ranks_.size(); ++k)
-          {
-            requests.emplace_back();
-            MPI_Irecv(receive_values_.data() + receive_offsets_[k],
-                      static_cast<int>(receive_offsets_[k + 1] - receive_offsets_[k]), MPI_DOUBLE,
-                      receive_ranks_[k], exchange_tag, communicator_, &requests.back());
-          }
-        for (std::size_t k = 0; k < send_ranks_.size(); ++k)
-          {
-            requests.emplace_back();
-            MPI_Isend(send_values_.data() + send_offsets_[k],
-                      static_cast<int>(send_offsets_[k + 1] - send_offsets_[k]), MPI_DOUBLE,
-                      send_ranks_[k], exchange_tag, communicator_, &requests.back());
-          }
-        MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+        exchange(send_values_.data(), receive_values_.data(), 1, MPI_DOUBLE);
         for (std::size_t k = 0; k < receive_positions_.size(); ++k)
           value(receive_positions_[k]) += receive_values_[k];
+        open_ = false;
       }
     if (diagonal_values_)
       check(MatSeqAIJRestoreArray(diagonal_block_, &diagonal_values_), "MatSeqAIJRestoreArray");

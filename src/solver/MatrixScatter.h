@@ -89,6 +89,9 @@ namespace indentsim::solver
                                       send_values_[position - n_local_];
     }
     void release_communicator();
+    // Sends slots [send_offsets_[k], send_offsets_[k + 1]) of `send` (width values of `type`
+    // per slot) to send_ranks_[k] and receives likewise into `receive`.
+    void exchange(const void *send, void *receive, int width, MPI_Datatype type) const;
     static constexpr int exchange_tag = 4711;
 
     std::vector<CellPlan>      plan_;      // per active cell
@@ -104,6 +107,7 @@ namespace indentsim::solver
     // values from receive_ranks_[k] arrive in receive_values_ and are added at
     // receive_positions_ (positions in this rank's blocks).
     MPI_Comm                   communicator_ = MPI_COMM_NULL; // a duplicate, own tag space
+    bool                       open_ = false; // between begin() and end()
     std::vector<int>           send_ranks_, receive_ranks_;
     std::vector<std::size_t>   send_offsets_, receive_offsets_;
     std::vector<double>        send_values_, receive_values_;

@@ -122,7 +122,7 @@ namespace indentsim::io
     double       residual_tolerance = 1e-7;  // relative to the first residual of the increment (indentation: or the last indenter force, if larger)
     double       absolute_tolerance = 1e-10; // [mN]
     unsigned int max_newton_iterations = 25;
-    // Linear solver of the Newton iterations (solver/LinearSolver.h): auto (direct below
+    // Linear solver of the Newton iterations (linalg/LinearSolver.h): auto (direct below
     // LinearSolver::iterative_threshold_dofs unknowns, else iterative) | direct (MUMPS LU) |
     // iterative (CG/GMRES with ML smoothed-aggregation AMG, rigid-body modes).
     std::string  linear_solver = "auto";

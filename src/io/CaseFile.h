@@ -78,7 +78,7 @@ namespace indentsim::io
     inline constexpr const char *resolved_case        = "resolved_case.yaml";
     inline constexpr const char *log                  = "run.log";
     inline constexpr const char *run_summary          = "run_summary.json"; // cost of the run
-    // Pile-up of the top surface (solver/PileUp.h) at maximum depth and after unloading.
+    // Pile-up of the top surface (analysis/PileUp.h) at maximum depth and after unloading.
     inline constexpr const char *pileup_json          = "pileup.json";
     inline constexpr const char *pileup_max_depth_csv = "pileup_max_depth.csv";
     inline constexpr const char *pileup_unloaded_csv  = "pileup_unloaded.csv";

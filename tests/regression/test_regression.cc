@@ -4,7 +4,7 @@
 // after an intended change with INDENTSIM_REGENERATE_GOLD=1 and explain the change in the commit.
 #include "../test_cases.h"
 #include "io/Case.h"
-#include "solver/IndentationProblem.h"
+#include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>
 
@@ -31,7 +31,7 @@ namespace
 TEST(Regression, SmallJ2IndentationMatchesGold)
 {
   const io::Case c = small_j2_load_unload_case();
-  solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run("");
   const auto &records = problem.records();

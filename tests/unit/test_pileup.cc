@@ -1,7 +1,7 @@
-// Pile-up analysis (solver/PileUp.h) on synthetic surfaces with known symmetry: interpolation,
+// Pile-up analysis (analysis/PileUp.h) on synthetic surfaces with known symmetry: interpolation,
 // angular Fourier spectrum and dominant fold, quarter mirroring, maximum pile-up, file formats.
 // Units: um, deg.
-#include "solver/PileUp.h"
+#include "analysis/PileUp.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <numbers>
 #include <sstream>
 
-using namespace indentsim::solver::pileup;
+using namespace indentsim::analysis::pileup;
 
 namespace
 {

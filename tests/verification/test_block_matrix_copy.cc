@@ -1,10 +1,10 @@
-// The block copy of the Newton matrix (solver/BlockMatrixCopy, PETSc BAIJ with 3 x 3 nodal
+// The block copy of the Newton matrix (linalg/BlockMatrixCopy, PETSc BAIJ with 3 x 3 nodal
 // blocks) against the assembled AIJ matrix itself, the oracle: entry by entry over every owned
 // row (the copy's entries outside the AIJ pattern must be zero) and in a product with a
 // vector, after the first build, after new values, and for another matrix. The mesh has
 // hanging nodes and supports, whose rows hold only their diagonal: partial blocks. One rank
 // here, two in Mpi.*.
-#include "solver/BlockMatrixCopy.h"
+#include "linalg/BlockMatrixCopy.h"
 
 #include "../test_constrained_cube.h"
 
@@ -69,7 +69,7 @@ namespace
 
   // `copy` may hold the copy of another matrix: it must notice and build anew.
   void check_block_copy(const MPI_Comm communicator, const unsigned int rounds,
-                        indentsim::solver::BlockMatrixCopy &copy)
+                        indentsim::linalg::BlockMatrixCopy &copy)
   {
     const indentsim::test_meshes::ConstrainedCube cube(communicator, rounds);
     const auto &dof_handler = cube.dof_handler;
@@ -131,14 +131,14 @@ namespace
 // One copy object for two matrices in turn (the second with another pattern).
 TEST(BlockMatrixCopy, MatchesTheAssembledMatrixWithHangingNodesAndSupports)
 {
-  indentsim::solver::BlockMatrixCopy copy;
+  indentsim::linalg::BlockMatrixCopy copy;
   for (const unsigned int rounds : {1u, 2u})
     check_block_copy(MPI_COMM_SELF, rounds, copy);
 }
 
 TEST(Mpi, BlockMatrixCopyMatchesTheAssembledMatrixOnEveryRank)
 {
-  indentsim::solver::BlockMatrixCopy copy;
+  indentsim::linalg::BlockMatrixCopy copy;
   for (const unsigned int rounds : {1u, 2u})
     check_block_copy(MPI_COMM_WORLD, rounds, copy);
 }

@@ -2,7 +2,7 @@
 // full model where the crystal has the mirror planes x = 0 and y = 0, the cubic symmetry of the
 // load-penetration curve, and global equilibrium. Units: um, mN, GPa.
 #include "io/Case.h"
-#include "solver/IndentationProblem.h"
+#include "problems/IndentationProblem.h"
 #include "../test_cases.h"
 
 #include <gtest/gtest.h>
@@ -34,10 +34,10 @@ namespace
                                                             const double max_depth,
                                                             const unsigned int n_increments)
   {
-    std::vector<std::unique_ptr<solver::IndentationProblem>> problems;
+    std::vector<std::unique_ptr<problems::IndentationProblem>> problems;
     for (const auto &c : cases)
       {
-        problems.push_back(std::make_unique<solver::IndentationProblem>(c, MPI_COMM_WORLD, false));
+        problems.push_back(std::make_unique<problems::IndentationProblem>(c, MPI_COMM_WORLD, false));
         problems.back()->setup();
       }
     std::vector<std::vector<double>> forces(cases.size());
@@ -46,10 +46,10 @@ namespace
       {
         const double target = std::min(max_depth, depth + increment);
         bool         all_converged = true;
-        std::vector<solver::StepRecord> records(cases.size());
+        std::vector<nonlinear::StepRecord> records(cases.size());
         for (unsigned int m = 0; m < cases.size() && all_converged; ++m)
           all_converged = problems[m]->solve_increment(target, records[m]) ==
-                          solver::IncrementStatus::converged;
+                          nonlinear::IncrementStatus::converged;
         for (auto &problem : problems)
           all_converged ? problem->accept_increment() : problem->reject_increment();
         if (!all_converged)
@@ -108,7 +108,7 @@ TEST(CrystalIndentation, SurfaceUnderSharpTipFollowsTheApexFor111)
   const double depth = 0.4;
   c.loading.max_depth = depth;
   c.loading.steps = 4;
-  solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run("");
   ASSERT_NEAR(problem.records().back().depth, depth, 1e-12);

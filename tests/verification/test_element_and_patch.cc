@@ -3,9 +3,10 @@
 // with hanging nodes. Units: um, mN, GPa.
 #include "io/Case.h"
 #include "materials/MaterialFactory.h"
-#include "solver/CellWorkspace.h"
-#include "solver/FiniteStrainElement.h"
-#include "solver/IndentationProblem.h"
+#include "fem/CellWorkspace.h"
+#include "fem/FiniteStrainElement.h"
+#include "problems/IndentationProblem.h"
+#include "../problem_test_access.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_q.h>
@@ -32,7 +33,7 @@ namespace
   }
 
   // Fills the element scratch of a randomly distorted unit-size hexahedron.
-  void distorted_element(solver::ElementScratch &scratch)
+  void distorted_element(fem::ElementScratch &scratch)
   {
     Triangulation<3> tria;
     GridGenerator::hyper_rectangle(tria, Point<3>(0, 0, 0), Point<3>(2., 1.5, 1.));
@@ -62,7 +63,7 @@ namespace
     for (unsigned int q = 0; q < 8; ++q)
       material->initial_state(std::span<double>(state_old).subspan(q * n_state, n_state));
 
-    solver::ElementScratch scratch(8, 8);
+    fem::ElementScratch scratch(8, 8);
     distorted_element(scratch);
     std::mt19937                           rng(7);
     std::uniform_real_distribution<double> dist(-amplitude, amplitude);
@@ -70,7 +71,7 @@ namespace
     for (auto &v : u)
       v = dist(rng);
     FullMatrix<double> K(24, 24);
-    EXPECT_EQ(solver::element_residual_and_tangent(
+    EXPECT_EQ(fem::element_residual_and_tangent(
                 *material, f_bar, u, state_old, state_new, scratch, r, &K),
               materials::UpdateStatus::success);
 
@@ -81,9 +82,9 @@ namespace
         Vector<double> up(u), um(u);
         up[b] += step;
         um[b] -= step;
-        solver::element_residual_and_tangent(
+        fem::element_residual_and_tangent(
           *material, f_bar, up, state_old, state_new, scratch, r_plus, nullptr);
-        solver::element_residual_and_tangent(
+        fem::element_residual_and_tangent(
           *material, f_bar, um, state_old, state_new, scratch, r_minus, nullptr);
         for (unsigned int a = 0; a < 24; ++a)
           {
@@ -142,20 +143,20 @@ TEST(PatchTest, AffineDisplacementOnHangingNodeMesh)
   for (const bool f_bar : {false, true})
     {
       const io::Case c = patch_case("neo_hookean", f_bar);
-      solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+      problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
       problem.setup();
       ASSERT_GT(problem.n_hanging_node_constraints(), 0u) << "the patch mesh must have hanging nodes";
 
       Tensor<2, 3> G;
       G[0][0] = 0.02, G[0][1] = -0.01, G[0][2] = 0.015, G[1][0] = 0.005, G[1][1] = -0.03,
       G[1][2] = 0.01, G[2][0] = -0.012, G[2][1] = 0.02, G[2][2] = 0.025;
-      problem.set_displacement([&](const Point<3> &X) { return G * X; });
+      problems::ProblemTestAccess::set_displacement(problem, [&](const Point<3> &X) { return G * X; });
       const Tensor<2, 3> F = unit_symmetric_tensor<3>() + G;
       const Tensor<2, 3> sigma = neo_hookean_cauchy(F, 69.0, 0.26);
 
       // Nodal forces scale like |sigma| h^2 ~ 2 GPa * 4 um^2 = 8 mN.
-      EXPECT_LT(problem.interior_residual_norm(), 1e-9 * 8.0) << "f_bar " << f_bar;
-      EXPECT_LT(problem.max_stress_error(sigma), 1e-11) << "f_bar " << f_bar;
+      EXPECT_LT(problems::ProblemTestAccess::interior_residual_norm(problem), 1e-9 * 8.0) << "f_bar " << f_bar;
+      EXPECT_LT(problems::ProblemTestAccess::max_stress_error(problem, sigma), 1e-11) << "f_bar " << f_bar;
     }
 }
 
@@ -164,12 +165,12 @@ TEST(PatchTest, AffineDisplacementOnHangingNodeMesh)
 TEST(PatchTest, AffinePlasticFlowOnHangingNodeMesh)
 {
   const io::Case c = patch_case("j2", true);
-  solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   Tensor<2, 3> G;
   G[0][0] = 0.03, G[1][1] = -0.02, G[0][1] = 0.01, G[2][2] = -0.012;
-  problem.set_displacement([&](const Point<3> &X) { return G * X; });
-  EXPECT_LT(problem.interior_residual_norm(), 1e-9 * 8.0);
+  problems::ProblemTestAccess::set_displacement(problem, [&](const Point<3> &X) { return G * X; });
+  EXPECT_LT(problems::ProblemTestAccess::interior_residual_norm(problem), 1e-9 * 8.0);
 }
 
 // The gradients and weights that CellWorkspace computes from the vertices (a constant Jacobian
@@ -194,11 +195,11 @@ TEST(CellWorkspace, GradientsMatchFEValuesOnBoxesParallelepipedsAndDistortedCell
       const FESystem<3> fe(FE_Q<3>(1), 3);
       DoFHandler<3>     dof_handler(tria);
       dof_handler.distribute_dofs(fe);
-      solver::GhostedVector u(dof_handler.n_dofs());
+      fem::GhostedVector u(dof_handler.n_dofs());
       for (unsigned int k = 0; k < u.size(); ++k)
         u[k] = std::sin(1.7 * k);
 
-      solver::CellWorkspace workspace(fe, 8);
+      fem::CellWorkspace workspace(fe, 8);
       const auto            cell = dof_handler.begin_active();
       workspace.reinit(cell, u);
       FEValues<3> fe_values(fe, QGauss<3>(2), update_gradients | update_JxW_values);

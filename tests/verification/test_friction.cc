@@ -277,18 +277,18 @@ TEST(Friction, TangentMatchesDifferencesOfTheResidual)
 }
 
 #include "../test_cases.h"
-#include "solver/IndentationProblem.h"
+#include "problems/IndentationProblem.h"
 
 namespace
 {
-  std::vector<solver::StepRecord> run_with_friction(const double mu)
+  std::vector<nonlinear::StepRecord> run_with_friction(const double mu)
   {
     io::Case c = test_cases::small_j2_case("quarter");
     c.contact.friction_coefficient = mu;
     // The answer is defined to the contact tolerance; both paths must reach the same one, whose
     // augmentation passes may differ, so the tolerance is tight enough for the 1e-7 below.
     c.contact.penetration_tolerance = 1e-9;
-    solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     problem.run("");
     return problem.records();
@@ -321,19 +321,19 @@ TEST(FrictionIndentation, CoulombConditionsHoldAtConvergence)
   const double mu = 0.2;
   io::Case     c = test_cases::small_j2_case("quarter");
   c.contact.friction_coefficient = mu;
-  solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   unsigned int n_stick = 0, n_slip = 0;
   for (unsigned int step = 1; step <= c.loading.steps; ++step)
     {
-      solver::StepRecord record;
+      nonlinear::StepRecord record;
       const double       depth = c.loading.max_depth * step / c.loading.steps;
       // As run() does: an extrapolated start that fails is retried from the converged state.
-      if (problem.solve_increment(depth, record) != solver::IncrementStatus::converged)
+      if (problem.solve_increment(depth, record) != nonlinear::IncrementStatus::converged)
         {
           problem.reject_increment();
           ASSERT_EQ(problem.solve_increment(depth, record, false),
-                    solver::IncrementStatus::converged)
+                    nonlinear::IncrementStatus::converged)
             << "depth " << depth;
         }
       n_stick = n_slip = 0;

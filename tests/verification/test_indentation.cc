@@ -4,7 +4,7 @@
 #include "indenter/SneddonReference.h"
 #include "../test_cases.h"
 #include "io/Case.h"
-#include "solver/IndentationProblem.h"
+#include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>
 
@@ -33,7 +33,7 @@ namespace
   // at the final depth (increments may be cut back, so the last record is used).
   double elastic_force_error(const io::Case &c)
   {
-    solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     problem.run("");
     const auto &r = problem.records().back();
@@ -85,7 +85,7 @@ TEST(ElasticIndentation, EquilibriumAndExactContact)
   c.loading.max_depth = 0.3;
   c.loading.steps = 3;
   c.specimen.contact_elements = 24;
-  solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run("");
   for (const auto &r : problem.records())
@@ -110,7 +110,7 @@ TEST(ElasticIndentation, InterpolatedContactAreaFollowsClosedForm)
   c.specimen.contact_elements = 24; // 0.25 um
   c.loading.max_depth = 0.6;
   c.loading.steps = 4;
-  solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run("");
   const indenter::SneddonReference reference(
@@ -143,11 +143,11 @@ TEST(ElasticIndentation, InterpolatedContactAreaFollowsClosedForm)
 TEST(Symmetry, QuarterModelEqualsFullModel)
 {
   io::Case c = test_cases::small_j2_case("quarter");
-  solver::IndentationProblem quarter(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem quarter(c, MPI_COMM_WORLD, false);
   quarter.setup();
   quarter.run("");
   c.specimen.symmetry = "full";
-  solver::IndentationProblem full(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem full(c, MPI_COMM_WORLD, false);
   full.setup();
   full.run("");
   const auto &q = quarter.records().back(), &f = full.records().back();

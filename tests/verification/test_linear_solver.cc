@@ -1,11 +1,11 @@
-// The AMG reuse rule of solver/LinearSolver: a preconditioner that still works is kept (no
+// The AMG reuse rule of linalg/LinearSolver: a preconditioner that still works is kept (no
 // build for solves of the same matrix), a stale one is rebuilt once the iterations it costs
 // beyond its first rate add up to a build's price, and every build is counted and timed.
 // The systems: vector Laplace operators (three components, as the indentation's unknowns) on
 // a cube clamped at z = 0, with a conductivity that is uniform or jumps by 10 across x = 0.5
 // (the stale case: the AMG built for the uniform operator needs 28 instead of 9 iterations for
 // the jump, so the excess reaches the price of a build, 30 iterations, at the second solve).
-#include "solver/LinearSolver.h"
+#include "linalg/LinearSolver.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/distributed/tria.h>
@@ -29,7 +29,7 @@
 namespace
 {
   using namespace dealii;
-  using indentsim::solver::LinearSolver;
+  using indentsim::linalg::LinearSolver;
 
   // The systems and a solver of the given kind for them.
   struct Systems

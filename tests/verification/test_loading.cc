@@ -2,7 +2,7 @@
 // against depth control, hold segments and load-unload cycles. Units: um, mN, GPa.
 #include "../test_cases.h"
 #include "io/Case.h"
-#include "solver/IndentationProblem.h"
+#include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>
 
@@ -24,9 +24,9 @@ namespace
     return c;
   }
 
-  std::vector<solver::StepRecord> run(const io::Case &c)
+  std::vector<nonlinear::StepRecord> run(const io::Case &c)
   {
-    solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     problem.run("");
     return problem.records();
@@ -78,19 +78,19 @@ TEST(ForceControl, PlasticLoadUnloadReplaysUnderDepthControl)
   EXPECT_NEAR(by_force.back().force, 0.06, 1e-8 * 6.0);
 
   io::Case depth_case = test_cases::small_j2_case();
-  solver::IndentationProblem replay(depth_case, MPI_COMM_WORLD, false);
+  problems::IndentationProblem replay(depth_case, MPI_COMM_WORLD, false);
   replay.setup();
   double largest_difference = 0;
   for (std::size_t i = 1; i < by_force.size(); ++i)
     {
       const auto &target = by_force[i];
       EXPECT_NEAR(target.bottom_reaction, target.force, 1e-6 * 6.0) << "step " << i;
-      solver::StepRecord record;
-      if (replay.solve_increment(target.depth, record) != solver::IncrementStatus::converged)
+      nonlinear::StepRecord record;
+      if (replay.solve_increment(target.depth, record) != nonlinear::IncrementStatus::converged)
         {
           replay.reject_increment();
           ASSERT_EQ(replay.solve_increment(target.depth, record, false),
-                    solver::IncrementStatus::converged)
+                    nonlinear::IncrementStatus::converged)
             << "step " << i;
         }
       replay.accept_increment();

@@ -1,9 +1,9 @@
-// The fast matrix assembly (solver/MatrixScatter) against deal.II's
+// The fast matrix assembly (linalg/MatrixScatter) against deal.II's
 // AffineConstraints::distribute_local_to_global with MatSetValues, the oracle: the same cell
 // matrices on a mesh with hanging nodes and supports must give the same global matrix, on one
 // rank and (test Mpi.*) on two, where the cells at the ranks' boundary send their entries in
 // the other rank's rows to it (a wrong slot, position or message would show in those rows).
-#include "solver/MatrixScatter.h"
+#include "linalg/MatrixScatter.h"
 
 #include "../test_constrained_cube.h"
 
@@ -52,7 +52,7 @@ namespace
     scattered.compress(VectorOperation::insert);
     PETScWrappers::MPI::Vector rhs(owned, communicator);
 
-    indentsim::solver::MatrixScatter scatter;
+    indentsim::linalg::MatrixScatter scatter;
     scatter.build(dof_handler, constraints, scattered);
     EXPECT_EQ(scatter.fast_fraction(), 1.0);
 

@@ -4,7 +4,7 @@
 #include "../test_cases.h"
 #include "../test_files.h"
 #include "io/Case.h"
-#include "solver/IndentationProblem.h"
+#include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>
 
@@ -14,9 +14,9 @@ using namespace indentsim;
 
 namespace
 {
-  std::vector<solver::StepRecord> run(const io::Case &c, const MPI_Comm communicator)
+  std::vector<nonlinear::StepRecord> run(const io::Case &c, const MPI_Comm communicator)
   {
-    solver::IndentationProblem problem(c, communicator, false);
+    problems::IndentationProblem problem(c, communicator, false);
     problem.setup();
     problem.run("");
     return problem.records();
@@ -106,22 +106,22 @@ TEST(Mpi, StoppedAndResumedRunEqualsUninterruptedRun)
     }
   MPI_Barrier(MPI_COMM_WORLD);
 
-  using Outcome = solver::IndentationProblem::RunOutcome;
-  std::vector<solver::StepRecord> reference, resumed;
+  using Outcome = problems::IndentationProblem::RunOutcome;
+  std::vector<nonlinear::StepRecord> reference, resumed;
   {
-    solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     ASSERT_EQ(problem.run(reference_dir), Outcome::finished);
     reference = problem.records();
   }
   {
-    solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     problem.stop_after_step(3);
     ASSERT_EQ(problem.run(resumed_dir), Outcome::stopped);
   }
   {
-    solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     ASSERT_EQ(problem.run(resumed_dir, true), Outcome::finished);
     resumed = problem.records();

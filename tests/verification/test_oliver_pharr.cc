@@ -6,7 +6,7 @@
 #include "../test_cases.h"
 #include "../test_files.h"
 #include "indenter/IndenterFactory.h"
-#include "solver/IndentationProblem.h"
+#include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>
 
@@ -266,7 +266,7 @@ TEST(OliverPharr, ElasticIndentationRecoversTheReducedModulus)
   c.loading.steps = 4;
   c.loading.unload = true;
   c.loading.unload_points = 12;
-  solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run("");
   LoadCurve curve;
@@ -283,8 +283,8 @@ TEST(OliverPharr, ElasticIndentationRecoversTheReducedModulus)
   // The progress line's ETA counts on unload_points + 1 force-paced unloading steps (not the
   // loading's step count): the run took that many, within one.
   const unsigned int n_steps = problem.records().size() - 1; // without the initial state
-  EXPECT_NEAR(double(n_steps), double(solver::expected_steps(c.loading)), 1.0);
-  EXPECT_EQ(solver::expected_steps(c.loading), 4u + 13u);
+  EXPECT_NEAR(double(n_steps), double(nonlinear::expected_steps(c.loading)), 1.0);
+  EXPECT_EQ(nonlinear::expected_steps(c.loading), 4u + 13u);
   const auto indenter = indenter::create_indenter(c.indenter);
   analysis::OliverPharrSettings settings;
   settings.epsilon = 0.75; // paraboloid (the spherical tip)

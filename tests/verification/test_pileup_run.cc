@@ -4,7 +4,7 @@
 #include "../test_cases.h"
 #include "../test_files.h"
 #include "io/Case.h"
-#include "solver/IndentationProblem.h"
+#include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>
 
@@ -41,7 +41,7 @@ TEST(PileUpRun, IsotropicJ2PilesUpWithTheMeshSymmetry)
   io::Case c = test_cases::small_j2_case("quarter");
   c.loading.unload = true;
   const fs::path directory = scratch_directory("small_j2");
-  solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run(directory.string());
 

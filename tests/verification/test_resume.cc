@@ -6,7 +6,7 @@
 #include "../test_files.h"
 #include "io/Case.h"
 #include "io/CaseFile.h"
-#include "solver/IndentationProblem.h"
+#include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>
 
@@ -20,13 +20,13 @@ namespace fs = std::filesystem;
 
 namespace
 {
-  using Outcome = solver::IndentationProblem::RunOutcome;
+  using Outcome = problems::IndentationProblem::RunOutcome;
 
   struct RunResult
   {
     Outcome                               outcome;
-    std::vector<solver::StepRecord>       records;
-    std::vector<solver::pileup::PileUpResult> pileup;
+    std::vector<nonlinear::StepRecord>       records;
+    std::vector<analysis::pileup::PileUpResult> pileup;
   };
 
   // A fresh problem on MPI_COMM_WORLD, run into `directory` (stopped after `stop_after` if
@@ -34,7 +34,7 @@ namespace
   RunResult run(const io::Case &c, const fs::path &directory, std::optional<unsigned int> stop_after,
                 bool resume)
   {
-    solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     if (stop_after)
       problem.stop_after_step(*stop_after);
@@ -42,8 +42,8 @@ namespace
     return {outcome, problem.records(), problem.pileup_results()};
   }
 
-  void expect_same_curve(const std::vector<solver::StepRecord> &resumed,
-                         const std::vector<solver::StepRecord> &reference)
+  void expect_same_curve(const std::vector<nonlinear::StepRecord> &resumed,
+                         const std::vector<nonlinear::StepRecord> &reference)
   {
     ASSERT_EQ(resumed.size(), reference.size());
     double largest = 0; // relative difference of depth and force, reported
@@ -67,8 +67,8 @@ namespace
               << largest << " over " << reference.size() << " records\n";
   }
 
-  void expect_same_pileup(const std::vector<solver::pileup::PileUpResult> &resumed,
-                          const std::vector<solver::pileup::PileUpResult> &reference)
+  void expect_same_pileup(const std::vector<analysis::pileup::PileUpResult> &resumed,
+                          const std::vector<analysis::pileup::PileUpResult> &reference)
   {
     ASSERT_EQ(resumed.size(), reference.size());
     ASSERT_FALSE(reference.empty());

@@ -5,8 +5,8 @@
 #include "../test_cases.h"
 #include "../test_files.h"
 #include "io/Case.h"
-#include "solver/IndentationProblem.h"
-#include "solver/TensileProblem.h"
+#include "problems/IndentationProblem.h"
+#include "problems/TensileProblem.h"
 
 #include <deal.II/base/multithread_info.h>
 
@@ -20,17 +20,17 @@ using namespace indentsim;
 
 namespace
 {
-  std::vector<solver::StepRecord> run_indentation(const io::Case &c, const std::string &directory = "")
+  std::vector<nonlinear::StepRecord> run_indentation(const io::Case &c, const std::string &directory = "")
   {
-    solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     problem.run(directory);
     return problem.records();
   }
 
   // Same number of steps, same depths, forces equal to `tolerance` relative to the largest.
-  void expect_same_curve(const std::vector<solver::StepRecord> &a,
-                         const std::vector<solver::StepRecord> &b,
+  void expect_same_curve(const std::vector<nonlinear::StepRecord> &a,
+                         const std::vector<nonlinear::StepRecord> &b,
                          const double                           tolerance)
   {
     ASSERT_EQ(a.size(), b.size());
@@ -50,8 +50,8 @@ namespace
   // iterative to a relative tolerance) may end at states a tolerance apart: at depth h the
   // forces agree to (penetration tolerance) x (contact stiffness dF/dh), the stiffness taken
   // as the steeper secant of the curve next to the step.
-  void expect_same_curve_to_contact_tolerance(const std::vector<solver::StepRecord> &a,
-                                              const std::vector<solver::StepRecord> &b,
+  void expect_same_curve_to_contact_tolerance(const std::vector<nonlinear::StepRecord> &a,
+                                              const std::vector<nonlinear::StepRecord> &b,
                                               const double penetration_tolerance)
   {
     ASSERT_EQ(a.size(), b.size());
@@ -114,7 +114,7 @@ TEST(Solvers, IterativeAndDirectGiveTheSameCrystalCurve)
 
 TEST(Solvers, AutomaticChoiceFollowsTheSize)
 {
-  using solver::LinearSolver;
+  using linalg::LinearSolver;
   const unsigned long threshold = LinearSolver::iterative_threshold_dofs;
   EXPECT_EQ(LinearSolver::choose_kind("auto", threshold - 1), LinearSolver::Kind::direct);
   EXPECT_EQ(LinearSolver::choose_kind("auto", threshold), LinearSolver::Kind::iterative);
@@ -152,7 +152,7 @@ TEST(Threads, TensileCubeDoesNotDependOnTheThreadCountOrSolver)
   const auto run = [&](const std::string &linear_solver, const unsigned int threads) {
     c.solver.linear_solver = linear_solver;
     dealii::MultithreadInfo::set_thread_limit(threads);
-    solver::TensileProblem problem(c, MPI_COMM_WORLD, false);
+    problems::TensileProblem problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     problem.run("", "", false);
     dealii::MultithreadInfo::set_thread_limit(1);
@@ -177,7 +177,7 @@ TEST(RunSummary, CountersAndTimesAreConsistentWithTheRun)
   io::Case c = test_cases::small_j2_case();
   c.loading.unload = true;
   const auto directory = test_files::scratch_directory("solvers", "summary");
-  solver::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run(directory.string());
   const auto numbers = json_numbers(test_files::read_text(directory / "run_summary.json"));

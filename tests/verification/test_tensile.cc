@@ -1,11 +1,11 @@
-// Verification of the tensile test (solver/TensileProblem): homogeneous uniaxial tension of J2
+// Verification of the tensile test (problems/TensileProblem): homogeneous uniaxial tension of J2
 // against the independent reference of python/reference_j2_uniaxial.py, of neo-Hookean against
 // the closed form, the crystal polycrystal's reproducibility and orientation handling, the
 // cut-back, and 1 versus 2 MPI ranks (MpiTensile, run under mpirun by CTest Mpi.TwoRanks).
 // Units: um, mN, GPa.
 #include "io/Case.h"
 #include "materials/MaterialFactory.h"
-#include "solver/TensileProblem.h"
+#include "problems/TensileProblem.h"
 
 #include "../unit/material_test_utilities.h"
 
@@ -38,10 +38,10 @@ namespace
     return c;
   }
 
-  std::vector<solver::TensileRecord> run_tensile(const io::Case &c,
+  std::vector<problems::TensileRecord> run_tensile(const io::Case &c,
                                                  const MPI_Comm communicator = MPI_COMM_SELF)
   {
-    solver::TensileProblem problem(c, communicator, false);
+    problems::TensileProblem problem(c, communicator, false);
     problem.setup();
     problem.run("", "", false);
     return problem.records();

@@ -1,0 +1,77 @@
+#include "nonlinear/CutBackStepper.h"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace indentsim::nonlinear
+{
+  void IncrementControl::start_segment(const double nominal, const bool paced)
+  {
+    increment = nominal;
+    easy_steps = 0;
+    segment_steps = 0;
+    paced_increment = paced ? nominal / 4 : std::numeric_limits<double>::infinity();
+  }
+
+  double IncrementControl::step_size() const
+  {
+    return std::min(increment, paced_increment);
+  }
+
+  void IncrementControl::after_step(const bool easy, const bool paced, const double depth_before,
+                                    const double depth_after, const double force_before,
+                                    const double force_after, const double pacing_force)
+  {
+    if (paced && depth_before - depth_after > 0 && force_before - force_after > 0)
+      paced_increment = pacing_force * (depth_before - depth_after) / (force_before - force_after);
+    easy_steps = easy ? easy_steps + 1 : 0;
+    if (easy_steps >= 3)
+      {
+        increment *= 2;
+        easy_steps = 0;
+      }
+  }
+
+  double solve_with_cutbacks(const LoadingProgramme                             &programme,
+                             const Segment                                      &segment,
+                             IncrementControl                                   &control,
+                             const double                                        value,
+                             const unsigned int                                  step,
+                             const unsigned int                                  max_cutbacks,
+                             const std::function<IncrementStatus(double, bool)> &solve,
+                             const std::function<void()>                        &reject,
+                             const std::function<void(const RetryEvent &)>      &report,
+                             unsigned int                                       &cutbacks)
+  {
+    const bool hold = segment.kind == SegmentKind::hold;
+    double     target = value;
+    bool       extrapolate = !hold;
+    cutbacks = 0;
+    while (true)
+      {
+        if (segment.kind == SegmentKind::unload)
+          target = std::max(segment.target, value - control.step_size());
+        else if (!hold)
+          target = std::min(segment.target, value + control.increment);
+        const IncrementStatus status = solve(target, extrapolate);
+        if (status == IncrementStatus::converged)
+          return target;
+        reject();
+        if (extrapolate && step > 0)
+          {
+            extrapolate = false;
+            report({step + 1, target, status, true, 0.0});
+            continue;
+          }
+        ++cutbacks;
+        report({step + 1, target, status, false, control.step_size() / 2});
+        if (cutbacks > max_cutbacks || hold)
+          throw std::runtime_error(std::string(hold ? "hold" : "increment") + " to " +
+                                   std::to_string(target) + programme.unit() + " failed after " +
+                                   std::to_string(cutbacks - 1) + " cut-backs (" +
+                                   to_string(status) + ")");
+        control.increment = control.step_size() / 2;
+      }
+  }
+} // namespace indentsim::nonlinear

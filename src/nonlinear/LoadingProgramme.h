@@ -1,0 +1,51 @@
+// The loading programme of an indentation run: per cycle, load to the maximum, hold it, unload.
+// The control value is the indenter depth [um] or, under force control, the indenter force [mN]
+// of the whole indent. Knows nothing of meshes: the stepper (IndentationRun.cc) walks it.
+#pragma once
+
+#include "io/Case.h"
+
+#include <string>
+#include <vector>
+
+namespace indentsim::nonlinear
+{
+  enum class SegmentKind
+  {
+    load,
+    hold,
+    unload
+  };
+  // "load" | "hold" | "unload": the `segment` column of load_penetration.csv.
+  const char *to_string(SegmentKind kind);
+
+  struct Segment
+  {
+    SegmentKind  kind;
+    double       target; // control value at the end of the segment [um or mN]
+    unsigned int steps;  // nominal increments (hold: the steps held)
+    unsigned int cycle;  // 1, 2, ...
+  };
+
+  struct LoadingProgramme
+  {
+    explicit LoadingProgramme(const io::LoadingParameters &loading);
+
+    bool                 force_control;
+    double               maximum; // max_depth [um] or, under force control, max_force [mN]
+    std::vector<Segment> segments;
+    // The steps the programme takes without cut-backs (for the ETA).
+    unsigned int         expected_steps;
+    // Depth-controlled unloading is paced by force (unload_points > 0): see paced_increment.
+    bool                 paced(const Segment &segment) const;
+    // " um" or " mN": the unit of the control value in messages.
+    const char          *unit() const { return force_control ? " mN" : " um"; }
+
+  private:
+    unsigned int unload_points_;
+  };
+
+  // The number of steps a loading programme is expected to take without cut-backs (for the
+  // ETA): depth-controlled unloading is paced by force and takes about unload_points + 1.
+  unsigned int expected_steps(const io::LoadingParameters &loading);
+} // namespace indentsim::nonlinear

@@ -1,0 +1,223 @@
+// ParaView output of IndentationProblem: deformed mesh (Eulerian mapping), displacement,
+// cell-averaged Cauchy stress, von Mises stress, equivalent plastic strain and the nodal contact
+// fields (pressure, status, friction traction); the pile-up files of the top surface.
+// Units: um, GPa.
+#include "io/CaseFile.h"
+#include "fem/FiniteStrainElement.h"
+#include "problems/IndentationProblem.h"
+#include "analysis/PileUp.h"
+
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q_eulerian.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <cstdlib>
+#include <functional>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+
+namespace indentsim::problems
+{
+  using namespace dealii;
+  using fem::GhostedVector;
+  using fem::to_thread_readable;
+  namespace pileup = analysis::pileup;
+
+  void IndentationProblem::compute_cell_fields(Vector<float>              &von_mises,
+                                               Vector<float>              &plastic_strain,
+                                               std::vector<Vector<float>> &cauchy)
+  {
+    for_each_cell_stress([&](const auto                      &cell,
+                             const std::vector<Tensor<2, 3>> &sigma,
+                             const std::span<const double>    state) {
+        const unsigned int index = cell->active_cell_index();
+        Tensor<2, 3>       mean;
+        double             mises = 0, eps_p = 0;
+        const unsigned int n_q_points = history_.n_q_points(), n_state = history_.n_state();
+        for (unsigned int q = 0; q < n_q_points; ++q)
+          {
+            mean += sigma[q] / n_q_points;
+            const Tensor<2, 3> s = sigma[q] - trace(sigma[q]) / 3. * unit_symmetric_tensor<3>();
+            mises += std::sqrt(1.5 * scalar_product(s, s)) / n_q_points;
+            eps_p +=
+              material_->equivalent_plastic_strain(state.subspan(q * n_state, n_state)) /
+              n_q_points;
+          }
+        von_mises[index] = mises;
+        plastic_strain[index] = eps_p;
+        unsigned int k = 0;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = i; j < 3; ++j)
+            cauchy[k++][index] = mean[i][j];
+    });
+  }
+
+  void IndentationProblem::write_vtu(const unsigned int index)
+  {
+    const unsigned int n_cells_local = triangulation_.n_active_cells();
+    Vector<float>      von_mises(n_cells_local), plastic_strain(n_cells_local),
+      subdomain(n_cells_local);
+    std::vector<Vector<float>> cauchy(6, Vector<float>(n_cells_local));
+    compute_cell_fields(von_mises, plastic_strain, cauchy);
+    for (const auto &cell : triangulation_.active_cell_iterators())
+      subdomain[cell->active_cell_index()] = triangulation_.locally_owned_subdomain();
+
+    // Nodal contact fields on a scalar Q1 field: pressure p [GPa], status (0 open, 1 stick,
+    // 2 slip) and the magnitude of the friction traction |t| [GPa], all nominal (per reference
+    // area).
+    DoFHandler<3> scalar_dofs(triangulation_);
+    const FE_Q<3> fe_scalar(1);
+    scalar_dofs.distribute_dofs(fe_scalar);
+    const IndexSet owned = scalar_dofs.locally_owned_dofs();
+    const IndexSet relevant = DoFTools::extract_locally_relevant_dofs(scalar_dofs);
+    const auto nodal_field = [&](const std::function<double(const contact::ContactNode &)> &value) {
+      PETScWrappers::MPI::Vector field(owned, communicator_);
+      std::map<types::global_dof_index, double> value_by_dof; // vector dof x -> value
+      for (const auto &node : contact_->nodes())
+        value_by_dof[node.dofs[0]] = value(node);
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const typename DoFHandler<3>::active_cell_iterator scalar_cell(
+              &triangulation_, cell->level(), cell->index(), &scalar_dofs);
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                const auto it = value_by_dof.find(cell->vertex_dof_index(v, 0));
+                const auto dof = scalar_cell->vertex_dof_index(v, 0);
+                if (it != value_by_dof.end() && owned.is_element(dof))
+                  field(dof) = it->second;
+              }
+          }
+      field.compress(VectorOperation::insert);
+      PETScWrappers::MPI::Vector ghosted(owned, relevant, communicator_);
+      ghosted = field;
+      // DataOut works on threads: it reads thread-readable copies, not the PETSc vectors.
+      return to_thread_readable(ghosted, owned, relevant, communicator_);
+    };
+    const GhostedVector pressure_readable =
+      nodal_field([](const contact::ContactNode &node) { return node.pressure; });
+    const GhostedVector status_readable = nodal_field(
+      [](const contact::ContactNode &node) { return static_cast<double>(node.status); });
+    const GhostedVector traction_readable =
+      nodal_field([](const contact::ContactNode &node) { return node.traction.norm(); });
+    const GhostedVector u =
+      to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
+
+    DataOut<3> data_out;
+    data_out.attach_dof_handler(dof_handler_);
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
+      3, DataComponentInterpretation::component_is_part_of_vector);
+    data_out.add_data_vector(u,
+                             std::vector<std::string>(3, "displacement_um"),
+                             DataOut<3>::type_dof_data,
+                             vector_field);
+    data_out.add_data_vector(scalar_dofs, pressure_readable, "contact_pressure_GPa");
+    data_out.add_data_vector(scalar_dofs, status_readable, "contact_status");
+    data_out.add_data_vector(scalar_dofs, traction_readable, "friction_traction_GPa");
+    const char *names[6] = {"cauchy_xx_GPa", "cauchy_xy_GPa", "cauchy_xz_GPa",
+                            "cauchy_yy_GPa", "cauchy_yz_GPa", "cauchy_zz_GPa"};
+    for (unsigned int k = 0; k < 6; ++k)
+      data_out.add_data_vector(cauchy[k], names[k]);
+    data_out.add_data_vector(von_mises, "von_mises_GPa");
+    data_out.add_data_vector(plastic_strain, "equivalent_plastic_strain");
+    data_out.add_data_vector(subdomain, "mpi_rank");
+
+    // The geometry is written in the deformed configuration.
+    const MappingQEulerian<3, GhostedVector> deformed(1, dof_handler_, u);
+    data_out.build_patches(deformed, 1);
+    const std::string pvtu = data_out.write_vtu_with_pvtu_record(
+      output_directory_ + "/", "specimen", index, communicator_, 4, 8);
+    // PVD time = output index: depth is not monotonic over load and unload.
+    vtu_records_.emplace_back(index, pvtu);
+    if (Utilities::MPI::this_mpi_process(communicator_) == 0)
+      {
+        std::ofstream pvd(output_directory_ + "/specimen.pvd");
+        DataOutBase::write_pvd_record(pvd, vtu_records_);
+      }
+    scalar_dofs.clear();
+  }
+
+  std::vector<pileup::SurfaceQuad> IndentationProblem::gather_top_surface() const
+  {
+    // Per face: 4 corners in cyclic order x (X, Y, u_x, u_y, u_z). deal.II numbers a face's
+    // vertices lexicographically, 0 (0,0), 1 (1,0), 2 (0,1), 3 (1,1): cyclic is 0, 1, 3, 2.
+    constexpr unsigned int n_values = 5, cyclic[4] = {0, 1, 3, 2};
+    std::vector<double>    local;
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary() && face->boundary_id() == mesh::boundary::top)
+            for (const unsigned int v : cyclic)
+              {
+                local.push_back(face->vertex(v)[0]);
+                local.push_back(face->vertex(v)[1]);
+                for (unsigned int d = 0; d < 3; ++d)
+                  local.push_back(solution_(face->vertex_dof_index(v, d)));
+              }
+    const std::vector<std::vector<double>> gathered =
+      Utilities::MPI::gather(communicator_, local, 0);
+
+    std::vector<pileup::SurfaceQuad> surface;
+    for (const std::vector<double> &values : gathered)
+      for (std::size_t i = 0; i + 4 * n_values <= values.size(); i += 4 * n_values)
+        {
+          pileup::SurfaceQuad quad;
+          for (unsigned int v = 0; v < 4; ++v)
+            {
+              const double *corner = &values[i + v * n_values];
+              quad[v] = {corner[0], corner[1], corner[2], corner[3], corner[4]};
+            }
+          surface.push_back(quad);
+        }
+    return mesh_info_.quarter ? pileup::mirror_quarter(surface) : surface;
+  }
+
+  void IndentationProblem::write_pileup(const std::vector<SurfaceSnapshot> &snapshots,
+                                        const double                        contact_radius)
+  {
+    namespace files = io::output_files;
+    pileup_results_.clear();
+    for (const SurfaceSnapshot &snapshot : snapshots)
+      {
+        pileup::PileUpParameters parameters;
+        parameters.depth = snapshot.depth;
+        parameters.contact_radius = contact_radius;
+        pileup_results_.push_back(pileup::analyse(snapshot.surface, snapshot.stage, parameters));
+        const pileup::PileUpResult &result = pileup_results_.back();
+        std::ofstream grid(output_directory_ + "/" +
+                           (snapshot.stage == "max_depth" ? files::pileup_max_depth_csv :
+                                                            files::pileup_unloaded_csv));
+        pileup::write_grid_csv(grid, result.grid);
+        pcout_ << std::defaultfloat << std::setprecision(4) << "Pile-up (" << result.stage
+               << ", depth " << result.depth << " um): max height " << result.max_pileup
+               << " um at r = " << result.max_pileup_radius << " um, azimuth "
+               << result.max_pileup_azimuth_deg << " deg; analysis radius "
+               << result.analysis_radius << " um, dominant fold "
+               << result.spectrum.dominant_fold << ", symmetry fold beyond the mesh imprint "
+               << result.spectrum.symmetry_fold << std::endl;
+      }
+    if (pileup_results_.empty())
+      return;
+    // The unloaded stage (the residual impression, what experiments measure) is the top level;
+    // without unloading, the maximum-depth stage.
+    std::ofstream json(output_directory_ + "/" + files::pileup_json);
+    pileup::write_json(json, pileup_results_, pileup_results_.back());
+    std::ofstream profiles(output_directory_ + "/" + files::pileup_profiles_csv);
+    pileup::write_profiles_csv(profiles, pileup_results_);
+    json.close();
+    profiles.close();
+
+    // The maps and profiles as PNG files; a missing Python or matplotlib leaves a warning only.
+    const std::string script = std::string(INDENTSIM_SOURCE_DIR) + "/python/plot_pileup.py";
+    const std::string command = "python3 \"" + script + "\" \"" + output_directory_ + "\"";
+    if (std::system(command.c_str()) != 0)
+      std::cerr << "warning: the pile-up plots in " << output_directory_
+                << " could not be written (command: " << command << ")\n";
+  }
+} // namespace indentsim::problems

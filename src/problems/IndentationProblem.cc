@@ -1,0 +1,452 @@
+#include "problems/IndentationProblem.h"
+
+#include "indenter/IndenterFactory.h"
+#include "io/CaseFile.h"
+#include "io/Version.h"
+#include "materials/MaterialFactory.h"
+#include "output/Checkpoint.h"
+#include "fem/FiniteStrainElement.h"
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q_eulerian.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/petsc_solver.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+namespace indentsim::problems
+{
+  using namespace dealii;
+  using fem::CellContribution;
+  using fem::CellWorkspace;
+  using fem::GhostedVector;
+  using fem::to_thread_readable;
+  using fem::copy_to_thread_readable;
+  using fem::run_on_owned_cells;
+  using fem::element_residual_and_tangent;
+  using linalg::LinearSolver;
+  using output::RunStatistics;
+
+  IndentationProblem::IndentationProblem(const io::Case &the_case,
+                                         const MPI_Comm  communicator,
+                                         const bool      verbose)
+    : case_(the_case)
+    , communicator_(communicator)
+    , pcout_(std::cout, verbose && Utilities::MPI::this_mpi_process(communicator) == 0)
+    , triangulation_(communicator,
+                     Triangulation<3>::limit_level_difference_at_vertices,
+                     parallel::distributed::Triangulation<3>::default_setting)
+    , fe_(FE_Q<3>(1), 3)
+    , dof_handler_(triangulation_)
+    , material_(materials::create_material(the_case.material))
+    , indenter_(indenter::create_indenter(the_case.indenter))
+    , use_f_bar_(the_case.specimen.f_bar)
+    , linear_solver_(communicator)
+  {}
+
+  IndentationProblem::~IndentationProblem()
+  {
+    dof_handler_.clear();
+  }
+
+  unsigned int IndentationProblem::n_cells() const
+  {
+    return triangulation_.n_global_active_cells();
+  }
+  unsigned int IndentationProblem::n_dofs() const
+  {
+    return dof_handler_.n_dofs();
+  }
+  unsigned int IndentationProblem::count_owned_constraints(
+    const AffineConstraints<double> &constraints) const
+  {
+    unsigned int local = 0;
+    for (const auto &line : constraints.get_lines())
+      if (locally_owned_.is_element(line.index))
+        ++local;
+    return Utilities::MPI::sum(local, communicator_);
+  }
+
+  unsigned int IndentationProblem::n_constrained_dofs() const
+  {
+    return count_owned_constraints(constraints_all_);
+  }
+
+  unsigned int IndentationProblem::n_hanging_node_constraints() const
+  {
+    return count_owned_constraints(constraints_hanging_);
+  }
+
+  // Hanging-node constraints, then the supports (bottom face, symmetry planes) on top of them,
+  // as step-42 layers them.
+  void IndentationProblem::make_constraints()
+  {
+    constraints_hanging_.clear();
+    constraints_hanging_.reinit(locally_relevant_);
+    DoFTools::make_hanging_node_constraints(dof_handler_, constraints_hanging_);
+    constraints_hanging_.close();
+
+    constraints_all_.clear();
+    constraints_all_.reinit(locally_relevant_);
+    constraints_all_.merge(constraints_hanging_);
+    const Functions::ZeroFunction<3> zero(3);
+    VectorTools::interpolate_boundary_values(
+      dof_handler_, mesh::boundary::bottom, zero, constraints_all_);
+    if (mesh_info_.quarter)
+      {
+        const FEValuesExtractors::Scalar ux(0), uy(1);
+        VectorTools::interpolate_boundary_values(
+          dof_handler_, mesh::boundary::x_min, zero, constraints_all_, fe_.component_mask(ux));
+        VectorTools::interpolate_boundary_values(
+          dof_handler_, mesh::boundary::y_min, zero, constraints_all_, fe_.component_mask(uy));
+      }
+    // The surface node under the apex stays on the indentation axis (u_x = u_y = 0; in the
+    // quarter model the symmetry planes impose it already). Node-to-surface contact only keeps
+    // nodes out of the indenter; a sharp tip pushing an anisotropic crystal's apex node aside
+    // would pass between the nodes unchecked (on (111) the surface under the tip
+    // lags microns behind the apex). Holding that one node is the usual remedy.
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const unsigned int v : cell->vertex_indices())
+          if (cell->vertex(v).norm() < 1e-9 * case_.specimen.size[0])
+            for (const unsigned int component : {0u, 1u})
+              {
+                const types::global_dof_index dof = cell->vertex_dof_index(v, component);
+                if (!constraints_all_.is_constrained(dof))
+                  constraints_all_.add_line(dof);
+              }
+    constraints_all_.close();
+  }
+
+  void IndentationProblem::setup()
+  {
+    const RunStatistics::Scope timer(statistics_.setup);
+    mesh_info_ = mesh::build_indentation_mesh(triangulation_, case_.specimen);
+    balance_plastic_zone();
+    dof_handler_.distribute_dofs(fe_);
+    locally_owned_ = dof_handler_.locally_owned_dofs();
+    locally_relevant_ = DoFTools::extract_locally_relevant_dofs(dof_handler_);
+
+    make_constraints();
+
+    DynamicSparsityPattern dsp(locally_relevant_);
+    DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_all_, false);
+    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_, communicator_, locally_relevant_);
+    matrix_.reinit(locally_owned_, locally_owned_, dsp, communicator_);
+    matrix_.compress(VectorOperation::insert); // final pattern, off-diagonal columns compressed
+    scatter_.build(dof_handler_, constraints_all_, matrix_);
+
+    solution_.reinit(locally_owned_, locally_relevant_, communicator_);
+    solution_readable_.reinit(locally_owned_, locally_relevant_, communicator_);
+    solution_converged_.reinit(locally_owned_, locally_relevant_, communicator_);
+    solution_previous_.reinit(locally_owned_, communicator_);
+    residual_.reinit(locally_owned_, communicator_);
+
+    history_.reinit(triangulation_.n_active_cells(), 8, material_->n_state_variables());
+    // A single crystal: one lattice orientation everywhere (isotropic models ignore it).
+    const dealii::Tensor<2, 3> orientation =
+      materials::create_orientation(case_.material.orientation);
+    for (std::size_t i = 0; i < history_.n_points(); ++i)
+      material_->oriented_initial_state(history_.converged_point(i), orientation);
+    history_.converged_changed();
+
+    const double penalty = case_.contact.penalty > 0 ?
+                             case_.contact.penalty :
+                             30. * material_->reference_modulus() /
+                               mesh_info_.contact_element_size;
+    contact_ = std::make_unique<contact::NodeToSurfaceContact>(
+      *indenter_, penalty, case_.contact.friction_coefficient);
+    contact_->set_predictor_activation_depth(case_.contact.penetration_tolerance);
+    contact_->setup(dof_handler_,
+                    constraints_hanging_,
+                    mesh::boundary::top,
+                    mesh_info_.refined_half_x,
+                    mesh_info_.refined_half_y,
+                    communicator_);
+
+    linear_solver_.setup(dof_handler_,
+                         LinearSolver::choose_kind(case_.solver.linear_solver, n_dofs()),
+                         material_->symmetric_tangent() && contact_->symmetric_tangent());
+
+    pcout_ << "Mesh: " << n_cells() << " cells, " << n_dofs() << " DOFs, "
+           << n_constrained_dofs() << " constrained DOFs (hanging nodes and supports), "
+           << "contact element size " << mesh_info_.contact_element_size << " um, "
+           << Utilities::MPI::n_mpi_processes(communicator_) << " MPI rank(s)\n"
+           << "Contact: penalty " << penalty << " GPa/um, contact-surface area "
+           << contact_->total_area() << " um^2 (model)\n"
+           << "Linear solver: " << linear_solver_.description() << "\n"
+           << "Matrix assembly: " << std::fixed << std::setprecision(1)
+           << 100 * scatter_.fast_fraction() << std::defaultfloat
+           << " % of rank 0's cells by precomputed positions" << std::endl;
+  }
+
+  void IndentationProblem::balance_plastic_zone()
+  {
+    const double extra_cost = material_->relative_plastic_cost() - 1.0;
+    if (Utilities::MPI::n_mpi_processes(communicator_) == 1 || !(extra_cost > 0))
+      return;
+    // The plastic zone under a blunt or conical indenter is about a hemisphere of 2.5 contact
+    // radii (Johnson's expanding-cavity picture: c/a = 2-3 for the paper's cone), centred at the
+    // contact; the contact radius at the deepest point follows from the indenter's area
+    // function. Its cells are weighted by the cost of a plastic point, the others by 1 (in
+    // units of 1000, p4est's integer weights), and p4est repartitions the cells in its
+    // space-filling-curve order. The partition changes no result beyond round-off.
+    const double a_c =
+      std::sqrt(indenter_->projected_area(case_.loading.max_depth) / std::numbers::pi);
+    const double radius = 2.5 * a_c;
+    const auto   weight = [radius, extra_cost](
+                          const parallel::distributed::Triangulation<3>::cell_iterator &cell,
+                          const parallel::distributed::Triangulation<3>::CellStatus) {
+      return static_cast<unsigned int>(
+        1000 * (1.0 + (cell->center().norm() < radius ? extra_cost : 0.0)));
+    };
+    auto connection = triangulation_.signals.weight.connect(weight);
+    triangulation_.repartition();
+    connection.disconnect();
+  }
+
+  IndentationProblem::AssemblyResult
+  IndentationProblem::assemble(const bool                                          with_matrix,
+                               contact::NodeToSurfaceContact::DepthCoupling *const coupling)
+  {
+    AssemblyResult result;
+    ++statistics_.assemblies;
+    if (!with_matrix)
+      ++statistics_.residual_only_assemblies;
+    std::optional<RunStatistics::Scope> timer(std::in_place, statistics_.assembly);
+    if (with_matrix)
+      matrix_ = 0;
+    residual_ = 0;
+    double local_reaction = 0;
+
+    copy_to_thread_readable(solution_, solution_readable_);
+    const GhostedVector &u = solution_readable_;
+    const auto worker = [&](const DoFHandler<3>::active_cell_iterator &cell,
+                            CellWorkspace                             &workspace,
+                            CellContribution                          &contribution) {
+      workspace.reinit(cell, u);
+      contribution.status = element_residual_and_tangent(*material_,
+                                                         use_f_bar_,
+                                                         workspace.u_local,
+                                                         history_.converged(cell),
+                                                         history_.current(cell),
+                                                         workspace.scratch,
+                                                         contribution.vector,
+                                                         with_matrix ? &contribution.matrix :
+                                                                       nullptr);
+      cell->get_dof_indices(contribution.dof_indices);
+      contribution.cell_index = cell->active_cell_index();
+      // Bottom reaction: the internal force at the supported nodes (z components).
+      contribution.sums[0] = 0;
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == mesh::boundary::bottom)
+          for (unsigned int a = 0; a < fe_.n_dofs_per_cell(); ++a)
+            if (fe_.system_to_component_index(a).first == 2 && fe_.has_support_on_face(a, f))
+              contribution.sums[0] += contribution.vector[a];
+    };
+    const auto copier = [&](const CellContribution &contribution) {
+      if (contribution.status != materials::UpdateStatus::success)
+        {
+          result.status = contribution.status;
+          return; // keep going so that every rank reaches the collective calls
+        }
+      if (with_matrix && scatter_.is_fast(contribution.cell_index))
+        {
+          scatter_.add(contribution.cell_index, contribution.matrix);
+          constraints_all_.distribute_local_to_global(contribution.vector,
+                                                      contribution.dof_indices,
+                                                      residual_);
+        }
+      else if (with_matrix)
+        constraints_all_.distribute_local_to_global(
+          contribution.matrix, contribution.vector, contribution.dof_indices, matrix_, residual_);
+      else
+        constraints_all_.distribute_local_to_global(contribution.vector,
+                                                    contribution.dof_indices,
+                                                    residual_);
+      local_reaction += contribution.sums[0];
+    };
+    {
+      const RunStatistics::Scope cell_loop_timer(statistics_.cell_loop);
+      if (with_matrix)
+        scatter_.begin(matrix_);
+      run_on_owned_cells(dof_handler_, history_.n_q_points(), worker, copier);
+    }
+    // After the cell loop's timer: end() waits for the other ranks, so that the cell loop's
+    // spread over the ranks shows their imbalance.
+    if (with_matrix)
+      scatter_.end();
+    timer.emplace(statistics_.contact);
+    contact_->assemble(constraints_all_, residual_, with_matrix ? &matrix_ : nullptr,
+                       with_matrix ? coupling : nullptr);
+    timer.emplace(statistics_.assembly);
+    if (with_matrix)
+      matrix_.compress(VectorOperation::add);
+    residual_.compress(VectorOperation::add);
+
+    // A bottom node's reaction is the sum of its cells' internal forces, so the sum over the
+    // locally owned cells, summed over ranks, is the total reaction.
+    result.bottom_reaction = Utilities::MPI::sum(local_reaction, communicator_);
+    const unsigned int failed = Utilities::MPI::max(
+      static_cast<unsigned int>(result.status != materials::UpdateStatus::success), communicator_);
+    if (failed && result.status == materials::UpdateStatus::success)
+      result.status = materials::UpdateStatus::local_newton_failed;
+    return result;
+  }
+
+  bool IndentationProblem::reassemble_contact()
+  {
+    const RunStatistics::Scope timer(statistics_.contact);
+    if (!contact_->retract(constraints_all_, residual_, matrix_))
+      return false;
+    contact_->assemble(constraints_all_, residual_, &matrix_);
+    matrix_.compress(VectorOperation::add);
+    residual_.compress(VectorOperation::add);
+    ++statistics_.contact_only_assemblies;
+    return true;
+  }
+
+  double IndentationProblem::depth_guess_for_force(const double target_force) const
+  {
+    if (target_force > force_converged_ && force_converged_ > 0 && depth_converged_ > 0)
+      {
+        // Loading: indentation curves follow F ~ h^m (m = 2 for a cone, 1.5 for a sphere in the
+        // Hertz range): m from the last two states in log-log, else 1.5.
+        double m = 1.5;
+        if (force_previous_ > 0 && depth_previous_ > 0 && depth_converged_ > depth_previous_ &&
+            force_converged_ > force_previous_)
+          m = std::log(force_converged_ / force_previous_) /
+              std::log(depth_converged_ / depth_previous_);
+        m = std::clamp(std::isfinite(m) ? m : 1.5, 1.0, 3.0);
+        return depth_converged_ * std::pow(target_force / force_converged_, 1 / m);
+      }
+    // Unloading (or reloading at low force): secant of the last two converged states, limited
+    // to twice their depth step, when they moved the same way; at a reversal (plastic loading to
+    // elastic unloading) the last slope says nothing, and the Newton update finds the depth.
+    const bool same_direction =
+      (target_force - force_converged_) * (force_converged_ - force_previous_) > 0;
+    if (has_previous_ && same_direction)
+      {
+        const double slope = (depth_converged_ - depth_previous_) / (force_converged_ - force_previous_);
+        const double step = slope * (target_force - force_converged_);
+        const double limit = 2 * std::abs(depth_converged_ - depth_previous_);
+        if (std::isfinite(step))
+          return depth_converged_ + std::clamp(step, -limit, limit);
+      }
+    return depth_converged_;
+  }
+
+  contact::ContactPatch IndentationProblem::contact_patch() const
+  {
+    // The indicator phi (x dof of each contact node) and a marker (y dof) distinguishing contact
+    // nodes from the rest, made readable on the ghost vertices of the owned faces.
+    PETScWrappers::MPI::Vector indicator(locally_owned_, communicator_);
+    for (const contact::ContactNode &node : contact_->nodes())
+      {
+        indicator(node.dofs[0]) =
+          node.active ? node.pressure : node.lambda - contact_->penalty() * node.gap;
+        indicator(node.dofs[1]) = 1;
+      }
+    indicator.compress(VectorOperation::insert);
+    PETScWrappers::MPI::Vector ghosted(locally_owned_, locally_relevant_, communicator_);
+    ghosted = indicator;
+
+    // deal.II numbers a face's vertices lexicographically; cyclic order is 0, 1, 3, 2.
+    constexpr unsigned int cyclic[4] = {0, 1, 3, 2};
+    contact::ContactPatch  local;
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto &face : cell->face_iterators())
+          {
+            if (!face->at_boundary() || face->boundary_id() != mesh::boundary::top)
+              continue;
+            std::array<Point<2>, 4> xy;
+            std::array<double, 4>   phi;
+            bool                    all_contact_nodes = true;
+            for (unsigned int k = 0; k < 4; ++k)
+              {
+                const unsigned int v = cyclic[k];
+                all_contact_nodes = all_contact_nodes && ghosted(face->vertex_dof_index(v, 1)) == 1;
+                phi[k] = ghosted(face->vertex_dof_index(v, 0));
+                for (unsigned int d = 0; d < 2; ++d)
+                  xy[k][d] = face->vertex(v)[d] + solution_(face->vertex_dof_index(v, d));
+              }
+            if (!all_contact_nodes)
+              continue;
+            const contact::ContactPatch patch = contact::quad_contact_patch(xy, phi);
+            local.area += patch.area;
+            local.max_radius = std::max(local.max_radius, patch.max_radius);
+          }
+    contact::ContactPatch global;
+    global.area = Utilities::MPI::sum(local.area, communicator_);
+    global.max_radius = Utilities::MPI::max(local.max_radius, communicator_);
+    return global;
+  }
+
+  void IndentationProblem::accept_increment()
+  {
+    history_.accept();
+    solution_previous_ = solution_converged_;
+    solution_converged_ = solution_;
+    depth_previous_ = depth_converged_;
+    depth_converged_ = depth_trial_;
+    force_previous_ = force_converged_;
+    force_converged_ = force_trial_;
+    converged_force_scale_ = trial_force_scale_;
+    has_previous_ = true;
+    contact_->accept_increment();
+  }
+
+  void IndentationProblem::reject_increment()
+  {
+    history_.reject();
+    solution_ = solution_converged_;
+    contact_->reject_increment();
+  }
+
+  void IndentationProblem::for_each_cell_stress(
+    const std::function<void(const DoFHandler<3>::active_cell_iterator &,
+                             const std::vector<Tensor<2, 3>> &,
+                             std::span<const double>)> &visit)
+  {
+    CellWorkspace             workspace(fe_, history_.n_q_points());
+    std::vector<Tensor<2, 3>> cauchy(history_.n_q_points());
+    std::vector<double>       state(history_.cell_length());
+    const GhostedVector       u =
+      to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        workspace.reinit(cell, u);
+        element_residual_and_tangent(*material_,
+                                     use_f_bar_,
+                                     workspace.u_local,
+                                     history_.converged(cell),
+                                     state,
+                                     workspace.scratch,
+                                     workspace.r_local,
+                                     nullptr,
+                                     &cauchy);
+        visit(cell, cauchy, state);
+      }
+  }
+} // namespace indentsim::problems

@@ -1,0 +1,367 @@
+// The run of IndentationProblem through its loading programme (nonlinear/LoadingProgramme.h):
+// one converged step at a time, with the cut-back stepper (nonlinear/CutBackStepper.h), the
+// outputs of each step (output/RunRecorder.h, VTU, pile-up snapshots), checkpoints, stop and
+// resume. Units: um, mN, GPa, s.
+#include "io/CaseFile.h"
+#include "output/Checkpoint.h"
+#include "output/RunRecorder.h"
+#include "problems/IndentationProblem.h"
+
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace indentsim::problems
+{
+  using namespace dealii;
+  using nonlinear::IncrementStatus;
+  using nonlinear::Segment;
+  using nonlinear::SegmentKind;
+
+  // What run() carries from step to step besides the problem's own state.
+  struct IndentationProblem::RunSession
+  {
+    RunSession(const io::Case &the_case, const Timer &timer)
+      : programme(the_case.loading)
+      , timer(timer)
+    {}
+
+    const nonlinear::LoadingProgramme programme;
+    LoopState                         loop;
+    // Top-surface snapshots for the pile-up analysis (rank 0), at the maximum of the last
+    // cycle and at the end of unloading.
+    std::vector<SurfaceSnapshot> snapshots;
+    output::RunRecorder          recorder;
+    std::optional<unsigned int>  stop_after;
+    double                       last_checkpoint = 0; // [s] on this session's clock
+    const Timer                 &timer;
+
+    // Of the run so far, earlier parts before a resume included [s].
+    double wall_time() const { return wall_offset + timer.wall_time(); }
+    double wall_offset = 0;
+  };
+
+  IndentationProblem::RunOutcome IndentationProblem::run(const std::string &output_directory,
+                                                         const bool         resume)
+  {
+    output_directory_ = output_directory;
+    if (resume && output_directory_.empty())
+      throw io::CaseFileError("--resume needs the output directory of the stopped run");
+    RunSession session(case_, wall_timer_);
+    start_run(session, resume);
+    // Stop requests: signals, stop_after_step(), and INDENTSIM_STOP_AFTER_STEP.
+    const output::checkpoint::StopRequest stop_request;
+    session.stop_after = stop_after_step_;
+    if (const char *text = std::getenv("INDENTSIM_STOP_AFTER_STEP"); text != nullptr && *text)
+      session.stop_after = static_cast<unsigned int>(std::stoul(text));
+    session.last_checkpoint = wall_timer_.wall_time();
+
+    LoopState &loop = session.loop;
+    while (loop.segment < session.programme.segments.size())
+      {
+        const Segment &segment = session.programme.segments[loop.segment];
+        if (!loop.in_segment)
+          {
+            loop.in_segment = true;
+            loop.control.start_segment(session.programme.maximum / segment.steps,
+                                       session.programme.paced(segment));
+          }
+        // Force control from a state that carries no load has no contact stiffness to steer
+        // the depth: the first contact is made under depth control.
+        if (session.programme.force_control && segment.kind != SegmentKind::unload &&
+            loop.step == 0 && force_converged_ <= 0)
+          {
+            first_contact_step(session, segment);
+            continue;
+          }
+        converged_step(session, segment);
+        if (checkpoint_or_stop(session))
+          return RunOutcome::stopped;
+      }
+    finish_run(session);
+    return RunOutcome::finished;
+  }
+
+  // Opens the records; from a checkpoint, the state and the curve so far, else the initial
+  // state (record and VTU).
+  void IndentationProblem::start_run(RunSession &session, const bool resume)
+  {
+    // Collective (an MPI sum): every rank counts, rank 0 writes it.
+    const unsigned int n_constrained = n_constrained_dofs();
+    pileup_results_.clear();
+    if (resume)
+      read_checkpoint(session.loop, session.snapshots);
+    if (Utilities::MPI::this_mpi_process(communicator_) == 0)
+      session.recorder.open(output_directory_,
+                            {n_cells(), n_dofs(), n_constrained,
+                             Utilities::MPI::n_mpi_processes(communicator_)});
+    wall_timer_.restart();
+    session.wall_offset = session.loop.wall_time;
+    if (resume)
+      {
+        // The curve so far, from the saved records: the files are consistent with the state
+        // even if the stopped run went on beyond its last checkpoint.
+        for (const StepRecord &r : records_)
+          {
+            session.recorder.csv_row(r);
+            if (r.step > 0)
+              session.recorder.log_row(r);
+          }
+        session.recorder.log_note("resumed at step " + std::to_string(session.loop.step));
+        pcout_ << "Resumed at step " << session.loop.step << " (depth " << std::setprecision(6)
+               << session.loop.depth << " um) from the checkpoint in " << checkpoint_directory()
+               << std::endl;
+        return;
+      }
+    records_.push_back(StepRecord());
+    session.recorder.csv_row(records_.back());
+    if (!output_directory_.empty())
+      {
+        const output::RunStatistics::Scope timer(statistics_.output);
+        write_vtu(session.loop.vtu_index++);
+      }
+  }
+
+  // Force control's first step: the first touch under depth control, 0.1 % of a contact element
+  // beyond the nearest node (a recorded step; its force lies below the first target in the
+  // examples).
+  void IndentationProblem::first_contact_step(RunSession &session, const Segment &segment)
+  {
+    LoopState &loop = session.loop;
+    StepRecord record;
+    contact_->evaluate(solution_, depth_converged_);
+    const double touch = depth_converged_ + std::max(contact_->min_gap(), 0.0) +
+                         1e-3 * mesh_info_.contact_element_size;
+    const IncrementStatus status = solve_increment(touch, record, false);
+    if (status != IncrementStatus::converged)
+      throw std::runtime_error("force control: the first contact at depth " +
+                               std::to_string(touch) + " um failed (" + to_string(status) + ")");
+    loop.value = record.force;
+    loop.depth = record.depth;
+    ++loop.step;
+    record.step = loop.step;
+    record.cycle = segment.cycle;
+    record.segment = to_string(segment.kind);
+    record.wall_time = session.wall_time();
+    loop.total_newton += record.newton_iterations;
+    records_.push_back(record);
+    accept_increment();
+    session.recorder.csv_row(record);
+    pcout_ << "step " << std::setw(3) << loop.step << " touch   depth " << loop.depth
+           << " um  force " << record.force << " mN (first contact, depth control)" << std::endl;
+  }
+
+  // One converged step of `segment`, with retries and cut-backs, then its outputs.
+  void IndentationProblem::converged_step(RunSession &session, const Segment &segment)
+  {
+    LoopState                         &loop = session.loop;
+    const nonlinear::LoadingProgramme &programme = session.programme;
+    loop.control.increment =
+      std::min(loop.control.increment, programme.maximum / segment.steps);
+    const double depth_before = loop.depth, force_before = records_.back().force;
+    StepRecord   record;
+    const auto   solve = [&](const double target, const bool extrapolate) {
+      return programme.force_control ?
+               solve_increment(depth_guess_for_force(target), record, extrapolate, target) :
+               solve_increment(target, record, extrapolate);
+    };
+    const auto report = [&](const nonlinear::RetryEvent &event) {
+      pcout_ << "    step " << event.step << " to " << event.value << programme.unit() << ": "
+             << to_string(event.status);
+      if (event.from_extrapolation)
+        {
+          ++statistics_.predictor_retries;
+          pcout_ << " from the extrapolated start; retrying from the converged state\n";
+          return;
+        }
+      pcout_ << "; cutting the increment back to " << event.next_increment << programme.unit()
+             << "\n";
+      std::ostringstream note;
+      note << std::setprecision(4) << "step " << event.step << ": " << to_string(event.status)
+           << ", increment cut back to " << event.next_increment << programme.unit();
+      session.recorder.log_note(note.str());
+    };
+    unsigned int cutbacks = 0;
+    loop.value = nonlinear::solve_with_cutbacks(programme, segment, loop.control, loop.value,
+                                                loop.step, case_.loading.max_cutbacks, solve,
+                                                [this]() { reject_increment(); }, report,
+                                                cutbacks);
+    loop.depth = record.depth;
+    if (programme.force_control && loop.depth > case_.loading.max_depth)
+      throw std::runtime_error(
+        "force control: the indenter reached the depth " + std::to_string(loop.depth) +
+        " um at the force " + std::to_string(record.force) +
+        " mN, beyond loading.max_depth = " + std::to_string(case_.loading.max_depth) +
+        " um, the depth the mesh is designed for; lower loading.max_force or raise "
+        "loading.max_depth with specimen.refined_region");
+    record.cutbacks = cutbacks;
+    complete_step(session, segment, record, depth_before, force_before);
+  }
+
+  // Records a converged step, writes its outputs, accepts it and moves the programme on.
+  void IndentationProblem::complete_step(RunSession &session, const Segment &segment,
+                                         StepRecord &record, const double depth_before,
+                                         const double force_before)
+  {
+    LoopState                         &loop = session.loop;
+    const nonlinear::LoadingProgramme &programme = session.programme;
+    ++loop.step;
+    ++loop.control.segment_steps;
+    record.step = loop.step;
+    record.cycle = segment.cycle;
+    record.segment = to_string(segment.kind);
+    record.wall_time = session.wall_time();
+    loop.total_newton += record.newton_iterations;
+    records_.push_back(record);
+    loop.max_force = std::max(loop.max_force, record.force);
+
+    const bool reached =
+      segment.kind == SegmentKind::hold ?
+        loop.control.segment_steps >= segment.steps :
+        std::abs(loop.value - segment.target) <= 1e-12 * programme.maximum;
+    // Depth-controlled unloading ends when contact is lost or the force has fallen below 0.1 %
+    // of its maximum (the last node leaving the indenter makes the active set toggle; nothing
+    // measurable happens below that force).
+    const bool lost = segment.kind == SegmentKind::unload && !programme.force_control &&
+                      (record.n_active_nodes == 0 || loop.depth <= 0 ||
+                       record.force <= 1e-3 * loop.max_force);
+    const bool segment_done = reached || lost;
+    const bool at_max = segment_done && segment.kind == SegmentKind::load;
+    const bool finished = segment_done && loop.segment + 1 == programme.segments.size();
+    statistics_.steps = loop.step;
+    statistics_.cutbacks += record.cutbacks;
+    {
+      const output::RunStatistics::Scope timer(statistics_.output);
+      const bool                         writing = !output_directory_.empty();
+      if (writing && (at_max || finished ||
+                      (case_.output.vtu_every > 0 && loop.step % case_.output.vtu_every == 0)))
+        write_vtu(loop.vtu_index++);
+      if (writing && at_max)
+        {
+          std::erase_if(session.snapshots,
+                        [](const SurfaceSnapshot &s) { return s.stage == "max_depth"; });
+          session.snapshots.push_back({"max_depth", loop.depth, gather_top_surface()});
+        }
+      if (writing && finished && segment.kind == SegmentKind::unload)
+        session.snapshots.push_back({"unloaded", loop.depth, gather_top_surface()});
+      if (at_max)
+        {
+          loop.contact_radius_at_max = record.contact_radius;
+          loop.value_at_max = programme.force_control ? loop.depth : record.force;
+        }
+    }
+    accept_increment();
+
+    // Progress: one line per step, with an ETA from the mean step time of this run.
+    const double eta = record.wall_time / loop.step *
+                       std::max(0.0, double(programme.expected_steps) - double(loop.step));
+    pcout_ << output::ProgressLine{record, case_.loading.cycles > 1,
+                                   programme.force_control ? &loop.value : nullptr,
+                                   contact_->friction_coefficient() > 0, eta}
+           << std::endl;
+    session.recorder.csv_row(record);
+    session.recorder.log_row(record);
+
+    if (segment_done)
+      {
+        ++loop.segment;
+        loop.in_segment = false;
+        return;
+      }
+    loop.control.after_step(record.cutbacks == 0 && record.newton_iterations <= 6,
+                            programme.paced(segment), depth_before, loop.depth, force_before,
+                            record.force, loop.max_force / case_.loading.unload_points);
+  }
+
+  // Checkpoint and stop, decided together by all ranks (each rank's signal flag and clock may
+  // differ). Nothing is saved after the last step: the run is complete. Returns whether the run
+  // stops here.
+  bool IndentationProblem::checkpoint_or_stop(RunSession &session)
+  {
+    const LoopState &loop = session.loop;
+    if (output_directory_.empty() || loop.segment == session.programme.segments.size())
+      return false;
+    const double interval = case_.output.checkpoint_interval_s;
+    const bool   stop_local = output::checkpoint::StopRequest::requested() ||
+                            (session.stop_after && loop.step >= *session.stop_after);
+    const bool due_local =
+      interval > 0 && wall_timer_.wall_time() - session.last_checkpoint >= interval;
+    const unsigned int stop = Utilities::MPI::max(stop_local ? 1u : 0u, communicator_);
+    const unsigned int due = Utilities::MPI::max(due_local ? 1u : 0u, communicator_);
+    if (stop || due)
+      {
+        session.loop.wall_time = session.wall_time();
+        const output::RunStatistics::Scope timer(statistics_.output);
+        write_checkpoint(session.loop, session.snapshots);
+        session.last_checkpoint = wall_timer_.wall_time();
+      }
+    if (!stop)
+      return false;
+    const std::string case_name =
+      case_.source_file.empty() ? std::string("CASE.yaml") : case_.source_file;
+    pcout_ << "stopped at step " << loop.step << " (depth " << std::setprecision(6) << loop.depth
+           << " um); resume with: indentsim run " << case_name << " --resume" << std::endl;
+    session.recorder.log_note("stopped at step " + std::to_string(loop.step) +
+                              "; checkpoint in " + checkpoint_directory());
+    return true;
+  }
+
+  // The end of a finished run: pile-up analysis, statistics, run_summary.json; the checkpoint
+  // is removed.
+  void IndentationProblem::finish_run(RunSession &session)
+  {
+    const LoopState &loop = session.loop;
+    const bool       root = Utilities::MPI::this_mpi_process(communicator_) == 0;
+    pcout_ << "Finished: " << loop.step << " steps, " << loop.total_newton
+           << " Newton iterations, wall time " << output::format_duration(session.wall_time())
+           << '\n';
+    {
+      std::ostringstream note;
+      note << std::setprecision(4) << "finished: " << loop.step << " steps, " << loop.total_newton
+           << " Newton iterations, " << session.wall_time() << " s";
+      session.recorder.log_note(note.str());
+    }
+    if (root && !output_directory_.empty())
+      {
+        const output::RunStatistics::Scope timer(statistics_.output);
+        write_pileup(session.snapshots, loop.contact_radius_at_max);
+      }
+    statistics_.total = statistics_.setup + session.wall_time();
+    const output::RunStatistics &s = statistics_;
+    pcout_ << "Time [s]: setup " << s.setup << ", assembly " << s.assembly << ", contact "
+           << s.contact << ", linear solve " << s.linear_solve << " (" << s.linear_solves
+           << " solves, " << s.linear_iterations << " iterations, " << s.preconditioner_setups
+           << " preconditioner setups in " << s.preconditioner_setup << "), output " << s.output
+           << ", total " << s.total << "; peak memory " << output::peak_memory_mib()
+           << " MiB (rank 0)" << std::endl;
+    if (output_directory_.empty())
+      return;
+    output::RunDescription description;
+    description.test = "indentation";
+    description.material_model = case_.material.model;
+    description.linear_solver = linear_solver_.description();
+    description.cells = n_cells();
+    description.dofs = n_dofs();
+    description.mpi_ranks = Utilities::MPI::n_mpi_processes(communicator_);
+    description.threads = MultithreadInfo::n_threads();
+    description.final_value = loop.value_at_max;
+    description.final_value_name =
+      session.programme.force_control ? "depth_at_max_force_um" : "force_at_max_depth_mN";
+    output::write_run_summary(output_directory_ + "/" + io::output_files::run_summary,
+                              description, statistics_, communicator_);
+    // A finished run needs no checkpoint (an earlier one, if any, is removed).
+    MPI_Barrier(communicator_);
+    if (root)
+      {
+        std::error_code error;
+        std::filesystem::remove_all(checkpoint_directory(), error);
+      }
+  }
+} // namespace indentsim::problems

@@ -1,0 +1,543 @@
+#include "problems/TensileProblem.h"
+
+#include "io/CaseFile.h"
+#include "io/Version.h"
+#include "materials/MaterialFactory.h"
+#include "materials/Orientation.h"
+
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/function.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/mapping_q_eulerian.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/petsc_solver.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace indentsim::problems
+{
+  using namespace dealii;
+  using fem::CellContribution;
+  using fem::CellWorkspace;
+  using fem::GhostedVector;
+  using fem::to_thread_readable;
+  using fem::run_on_owned_cells;
+  using fem::element_residual_and_tangent;
+  using linalg::LinearSolver;
+  using nonlinear::IncrementStatus;
+  using output::RunStatistics;
+  using output::RunDescription;
+  using output::write_run_summary;
+
+  namespace
+  {
+    // Boundary ids of GridGenerator::subdivided_hyper_cube with colorize = true.
+    namespace face
+    {
+      constexpr types::boundary_id x_min = 0, y_min = 2, z_min = 4, z_max = 5;
+    }
+
+    std::string format_duration(const double seconds)
+    {
+      std::ostringstream s;
+      const long total = std::lround(seconds);
+      s << total / 60 << "m" << std::setw(2) << std::setfill('0') << total % 60 << "s";
+      return s.str();
+    }
+
+    void write_csv_header(std::ostream &out)
+    {
+      out << "step,log_strain,true_stress_GPa,engineering_strain,force_mN,newton_iterations,"
+             "cutbacks,wall_time_s\n";
+    }
+
+    void write_csv_row(std::ostream &out, const TensileRecord &r)
+    {
+      out << r.step << ',' << std::setprecision(12) << r.log_strain << ',' << r.true_stress
+          << ',' << r.engineering_strain << ',' << r.force << ',' << r.newton_iterations << ','
+          << r.cutbacks << ',' << std::setprecision(4) << r.wall_time << '\n'
+          << std::flush;
+    }
+  } // namespace
+
+  TensileProblem::TensileProblem(const io::Case &the_case,
+                                 const MPI_Comm  communicator,
+                                 const bool      verbose)
+    : case_(the_case)
+    , communicator_(communicator)
+    , pcout_(std::cout, verbose && Utilities::MPI::this_mpi_process(communicator) == 0)
+    , triangulation_(communicator)
+    , fe_(FE_Q<3>(1), 3)
+    , dof_handler_(triangulation_)
+    , material_(materials::create_material(the_case.material))
+    , use_f_bar_(the_case.specimen.f_bar)
+    , linear_solver_(communicator)
+    , n_per_side_(the_case.specimen.elements_per_side)
+    , edge_length_(the_case.specimen.elements_per_side) // elements of 1 um
+  {}
+
+  TensileProblem::~TensileProblem()
+  {
+    dof_handler_.clear();
+  }
+
+  unsigned int TensileProblem::n_cells() const
+  {
+    return triangulation_.n_global_active_cells();
+  }
+
+  unsigned int TensileProblem::n_dofs() const
+  {
+    return dof_handler_.n_dofs();
+  }
+
+  unsigned int TensileProblem::lexicographic_index(const Point<3> &cell_centre) const
+  {
+    const double element_size = edge_length_ / n_per_side_;
+    unsigned int index[3];
+    for (unsigned int d = 0; d < 3; ++d)
+      index[d] = std::min(n_per_side_ - 1,
+                          static_cast<unsigned int>(std::floor(cell_centre[d] / element_size)));
+    return index[0] + n_per_side_ * (index[1] + n_per_side_ * index[2]);
+  }
+
+  void TensileProblem::setup()
+  {
+    const RunStatistics::Scope timer(statistics_.setup);
+    GridGenerator::subdivided_hyper_cube(triangulation_, n_per_side_, 0., edge_length_, true);
+    dof_handler_.distribute_dofs(fe_);
+    locally_owned_ = dof_handler_.locally_owned_dofs();
+    locally_relevant_ = DoFTools::extract_locally_relevant_dofs(dof_handler_);
+
+    make_dirichlet_constraints(0., constraints_homogeneous_);
+
+    DynamicSparsityPattern dsp(locally_relevant_);
+    DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_homogeneous_, false);
+    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_, communicator_,
+                                               locally_relevant_);
+    matrix_.reinit(locally_owned_, locally_owned_, dsp, communicator_);
+    linear_solver_.setup(dof_handler_,
+                         LinearSolver::choose_kind(case_.solver.linear_solver, dof_handler_.n_dofs()),
+                         material_->symmetric_tangent());
+    solution_.reinit(locally_owned_, locally_relevant_, communicator_);
+    solution_converged_.reinit(locally_owned_, locally_relevant_, communicator_);
+    rhs_.reinit(locally_owned_, communicator_);
+    u_top_converged_ = 0;
+
+    // Orientations: one for the whole cube, or one random orientation per element numbered by
+    // the element's position, so that every MPI partition sees the same polycrystal.
+    const auto        &specimen = case_.specimen;
+    const bool         per_element = (specimen.grains == "per_element");
+    const unsigned int n_cells_total = n_per_side_ * n_per_side_ * n_per_side_;
+    const std::vector<Tensor<2, 3>> orientations =
+      per_element ?
+        materials::random_orientations(n_cells_total, specimen.seed) :
+        std::vector<Tensor<2, 3>>{materials::create_orientation(case_.material.orientation)};
+
+    n_state_ = material_->n_state_variables();
+    state_old_.assign(std::size_t(triangulation_.n_active_cells()) * n_q_points_ * n_state_, 0.);
+    grain_of_cell_.assign(triangulation_.n_active_cells(), 0);
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const unsigned int grain = lexicographic_index(cell->center());
+          grain_of_cell_[cell->active_cell_index()] = grain;
+          const Tensor<2, 3> &g = orientations[per_element ? grain : 0];
+          const auto          states = cell_state(state_old_, cell);
+          for (unsigned int q = 0; q < n_q_points_; ++q)
+            material_->oriented_initial_state(states.subspan(q * n_state_, n_state_), g);
+        }
+    state_new_ = state_old_;
+
+    pcout_ << "Tensile cube (" << case_.material.model << "): " << n_per_side_ << "^3 = "
+           << n_cells() << " elements of 1 um, edge " << edge_length_ << " um, " << n_dofs()
+           << " DOFs, grains " << specimen.grains
+           << (per_element ? " (seed " + std::to_string(specimen.seed) + ")" : std::string())
+           << ", F-bar " << (use_f_bar_ ? "on" : "off") << ", "
+           << Utilities::MPI::n_mpi_processes(communicator_) << " MPI rank(s)" << std::endl;
+  }
+
+  void TensileProblem::make_dirichlet_constraints(const double               top_increment,
+                                                AffineConstraints<double> &constraints) const
+  {
+    constraints.clear();
+    constraints.reinit(locally_relevant_);
+    const Functions::ZeroFunction<3>     zero(3);
+    const Functions::ConstantFunction<3> top(std::vector<double>{0., 0., top_increment});
+    const auto component = [this](const unsigned int c) {
+      return fe_.component_mask(FEValuesExtractors::Scalar(c));
+    };
+    VectorTools::interpolate_boundary_values(dof_handler_, face::x_min, zero, constraints,
+                                             component(0));
+    VectorTools::interpolate_boundary_values(dof_handler_, face::y_min, zero, constraints,
+                                             component(1));
+    VectorTools::interpolate_boundary_values(dof_handler_, face::z_min, zero, constraints,
+                                             component(2));
+    VectorTools::interpolate_boundary_values(dof_handler_, face::z_max, top, constraints,
+                                             component(2));
+    constraints.close();
+  }
+
+  std::span<double>
+  TensileProblem::cell_state(std::vector<double>                       &states,
+                             const DoFHandler<3>::active_cell_iterator &cell) const
+  {
+    const std::size_t length = std::size_t(n_q_points_) * n_state_;
+    return std::span<double>(states).subspan(cell->active_cell_index() * length, length);
+  }
+
+
+  TensileProblem::AssemblyResult
+  TensileProblem::assemble(const AffineConstraints<double> &constraints)
+  {
+    AssemblyResult result;
+    double         local_force = 0, local_volume = 0;
+    ++statistics_.assemblies;
+    const RunStatistics::Scope timer(statistics_.assembly);
+
+    matrix_ = 0;
+    rhs_ = 0;
+    const GhostedVector u =
+      to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
+    const auto worker = [&](const DoFHandler<3>::active_cell_iterator &cell,
+                            CellWorkspace                             &workspace,
+                            CellContribution                          &contribution) {
+      workspace.reinit(cell, u);
+      Vector<double> &r_local = contribution.vector;
+      contribution.status = element_residual_and_tangent(*material_,
+                                                         use_f_bar_,
+                                                         workspace.u_local,
+                                                         cell_state(state_old_, cell),
+                                                         cell_state(state_new_, cell),
+                                                         workspace.scratch,
+                                                         r_local,
+                                                         &contribution.matrix);
+      if (contribution.status != materials::UpdateStatus::success)
+        return;
+      // The top face is held in z, so the internal force at its z dofs is the reaction.
+      contribution.sums = {{0., 0.}};
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == face::z_max)
+          for (unsigned int a = 0; a < fe_.n_dofs_per_cell(); ++a)
+            if (fe_.system_to_component_index(a).first == 2 && fe_.has_support_on_face(a, f))
+              contribution.sums[0] += r_local[a];
+      // Current volume: integral of det F over the reference cell (exact for Q1 with 2x2x2
+      // Gauss points, det F being of degree 2 in each coordinate).
+      for (unsigned int q = 0; q < n_q_points_; ++q)
+        {
+          const Tensor<2, 3> F = deformation_gradient(workspace.scratch, q, workspace.u_local);
+          contribution.sums[1] += determinant(F) * workspace.scratch.JxW[q];
+        }
+      r_local *= -1.0; // Newton: K du = -R
+      cell->get_dof_indices(contribution.dof_indices);
+    };
+    const auto copier = [&](const CellContribution &contribution) {
+      if (contribution.status != materials::UpdateStatus::success)
+        {
+          result.status = contribution.status;
+          return; // every rank must still reach the collective calls below
+        }
+      constraints.distribute_local_to_global(
+        contribution.matrix, contribution.vector, contribution.dof_indices, matrix_, rhs_);
+      local_force += contribution.sums[0];
+      local_volume += contribution.sums[1];
+    };
+    {
+      const RunStatistics::Scope cell_loop_timer(statistics_.cell_loop);
+      run_on_owned_cells(dof_handler_, n_q_points_, worker, copier);
+    }
+    matrix_.compress(VectorOperation::add);
+    rhs_.compress(VectorOperation::add);
+
+    result.top_force = Utilities::MPI::sum(local_force, communicator_);
+    result.volume = Utilities::MPI::sum(local_volume, communicator_);
+    const unsigned int failed = Utilities::MPI::max(
+      static_cast<unsigned int>(result.status != materials::UpdateStatus::success), communicator_);
+    if (failed && result.status == materials::UpdateStatus::success)
+      result.status = materials::UpdateStatus::local_newton_failed; // failed on another rank
+    return result;
+  }
+
+  double TensileProblem::free_residual_norm(const AffineConstraints<double> &constraints) const
+  {
+    double local = 0;
+    for (const auto dof : locally_owned_)
+      if (!constraints.is_constrained(dof))
+        local += rhs_(dof) * rhs_(dof);
+    return std::sqrt(Utilities::MPI::sum(local, communicator_));
+  }
+
+  IncrementStatus TensileProblem::solve_increment(const double    u_top,
+                                                                  unsigned int   &iterations,
+                                                                  AssemblyResult &result)
+  {
+    make_dirichlet_constraints(u_top - u_top_converged_, constraints_increment_);
+
+    const auto &tolerances = case_.solver;
+    double      reference = tolerances.absolute_tolerance;
+    PETScWrappers::MPI::Vector du(locally_owned_, communicator_);
+    PETScWrappers::MPI::Vector u_owned(locally_owned_, communicator_);
+    iterations = 0;
+    for (unsigned int it = 0; it <= tolerances.max_newton_iterations; ++it)
+      {
+        // Iteration 0 applies the increment (inhomogeneous), the others correct (homogeneous).
+        const AffineConstraints<double> &constraints =
+          it == 0 ? constraints_increment_ : constraints_homogeneous_;
+        const AssemblyResult assembly = assemble(constraints);
+        if (assembly.status != materials::UpdateStatus::success)
+          {
+            pcout_ << "      material point: " << materials::to_string(assembly.status)
+                   << std::endl;
+            return IncrementStatus::material_failure;
+          }
+        const double norm = free_residual_norm(constraints);
+        pcout_ << "      it " << std::setw(2) << it << "  |R| = " << std::scientific
+               << std::setprecision(3) << norm << " mN" << std::defaultfloat << std::endl;
+        // The scale of the relative test: the out-of-balance force that the prescribed
+        // increment creates at the free dofs in the first iteration.
+        if (it == 0)
+          reference = std::max(reference, norm);
+        if (!std::isfinite(norm) || !std::isfinite(assembly.top_force) || norm > 1e10 * reference)
+          return IncrementStatus::newton_diverged;
+        if (it > 0 && norm <= std::max(tolerances.residual_tolerance * reference,
+                                       tolerances.absolute_tolerance))
+          {
+            result = assembly;
+            return IncrementStatus::converged;
+          }
+        if (it == tolerances.max_newton_iterations)
+          break;
+
+        LinearSolver::Result linear;
+        {
+          const RunStatistics::Scope timer(statistics_.linear_solve);
+          linear = linear_solver_.solve(
+            matrix_, du, rhs_, std::clamp(0.1 * norm / reference, 1e-10, 1e-4));
+        }
+        statistics_.add_linear_solve(linear.iterations, linear.preconditioner_setups,
+                                     linear.setup_seconds);
+        ++statistics_.newton_iterations;
+        if (!linear.converged)
+          {
+            pcout_ << "      linear solver: " << linear.reason << std::endl;
+            return IncrementStatus::linear_solver_failure;
+          }
+        constraints.distribute(du);
+        u_owned = solution_;
+        u_owned += du;
+        solution_ = u_owned;
+        ++iterations;
+      }
+    return IncrementStatus::too_many_iterations;
+  }
+
+  void TensileProblem::accept_increment()
+  {
+    state_old_.swap(state_new_);
+    state_new_ = state_old_;
+    solution_converged_ = solution_;
+  }
+
+  void TensileProblem::reject_increment()
+  {
+    state_new_ = state_old_;
+    solution_ = solution_converged_;
+  }
+
+  void TensileProblem::run(const std::string &output_directory,
+                           const std::string &csv_file_name,
+                           const bool         write_paraview_file)
+  {
+    const bool    root = Utilities::MPI::this_mpi_process(communicator_) == 0;
+    const auto   &loading = case_.loading;
+    const std::string model = case_.material.model;
+    std::ofstream csv, log;
+    if (root && !output_directory.empty())
+      {
+        csv.open(output_directory + "/" + csv_file_name);
+        log.open(output_directory + "/" + io::output_files::log, std::ios::app);
+        if (!csv || !log)
+          throw std::runtime_error("cannot write " + csv_file_name + " or run.log in '" +
+                                   output_directory + "'");
+        write_csv_header(csv);
+        log << "# indentsim " << indentsim::version() << " tensile run log, model " << model
+            << ". Units: um, mN, GPa, s.\n"
+            << "# cube " << n_per_side_ << "^3 elements, edge " << edge_length_ << " um, DOFs "
+            << n_dofs() << ", MPI ranks " << Utilities::MPI::n_mpi_processes(communicator_)
+            << ", results in " << csv_file_name << '\n'
+            << "# step log_strain true_stress_GPa force_mN newton_iterations cutbacks "
+               "wall_time_s\n";
+      }
+    wall_timer_.restart();
+    records_.assign(1, TensileRecord{});
+    if (csv.is_open())
+      write_csv_row(csv, records_.front());
+
+    double       strain = 0; // converged logarithmic strain
+    unsigned int total_newton = 0;
+    for (unsigned int step = 1; step <= loading.steps; ++step)
+      {
+        const double  target = loading.max_strain * step / loading.steps;
+        TensileRecord record;
+        record.step = step;
+        // Sub-increments of the step; halved on failure, and kept halved for the rest of the
+        // step so that the record is always at the nominal strain.
+        double         increment = target - strain;
+        unsigned int   halvings = 0;
+        AssemblyResult converged;
+        while (strain < target)
+          {
+            const double next =
+              (strain + increment >= target * (1 - 1e-14)) ? target : strain + increment;
+            unsigned int          iterations = 0;
+            const IncrementStatus status =
+              solve_increment(edge_length_ * std::expm1(next), iterations, converged);
+            record.newton_iterations += iterations;
+            if (status == IncrementStatus::converged)
+              {
+                accept_increment();
+                u_top_converged_ = edge_length_ * std::expm1(next);
+                strain = next;
+                continue;
+              }
+            reject_increment();
+            ++record.cutbacks;
+            ++statistics_.cutbacks;
+            ++halvings;
+            pcout_ << "    [" << model << "] step " << step << " to log strain " << next << ": "
+                   << to_string(status) << "; cutting the increment back to " << increment / 2
+                   << std::endl;
+            if (log.is_open())
+              log << "# step " << step << ": " << to_string(status)
+                  << ", increment of log strain cut back to " << increment / 2 << '\n';
+            if (halvings > loading.max_cutbacks)
+              throw std::runtime_error(
+                "tensile increment to log strain " + std::to_string(next) + " failed after " +
+                std::to_string(loading.max_cutbacks) + " cut-backs (" + to_string(status) + ")");
+            increment /= 2;
+          }
+
+        // With traction-free lateral faces and frictionless rollers, div sigma = 0 gives the
+        // volume average  <sigma_zz> = (1/v) integral_boundary t_z z da = F_z H / v: only the
+        // top face (z = H everywhere, u_z uniform) carries t_z at z != 0. For a homogeneous
+        // deformation this is the Cauchy stress sigma_zz itself.
+        const double u_top = u_top_converged_;
+        const double height = edge_length_ + u_top;
+        record.engineering_strain = u_top / edge_length_;
+        record.log_strain = std::log1p(record.engineering_strain);
+        record.force = converged.top_force;
+        record.true_stress = converged.top_force * height / converged.volume;
+        record.wall_time = wall_timer_.wall_time();
+        total_newton += record.newton_iterations;
+        records_.push_back(record);
+        statistics_.steps = step;
+
+        const double eta = record.wall_time / step * (loading.steps - step);
+        pcout_ << "[" << model << "] step " << std::setw(3) << step << "/" << loading.steps
+               << "  log strain " << std::setprecision(6) << record.log_strain
+               << "  true stress " << record.true_stress << " GPa  force " << record.force
+               << " mN  Newton " << record.newton_iterations << "  cut " << record.cutbacks
+               << "  wall " << format_duration(record.wall_time) << "  ETA ~"
+               << format_duration(eta) << std::endl;
+        if (csv.is_open())
+          write_csv_row(csv, record);
+        if (log.is_open())
+          log << step << ' ' << std::setprecision(10) << record.log_strain << ' '
+              << record.true_stress << ' ' << record.force << ' ' << record.newton_iterations
+              << ' ' << record.cutbacks << ' ' << std::setprecision(4) << record.wall_time
+              << std::endl;
+      }
+    pcout_ << "[" << model << "] finished: " << loading.steps << " steps, " << total_newton
+           << " Newton iterations, wall time " << format_duration(wall_timer_.wall_time())
+           << std::endl;
+    if (log.is_open())
+      log << "# finished: " << loading.steps << " steps, " << total_newton
+          << " Newton iterations, " << wall_timer_.wall_time() << " s\n";
+    if (write_paraview_file && !output_directory.empty())
+      {
+        const RunStatistics::Scope timer(statistics_.output);
+        write_paraview(output_directory, loading.steps);
+      }
+    statistics_.total = statistics_.setup + wall_timer_.wall_time();
+    if (!output_directory.empty() && csv_file_name == io::output_files::stress_strain_csv)
+      {
+        RunDescription description;
+        description.test = "tensile";
+        description.material_model = model;
+        description.linear_solver = linear_solver_.description();
+        description.cells = n_cells();
+        description.dofs = n_dofs();
+        description.mpi_ranks = Utilities::MPI::n_mpi_processes(communicator_);
+        description.threads = MultithreadInfo::n_threads();
+        description.final_value = records_.back().true_stress;
+        description.final_value_name = "final_true_stress_GPa";
+        write_run_summary(output_directory + "/" + io::output_files::run_summary, description,
+                          statistics_, communicator_);
+      }
+  }
+
+  void TensileProblem::write_paraview(const std::string &output_directory, const unsigned int index)
+  {
+    const unsigned int n_cells_local = triangulation_.n_active_cells();
+    Vector<float> sigma_zz(n_cells_local), von_mises(n_cells_local), plastic_strain(n_cells_local),
+      grain(n_cells_local), rank(n_cells_local);
+    CellWorkspace             workspace(fe_, n_q_points_);
+    std::vector<Tensor<2, 3>> cauchy(n_q_points_);
+    std::vector<double>       state(std::size_t(n_q_points_) * n_state_);
+    const GhostedVector       u =
+      to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        // The converged state evaluated at the converged displacement: no further flow.
+        workspace.reinit(cell, u);
+        element_residual_and_tangent(*material_, use_f_bar_, workspace.u_local,
+                                     cell_state(state_old_, cell), state, workspace.scratch,
+                                     workspace.r_local, nullptr, &cauchy);
+        const unsigned int index_of_cell = cell->active_cell_index();
+        for (unsigned int q = 0; q < n_q_points_; ++q)
+          {
+            const Tensor<2, 3> s = cauchy[q] - trace(cauchy[q]) / 3. * unit_symmetric_tensor<3>();
+            sigma_zz[index_of_cell] += cauchy[q][2][2] / n_q_points_;
+            von_mises[index_of_cell] += std::sqrt(1.5 * scalar_product(s, s)) / n_q_points_;
+            plastic_strain[index_of_cell] +=
+              material_->equivalent_plastic_strain(
+                std::span<const double>(state).subspan(q * n_state_, n_state_)) /
+              n_q_points_;
+          }
+        grain[index_of_cell] = grain_of_cell_[index_of_cell];
+        rank[index_of_cell] = triangulation_.locally_owned_subdomain();
+      }
+
+    DataOut<3> data_out;
+    data_out.attach_dof_handler(dof_handler_);
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
+      3, DataComponentInterpretation::component_is_part_of_vector);
+    data_out.add_data_vector(u, std::vector<std::string>(3, "displacement_um"),
+                             DataOut<3>::type_dof_data, vector_field);
+    data_out.add_data_vector(sigma_zz, "cauchy_zz_GPa");
+    data_out.add_data_vector(von_mises, "von_mises_GPa");
+    data_out.add_data_vector(plastic_strain, "equivalent_plastic_strain");
+    data_out.add_data_vector(grain, "grain");
+    data_out.add_data_vector(rank, "mpi_rank");
+    // DataOut works on threads: it reads the thread-readable copy, not the PETSc vector.
+    const MappingQEulerian<3, GhostedVector> deformed(1, dof_handler_, u);
+    data_out.build_patches(deformed, 1);
+    data_out.write_vtu_with_pvtu_record(output_directory + "/", io::output_files::paraview_basename,
+                                        index, communicator_, 4, 8);
+  }
+} // namespace indentsim::problems

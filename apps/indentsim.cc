@@ -6,8 +6,8 @@
 #include "analysis/AnalyzeCommand.h"
 #include "io/CaseFile.h"
 #include "io/CommandLine.h"
-#include "solver/IndentationProblem.h"
-#include "solver/TensileProblem.h"
+#include "problems/IndentationProblem.h"
+#include "problems/TensileProblem.h"
 #include "study/StudyFile.h"
 #include "study/StudyRunner.h"
 
@@ -56,25 +56,34 @@ namespace
   bool run_indentation(const io::Case &the_case, const MPI_Comm communicator, const bool root,
                        const bool resume)
   {
-    solver::IndentationProblem problem(the_case, communicator);
+    problems::IndentationProblem problem(the_case, communicator);
     problem.setup();
     if (problem.run(the_case.output.directory, resume) ==
-        solver::IndentationProblem::RunOutcome::stopped)
+        problems::IndentationProblem::RunOutcome::stopped)
       return false;
     if (root)
       {
+        // The run's curve as Oliver-Pharr and the comparison read it, straight from memory.
         const std::string &directory = the_case.output.directory;
-        const bool         compared =
+        analysis::LoadCurve curve;
+        curve.source = directory + "/" + io::output_files::load_penetration_csv;
+        for (const problems::StepRecord &record : problem.records())
+          {
+            curve.depth.push_back(record.depth);
+            curve.force.push_back(record.force);
+            curve.contact_area.push_back(record.contact_area);
+          }
+        const bool compared =
           !the_case.output.experimental_curve.empty() &&
-          analysis::compare_with_experiment(directory, the_case.output.experimental_curve,
+          analysis::compare_with_experiment(curve, directory, the_case.output.experimental_curve,
                                             std::cout, std::cerr);
         plot_load_penetration(directory, compared ? directory + "/" +
                                                       io::output_files::experimental_curve_csv :
                                                     "");
         const bool oliver_pharr =
           the_case.loading.unload &&
-          analysis::analyze_run_directory(the_case.output.directory, std::cout, std::cerr);
-        std::cout << "Results in " << the_case.output.directory
+          analysis::analyze_run(curve, the_case, problem.indenter(), std::cout, std::cerr);
+        std::cout << "Results in " << directory
                   << ": load_penetration.csv (um, mN), load_penetration.png, specimen.pvd "
                      "(ParaView), pileup.json, pileup_*.csv/png (heights in um), "
                   << (oliver_pharr ? "oliver_pharr.json/png, " : "")
@@ -88,7 +97,7 @@ namespace
   {
     const std::string &directory = the_case.output.directory;
     {
-      solver::TensileProblem problem(the_case, communicator);
+      problems::TensileProblem problem(the_case, communicator);
       problem.setup();
       problem.run(directory, io::output_files::stress_strain_csv, true);
     }
@@ -98,7 +107,7 @@ namespace
         // poisson_ratio, yield_stress and hardening_modulus.
         io::Case j2_case = the_case;
         j2_case.material.model = "j2";
-        solver::TensileProblem problem(j2_case, communicator);
+        problems::TensileProblem problem(j2_case, communicator);
         problem.setup();
         problem.run(directory, io::output_files::stress_strain_j2_csv, false);
       }
@@ -193,7 +202,7 @@ int main(int argc, char **argv)
 {
   // Threads: determined from the cores and the ranks per node (refined by solver.threads).
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, dealii::numbers::invalid_unsigned_int);
-  indentsim::solver::LinearSolver::limit_library_threads();
+  indentsim::linalg::LinearSolver::limit_library_threads();
   const MPI_Comm communicator = MPI_COMM_WORLD;
   const bool     root = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
   try

@@ -38,15 +38,15 @@ namespace indentsim::analysis
     }
 
     // Analyses and writes; returns the result for the summary.
-    OliverPharrResult analyze_and_write(const LoadCurve                &curve,
-                                        const io::IndenterParameters   &indenter_parameters,
-                                        const OliverPharrSettings      &settings,
-                                        const std::string              &directory,
-                                        const std::string              &source)
+    OliverPharrResult analyze_and_write(const LoadCurve                 &curve,
+                                        const indenter::IndenterSurface &indenter,
+                                        const io::IndenterParameters    &indenter_parameters,
+                                        const OliverPharrSettings       &settings,
+                                        const std::string               &directory,
+                                        const std::string               &source)
     {
-      const auto indenter = indenter::create_indenter(indenter_parameters);
       const OliverPharrResult result =
-        analyze(curve, [&](const double h) { return indenter->projected_area(h); }, settings);
+        analyze(curve, [&](const double h) { return indenter.projected_area(h); }, settings);
       fs::create_directories(directory);
       const std::string json_path = directory + "/" + io::output_files::oliver_pharr_json;
       const std::string temporary = json_path + ".tmp";
@@ -157,27 +157,26 @@ namespace indentsim::analysis
       run_directory    ? target.string() :
                          (target.has_parent_path() ? target.parent_path().string() : ".");
     const OliverPharrResult result =
-      analyze_and_write(curve, indenter_parameters, settings, directory, csv_path);
+      analyze_and_write(curve, *indenter::create_indenter(indenter_parameters), indenter_parameters,
+                        settings, directory, csv_path);
     const std::string json_path = directory + "/" + io::output_files::oliver_pharr_json;
     print_summary(std::cout, result, json_path);
     return json_path;
   }
 
-  bool analyze_run_directory(const std::string &run_directory, std::ostream &summary,
-                             std::ostream &warnings)
+  bool analyze_run(const LoadCurve &curve, const io::Case &the_case,
+                   const indenter::IndenterSurface &indenter, std::ostream &summary,
+                   std::ostream &warnings)
   {
+    const std::string &run_directory = the_case.output.directory;
     try
       {
-        const io::Case the_case =
-          io::read_case_file(run_directory + "/" + io::output_files::resolved_case);
         OliverPharrSettings settings;
         settings.epsilon = default_epsilon(the_case.indenter.shape);
         if (the_case.material.model != "crystal")
           settings.sample_poisson_ratio = the_case.material.poisson_ratio;
-        const std::string csv_path = run_directory + "/" + io::output_files::load_penetration_csv;
-        const LoadCurve   curve = read_load_curve_csv(csv_path);
-        const OliverPharrResult result =
-          analyze_and_write(curve, the_case.indenter, settings, run_directory, csv_path);
+        const OliverPharrResult result = analyze_and_write(
+          curve, indenter, the_case.indenter, settings, run_directory, curve.source);
         print_summary(summary, result, run_directory + "/" + io::output_files::oliver_pharr_json);
         return true;
       }
@@ -189,13 +188,12 @@ namespace indentsim::analysis
       }
   }
 
-  bool compare_with_experiment(const std::string &run_directory, const std::string &measured_csv,
-                               std::ostream &summary, std::ostream &warnings)
+  bool compare_with_experiment(const LoadCurve &computed, const std::string &run_directory,
+                               const std::string &measured_csv, std::ostream &summary,
+                               std::ostream &warnings)
   {
     try
       {
-        const LoadCurve computed =
-          read_load_curve_csv(run_directory + "/" + io::output_files::load_penetration_csv);
         const LoadCurve      measured = read_load_curve_csv(measured_csv);
         const CurveDeviation deviation = compare_loading(computed, measured);
         const auto write = [&](const std::string &name, const std::string &text) {

@@ -3,6 +3,9 @@
 // oliver_pharr.png. Units: um, mN, GPa (1 GPa*um^2 = 1 mN).
 #pragma once
 
+#include "analysis/OliverPharr.h"
+#include "indenter/IndenterSurface.h"
+#include "io/Case.h"
 #include "io/CommandLine.h"
 
 #include <optional>
@@ -17,15 +20,18 @@ namespace indentsim::analysis
   std::string analyze_command(const io::AnalyzeOptions         &options,
                               const std::optional<std::string> &output_directory);
 
-  // The same for a finished indentation run in `run_directory` with the run's own settings;
-  // returns false (and says why on `warnings`) if the curve has no analysable unloading.
-  bool analyze_run_directory(const std::string &run_directory, std::ostream &summary,
-                             std::ostream &warnings);
+  // The same for the curve of a finished indentation run, in memory, with the run's own case and
+  // indenter; writes into the case's output directory. Returns false (and says why on
+  // `warnings`) if the curve has no analysable unloading.
+  bool analyze_run(const LoadCurve &curve, const io::Case &the_case,
+                   const indenter::IndenterSurface &indenter, std::ostream &summary,
+                   std::ostream &warnings);
 
-  // A finished run against a measured curve (output.experimental_curve): writes
+  // A finished run's curve against a measured curve (output.experimental_curve): writes
   // comparison_with_experiment.json and the measured curve in um and mN
   // (experimental_curve.csv, for the plot overlay) into `run_directory`; prints the deviation.
   // Returns false (and says why on `warnings`) if the comparison is impossible.
-  bool compare_with_experiment(const std::string &run_directory, const std::string &measured_csv,
-                               std::ostream &summary, std::ostream &warnings);
+  bool compare_with_experiment(const LoadCurve &computed, const std::string &run_directory,
+                               const std::string &measured_csv, std::ostream &summary,
+                               std::ostream &warnings);
 } // namespace indentsim::analysis

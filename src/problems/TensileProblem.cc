@@ -147,8 +147,8 @@ namespace indentsim::problems
         materials::random_orientations(n_cells_total, specimen.seed) :
         std::vector<Tensor<2, 3>>{materials::create_orientation(case_.material.orientation)};
 
-    n_state_ = material_->n_state_variables();
-    state_old_.assign(std::size_t(triangulation_.n_active_cells()) * n_q_points_ * n_state_, 0.);
+    history_.reinit(triangulation_.n_active_cells(), 8, material_->n_state_variables());
+    const unsigned int n_q_points = history_.n_q_points(), n_state = history_.n_state();
     grain_of_cell_.assign(triangulation_.n_active_cells(), 0);
     for (const auto &cell : dof_handler_.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -156,11 +156,11 @@ namespace indentsim::problems
           const unsigned int grain = lexicographic_index(cell->center());
           grain_of_cell_[cell->active_cell_index()] = grain;
           const Tensor<2, 3> &g = orientations[per_element ? grain : 0];
-          const auto          states = cell_state(state_old_, cell);
-          for (unsigned int q = 0; q < n_q_points_; ++q)
-            material_->oriented_initial_state(states.subspan(q * n_state_, n_state_), g);
+          const auto          states = history_.converged(cell);
+          for (unsigned int q = 0; q < n_q_points; ++q)
+            material_->oriented_initial_state(states.subspan(q * n_state, n_state), g);
         }
-    state_new_ = state_old_;
+    history_.converged_changed();
 
     pcout_ << "Tensile cube (" << case_.material.model << "): " << n_per_side_ << "^3 = "
            << n_cells() << " elements of 1 um, edge " << edge_length_ << " um, " << n_dofs()
@@ -191,15 +191,6 @@ namespace indentsim::problems
     constraints.close();
   }
 
-  std::span<double>
-  TensileProblem::cell_state(std::vector<double>                       &states,
-                             const DoFHandler<3>::active_cell_iterator &cell) const
-  {
-    const std::size_t length = std::size_t(n_q_points_) * n_state_;
-    return std::span<double>(states).subspan(cell->active_cell_index() * length, length);
-  }
-
-
   TensileProblem::AssemblyResult
   TensileProblem::assemble(const AffineConstraints<double> &constraints)
   {
@@ -220,8 +211,8 @@ namespace indentsim::problems
       contribution.status = element_residual_and_tangent(*material_,
                                                          use_f_bar_,
                                                          workspace.u_local,
-                                                         cell_state(state_old_, cell),
-                                                         cell_state(state_new_, cell),
+                                                         history_.converged(cell),
+                                                         history_.current(cell),
                                                          workspace.scratch,
                                                          r_local,
                                                          &contribution.matrix);
@@ -236,7 +227,7 @@ namespace indentsim::problems
               contribution.sums[0] += r_local[a];
       // Current volume: integral of det F over the reference cell (exact for Q1 with 2x2x2
       // Gauss points, det F being of degree 2 in each coordinate).
-      for (unsigned int q = 0; q < n_q_points_; ++q)
+      for (unsigned int q = 0; q < history_.n_q_points(); ++q)
         {
           const Tensor<2, 3> F = deformation_gradient(workspace.scratch, q, workspace.u_local);
           contribution.sums[1] += determinant(F) * workspace.scratch.JxW[q];
@@ -257,7 +248,7 @@ namespace indentsim::problems
     };
     {
       const RunStatistics::Scope cell_loop_timer(statistics_.cell_loop);
-      run_on_owned_cells(dof_handler_, n_q_points_, worker, copier);
+      run_on_owned_cells(dof_handler_, history_.n_q_points(), worker, copier);
     }
     matrix_.compress(VectorOperation::add);
     rhs_.compress(VectorOperation::add);
@@ -346,14 +337,13 @@ namespace indentsim::problems
 
   void TensileProblem::accept_increment()
   {
-    state_old_.swap(state_new_);
-    state_new_ = state_old_;
+    history_.accept();
     solution_converged_ = solution_;
   }
 
   void TensileProblem::reject_increment()
   {
-    state_new_ = state_old_;
+    history_.reject();
     solution_ = solution_converged_;
   }
 
@@ -494,9 +484,10 @@ namespace indentsim::problems
     const unsigned int n_cells_local = triangulation_.n_active_cells();
     Vector<float> sigma_zz(n_cells_local), von_mises(n_cells_local), plastic_strain(n_cells_local),
       grain(n_cells_local), rank(n_cells_local);
-    CellWorkspace             workspace(fe_, n_q_points_);
-    std::vector<Tensor<2, 3>> cauchy(n_q_points_);
-    std::vector<double>       state(std::size_t(n_q_points_) * n_state_);
+    const unsigned int        n_q_points = history_.n_q_points(), n_state = history_.n_state();
+    CellWorkspace             workspace(fe_, n_q_points);
+    std::vector<Tensor<2, 3>> cauchy(n_q_points);
+    std::vector<double>       state(history_.cell_length());
     const GhostedVector       u =
       to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
     for (const auto &cell : dof_handler_.active_cell_iterators())
@@ -506,18 +497,18 @@ namespace indentsim::problems
         // The converged state evaluated at the converged displacement: no further flow.
         workspace.reinit(cell, u);
         element_residual_and_tangent(*material_, use_f_bar_, workspace.u_local,
-                                     cell_state(state_old_, cell), state, workspace.scratch,
+                                     history_.converged(cell), state, workspace.scratch,
                                      workspace.r_local, nullptr, &cauchy);
         const unsigned int index_of_cell = cell->active_cell_index();
-        for (unsigned int q = 0; q < n_q_points_; ++q)
+        for (unsigned int q = 0; q < n_q_points; ++q)
           {
             const Tensor<2, 3> s = cauchy[q] - trace(cauchy[q]) / 3. * unit_symmetric_tensor<3>();
-            sigma_zz[index_of_cell] += cauchy[q][2][2] / n_q_points_;
-            von_mises[index_of_cell] += std::sqrt(1.5 * scalar_product(s, s)) / n_q_points_;
+            sigma_zz[index_of_cell] += cauchy[q][2][2] / n_q_points;
+            von_mises[index_of_cell] += std::sqrt(1.5 * scalar_product(s, s)) / n_q_points;
             plastic_strain[index_of_cell] +=
               material_->equivalent_plastic_strain(
-                std::span<const double>(state).subspan(q * n_state_, n_state_)) /
-              n_q_points_;
+                std::span<const double>(state).subspan(q * n_state, n_state)) /
+              n_q_points;
           }
         grain[index_of_cell] = grain_of_cell_[index_of_cell];
         rank[index_of_cell] = triangulation_.locally_owned_subdomain();

@@ -25,6 +25,7 @@
 #include "materials/MaterialModel.h"
 #include "fem/CellWorkspace.h"
 #include "fem/FiniteStrainElement.h"
+#include "fem/QuadraturePointHistory.h"
 #include "nonlinear/IncrementStatus.h"
 #include "linalg/LinearSolver.h"
 #include "output/RunStatistics.h"
@@ -111,8 +112,6 @@ namespace indentsim::problems
     void            reject_increment();
 
     void write_paraview(const std::string &output_directory, unsigned int index);
-    std::span<double> cell_state(std::vector<double>                               &states,
-                                 const dealii::DoFHandler<3>::active_cell_iterator &cell) const;
 
     const io::Case                                  case_;
     MPI_Comm                                        communicator_;
@@ -135,10 +134,9 @@ namespace indentsim::problems
     dealii::PETScWrappers::MPI::Vector       solution_converged_; // ghosted
     dealii::PETScWrappers::MPI::Vector       rhs_;                // owned
 
-    // Material states: [active_cell_index][q][variable], flattened; grain number per cell.
-    unsigned int              n_q_points_ = 8, n_state_ = 0;
-    std::vector<double>       state_old_, state_new_;
-    std::vector<unsigned int> grain_of_cell_;
+    // Material states of the quadrature points; grain number per cell.
+    fem::QuadraturePointHistory history_;
+    std::vector<unsigned int>   grain_of_cell_;
     double                    u_top_converged_ = 0; // [um]
 
     std::vector<TensileRecord> records_;

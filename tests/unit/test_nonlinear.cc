@@ -1,0 +1,186 @@
+// The mesh-free parts of the nonlinear solver: the loading programme, the cut-back stepper and
+// the scalar rules of the Newton iteration, each against hand-computed values.
+// Units: um, mN.
+#include "io/Case.h"
+#include "nonlinear/CutBackStepper.h"
+#include "nonlinear/LoadingProgramme.h"
+#include "nonlinear/NewtonSteps.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+using namespace indentsim;
+using namespace indentsim::nonlinear;
+
+// Two cycles of load, hold and unload appear in that order with their targets and step counts;
+// force control unloads to 1 % of the maximum force.
+TEST(LoadingProgramme, CyclesOfLoadHoldUnload)
+{
+  io::LoadingParameters loading;
+  loading.max_depth = 2.0;
+  loading.steps = 10;
+  loading.hold_steps = 3;
+  loading.cycles = 2;
+  loading.unload_steps = 5;
+  const LoadingProgramme depth(loading);
+  ASSERT_EQ(depth.segments.size(), 6u);
+  EXPECT_FALSE(depth.force_control);
+  EXPECT_EQ(depth.maximum, 2.0);
+  const SegmentKind kinds[3] = {SegmentKind::load, SegmentKind::hold, SegmentKind::unload};
+  const unsigned int steps[3] = {10, 3, 5};
+  const double       targets[3] = {2.0, 2.0, 0.0};
+  for (unsigned int i = 0; i < 6; ++i)
+    {
+      EXPECT_EQ(depth.segments[i].kind, kinds[i % 3]);
+      EXPECT_EQ(depth.segments[i].steps, steps[i % 3]);
+      EXPECT_EQ(depth.segments[i].target, targets[i % 3]);
+      EXPECT_EQ(depth.segments[i].cycle, i / 3 + 1);
+    }
+  EXPECT_TRUE(depth.paced(depth.segments[2]));
+  EXPECT_FALSE(depth.paced(depth.segments[0]));
+  // Paced unloading takes unload_points + 1 steps: 2 (10 + 3 + 21).
+  EXPECT_EQ(depth.expected_steps, 68u);
+  EXPECT_STREQ(to_string(SegmentKind::hold), "hold");
+
+  loading.control = "force";
+  loading.max_force = 500.0;
+  const LoadingProgramme force(loading);
+  EXPECT_TRUE(force.force_control);
+  EXPECT_EQ(force.maximum, 500.0);
+  EXPECT_EQ(force.segments[2].target, 5.0);
+  EXPECT_FALSE(force.paced(force.segments[2]));
+  EXPECT_EQ(force.expected_steps, 2u * (10 + 3 + 5));
+  EXPECT_STREQ(force.unit(), " mN");
+}
+
+namespace
+{
+  // A stepper run against a solver that fails for targets beyond `limit` (from the
+  // extrapolated start only, if `extrapolation_only`).
+  struct FakeSolver
+  {
+    double              limit;
+    bool                extrapolation_only = false;
+    std::vector<double> targets;
+    std::vector<bool>   extrapolated;
+    unsigned int        rejections = 0;
+
+    IncrementStatus operator()(const double target, const bool extrapolate)
+    {
+      targets.push_back(target);
+      extrapolated.push_back(extrapolate);
+      const bool fails = target > limit && (extrapolate || !extrapolation_only);
+      return fails ? IncrementStatus::newton_diverged : IncrementStatus::converged;
+    }
+  };
+
+  io::LoadingParameters loading_to(const double max_depth, const unsigned int steps)
+  {
+    io::LoadingParameters loading;
+    loading.max_depth = max_depth;
+    loading.steps = steps;
+    loading.unload = false;
+    return loading;
+  }
+} // namespace
+
+// A failed extrapolated increment is retried from the converged state before any cut-back.
+TEST(CutBackStepper, RetriesFromTheConvergedStateFirst)
+{
+  const LoadingProgramme programme(loading_to(1.0, 4));
+  IncrementControl       control;
+  control.start_segment(0.25, false);
+  FakeSolver              solver{0.6, true};
+  std::vector<RetryEvent> events;
+  unsigned int            cutbacks = 7;
+  const double            reached = solve_with_cutbacks(
+    programme, programme.segments[0], control, 0.5, 2, 8,
+    [&](double t, bool e) { return solver(t, e); }, [&]() { ++solver.rejections; },
+    [&](const RetryEvent &event) { events.push_back(event); }, cutbacks);
+  EXPECT_EQ(reached, 0.75);
+  EXPECT_EQ(cutbacks, 0u);
+  EXPECT_EQ(solver.rejections, 1u);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_TRUE(events[0].from_extrapolation);
+  EXPECT_EQ(events[0].step, 3u);
+  EXPECT_EQ(solver.extrapolated, (std::vector<bool>{true, false}));
+}
+
+// Failures halve the increment until it converges; too many halvings throw, naming the target.
+TEST(CutBackStepper, HalvesTheIncrementAndGivesUp)
+{
+  const LoadingProgramme programme(loading_to(1.0, 4));
+  IncrementControl       control;
+  control.start_segment(0.25, false);
+  FakeSolver   solver{0.3};
+  unsigned int cutbacks = 0;
+  // From 0.25: 0.5 fails (twice: extrapolated, then converged start), 0.375 fails, 0.3125 fails,
+  // 0.28125 converges.
+  const double reached = solve_with_cutbacks(
+    programme, programme.segments[0], control, 0.25, 1, 8,
+    [&](double t, bool e) { return solver(t, e); }, []() {}, [](const RetryEvent &) {}, cutbacks);
+  EXPECT_EQ(reached, 0.28125);
+  EXPECT_EQ(cutbacks, 3u);
+  EXPECT_EQ(control.increment, 0.03125);
+  EXPECT_EQ(solver.targets, (std::vector<double>{0.5, 0.5, 0.375, 0.3125, 0.28125}));
+
+  control.start_segment(0.25, false);
+  FakeSolver never{-1.0};
+  EXPECT_THROW(solve_with_cutbacks(
+                 programme, programme.segments[0], control, 0.25, 0, 2,
+                 [&](double t, bool e) { return never(t, e); }, []() {},
+                 [](const RetryEvent &) {}, cutbacks),
+               std::runtime_error);
+  EXPECT_EQ(cutbacks, 3u);
+}
+
+// The increment doubles after three easy steps in a row; paced unloading takes its depth
+// increment from the secant stiffness of the last step.
+TEST(CutBackStepper, GrowsAfterEasyStepsAndPacesUnloading)
+{
+  IncrementControl control;
+  control.start_segment(0.4, true);
+  EXPECT_EQ(control.step_size(), 0.1);
+  control.increment = 0.05;
+  control.after_step(true, false, 0, 0, 0, 0, 0);
+  control.after_step(true, false, 0, 0, 0, 0, 0);
+  EXPECT_EQ(control.increment, 0.05);
+  control.after_step(true, false, 0, 0, 0, 0, 0);
+  EXPECT_EQ(control.increment, 0.1);
+  EXPECT_EQ(control.easy_steps, 0u);
+  control.after_step(false, true, 6.0, 5.9, 800.0, 600.0, 40.0);
+  EXPECT_EQ(control.easy_steps, 0u);
+  EXPECT_NEAR(control.paced_increment, 40.0 * 0.1 / 200.0, 1e-15);
+}
+
+// The line search minimises the quadratic model of |R|^2 within its bounds; a failed
+// evaluation counts as a huge residual.
+TEST(NewtonSteps, LineSearchStepFollowsTheQuadraticModel)
+{
+  EXPECT_DOUBLE_EQ(line_search_step(1.0, 1.0, 2.0, 1. / 16), 0.2);
+  EXPECT_DOUBLE_EQ(line_search_step(1.0, 1.0, 1.0, 1. / 16), 0.5);
+  EXPECT_DOUBLE_EQ(line_search_step(1.0, 1.0, std::numeric_limits<double>::infinity(), 1. / 16),
+                   1. / 16);
+}
+
+// The linear tolerance follows the residual within [1e-10, 1e-3], above the oversolving floor.
+TEST(NewtonSteps, InexactNewtonToleranceAndResidualPrediction)
+{
+  EXPECT_DOUBLE_EQ(linear_tolerance(1.0, 100.0, 0.0), 1e-3);
+  EXPECT_DOUBLE_EQ(linear_tolerance(1e-4, 100.0, 0.0), 1e-7);
+  EXPECT_DOUBLE_EQ(linear_tolerance(1e-4, 100.0, 1e-5), 1e-5);
+  EXPECT_DOUBLE_EQ(linear_tolerance(1e-20, 100.0, 0.0), 1e-10);
+
+  EXPECT_DOUBLE_EQ(predicted_residual(1e-2, 1e-1, 0.5), 1e-4);
+  EXPECT_DOUBLE_EQ(predicted_residual(1e-2, 0.0, 0.5), 5e-3);
+  EXPECT_TRUE(std::isinf(predicted_residual(1e-2, 0.0, 0.0)));
+
+  ResidualReductions reductions;
+  reductions.at(9, 12) = 0.25;
+  EXPECT_EQ(reductions.at(5, 5), 0.25);
+  EXPECT_EQ(reductions.at(0, 0), 0.0);
+}

@@ -117,7 +117,7 @@ namespace indentsim::contact
     // A slipping node whose trial traction turns against its last traction has passed through
     // the stick zone between the two directions: it sticks. Without this rule the semi-smooth
     // Newton iteration jumps from one side of the cone to the other when the penalty is stiffer
-    // than the specimen under the node (measured: the spring-block test cycled forever).
+    // than the specimen under the node (the spring-block test then cycles forever).
     const bool reversed = node.status == ContactStatus::slip && trial * node.traction < 0;
     const bool stick = fixed_status ? *fixed_status == ContactStatus::stick :
                                       (trial_norm <= limit || reversed);

@@ -128,8 +128,7 @@ namespace indentsim::contact
     // instead of releasing it. A node outside that set joins it where the predicted state
     // penetrates by more than the predictor activation depth: the ring of nodes the indenter
     // reaches in this increment then enters with the first Newton iteration, instead of
-    // penetrating freely in it and being pushed back in the next (j2_48: 343 -> 321 Newton
-    // iterations). With `frozen`, the statuses of the previous evaluation are kept (pressures
+    // penetrating freely in it and being pushed back in the next. With `frozen`, the statuses of the previous evaluation are kept (pressures
     // unclipped): the Newton driver freezes them when the semi-smooth iteration cycles.
     // Returns false if a closest-point projection failed on this rank.
     enum class ActiveSet

@@ -171,18 +171,16 @@ namespace indentsim::linalg
         rigid_body_modes_[i] /= rigid_body_modes_[i].l2_norm();
       }
 
-    // ML (Trilinos' smoothed aggregation, through PETSc) with the rigid-body modes. Measured
-    // on systems of the paper's J2 case at 24 x 24 (full model, 23k DOFs, bench_linear_solver):
-    // setup 0.15 s and 10-16 iterations in 0.05-0.07 s, against PETSc's GAMG with 1.4-1.9 s
-    // setup and 0.11-0.18 s per solve. GAMG stays available: -indentsim_pc_type gamg.
+    // ML (Trilinos' smoothed aggregation, through PETSc) with the rigid-body modes: its setup
+    // is an order of magnitude cheaper than PETSc's GAMG on our systems (bench_linear_solver,
+    // docs/performance.md). GAMG stays available: -indentsim_pc_type gamg.
     set_default_option("-indentsim_pc_ml_nullspace", "user");
     set_default_option("-indentsim_pc_gamg_reuse_interpolation", "true");
     set_default_option("-indentsim_pc_gamg_threshold", "0.01");
     set_default_option("-indentsim_pc_gamg_square_graph", "1");
     set_default_option("-indentsim_mg_levels_ksp_type", "chebyshev");
-    // Point-block Jacobi (the 3 x 3 nodal blocks inverted) in the Chebyshev smoother: on
-    // systems of j2_48 (2 ranks, fresh preconditioner, relative tolerance 1e-3) 32 Krylov
-    // iterations where point Jacobi took 46.
+    // Point-block Jacobi (the 3 x 3 nodal blocks inverted) in the Chebyshev smoother: about a
+    // third fewer Krylov iterations than point Jacobi on the paper's systems.
     set_default_option("-indentsim_mg_levels_pc_type", "pbjacobi");
     set_default_option("-indentsim_mg_levels_ksp_max_it", "2");
   }
@@ -190,8 +188,7 @@ namespace indentsim::linalg
   // The Krylov solvers test convergence on the true residual ||b - A x||, so that the
   // inexact-Newton forcing term means what it says. Left-preconditioned GMRES would test the
   // AMG-preconditioned residual, which a stale reused preconditioner can make small while the
-  // true residual is not: the Newton direction then fails to descend (seen on the J2 Berkovich
-  // 24x24 full case at 3.47 um before this change). Right preconditioning keeps the same
+  // true residual is not: the Newton direction then fails to descend. Right preconditioning keeps the same
   // Krylov space and minimizes the true residual.
   void LinearSolver::use_gmres()
   {

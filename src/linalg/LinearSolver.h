@@ -8,11 +8,11 @@
 //    aggregation algebraic multigrid (through PETSc's PCML) with the six rigid-body modes of
 //    the nodes as near-null space (the modes an aggregation-AMG needs for elasticity;
 //    translations alone converge slowly). PETSc's GAMG remains selectable with
-//    PETSC_OPTIONS="-indentsim_pc_type gamg"; ML set up 10 times faster and solved 2-3 times
-//    faster on the paper's systems (bench/bench_linear_solver). The levels are smoothed by two
+//    PETSC_OPTIONS="-indentsim_pc_type gamg"; ML sets up and solves faster on the paper's
+//    systems (bench/bench_linear_solver). The levels are smoothed by two
 //    Chebyshev steps on point-block Jacobi: the matrix is told its 3 x 3 nodal blocks
-//    (MatSetBlockSize), whose inverses the smoother applies (30 % fewer Krylov iterations
-//    than point Jacobi on the paper's 48 x 48 systems). The Krylov method and the smoothers
+//    (MatSetBlockSize), whose inverses the smoother applies (fewer Krylov iterations than
+//    point Jacobi). The Krylov method and the smoothers
 //    apply a copy of the matrix in PETSc's block format (BlockMatrixCopy.h), which multiplies
 //    faster; ML builds its hierarchy from the assembled AIJ matrix.
 //    The preconditioner is built for one Newton matrix and reused for the following ones as
@@ -64,8 +64,7 @@ namespace indentsim::linalg
 
     // Sets the OpenMP threads of MUMPS and the threads of OpenBLAS to one, unless the user set
     // OMP_NUM_THREADS or OPENBLAS_NUM_THREADS. Our threads are TBB's (assembly) and MPI ranks;
-    // idle OpenMP workers spin and took a quarter of the CPU time of the assembly (measured with
-    // perf on the paper's 12 x 12 case: 6.7 s instead of 10.4 s with it). Call once at start.
+    // idle OpenMP workers spin and steal CPU time from the assembly. Call once at start.
     static void limit_library_threads();
 
     LinearSolver(MPI_Comm communicator);

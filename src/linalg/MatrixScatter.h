@@ -2,18 +2,14 @@
 // arrays, instead of MatSetValues. Units of the matrix (mN/um for the indentation tangent).
 //
 // Why: the copier of the threaded cell loop (CellWorkspace.h) runs on one thread at a time,
-// and MatSetValues searches every one of a cell's 576 entries in its row. Measured with perf
-// on the paper's J2 case at 24 x 24 (full model, one process, two threads): MatSetValues took
-// as much CPU time as the element kernels (24 % against 23 %), and being serial it bounded the
-// assembly. With the positions found once per sparsity pattern, a cell costs 576 indexed
+// and MatSetValues searches every one of a cell's 576 entries in its row: as much CPU time as
+// the element kernels, and being serial it bounds the assembly. With the positions found once per sparsity pattern, a cell costs 576 indexed
 // additions.
 //
 // Entries in rows of other ranks (cells at the boundaries between ranks' cells) are added into
 // a send buffer instead, at slots found once per pattern, and end() sends each neighbouring rank
-// its slots' values in one message; the owner adds them at positions it found once. Before,
-// such cells went through AffineConstraints::distribute_local_to_global and PETSc's stash,
-// whose sorting in MatAssemblyBegin and searches in MatSetValues took 9 % of a 2-rank j2_24
-// run (perf). A cell whose owned entries are missing from the pattern would still take that
+// its slots' values in one message; the owner adds them at positions it found once, which
+// avoids the sorting of PETSc's stash in MatAssemblyBegin. A cell whose owned entries are missing from the pattern would still take that
 // slow path (none does with deal.II's sparsity patterns). Constraints are resolved as that function does: a constrained DoF's row and
 // column are distributed to its masters with their weights (hanging nodes) or dropped
 // (supports), and the constrained row gets |K_ii| on its diagonal (the mean |K_jj| of the cell

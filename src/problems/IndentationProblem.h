@@ -197,17 +197,17 @@ namespace indentsim::problems
       nonlinear::IncrementControl control;
       unsigned int                step = 0, total_newton = 0, vtu_index = 0;
       double max_force = 0, contact_radius_at_max = 0, value_at_max = 0;
-      double wall_time = 0; // of the run so far, earlier sessions included [s]
+      double wall_time = 0; // of the run so far, the parts before a resume included [s]
     };
     // The run through the loading programme, in steps (IndentationRun.cc).
-    struct RunSession;
-    void start_run(RunSession &session, bool resume);
-    void first_contact_step(RunSession &session, const nonlinear::Segment &segment);
-    void converged_step(RunSession &session, const nonlinear::Segment &segment);
-    void complete_step(RunSession &session, const nonlinear::Segment &segment, StepRecord &record,
+    struct RunContext;
+    void start_run(RunContext &context, bool resume);
+    void first_contact_step(RunContext &context, const nonlinear::Segment &segment);
+    void converged_step(RunContext &context, const nonlinear::Segment &segment);
+    void complete_step(RunContext &context, const nonlinear::Segment &segment, StepRecord &record,
                        double depth_before, double force_before);
-    bool checkpoint_or_stop(RunSession &session);
-    void finish_run(RunSession &session);
+    bool checkpoint_or_stop(RunContext &context);
+    void finish_run(RunContext &context);
 
     // Collective. Writes <output>/checkpoint/rank_<r>.bin (atomically per rank).
     void write_checkpoint(const LoopState &loop, const std::vector<SurfaceSnapshot> &snapshots);

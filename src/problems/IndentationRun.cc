@@ -26,9 +26,9 @@ namespace indentsim::problems
   using nonlinear::SegmentKind;
 
   // What run() carries from step to step besides the problem's own state.
-  struct IndentationProblem::RunSession
+  struct IndentationProblem::RunContext
   {
-    RunSession(const io::Case &the_case, const Timer &timer)
+    RunContext(const io::Case &the_case, const Timer &timer)
       : programme(the_case.loading)
       , timer(timer)
     {}
@@ -40,7 +40,7 @@ namespace indentsim::problems
     std::vector<SurfaceSnapshot> snapshots;
     output::RunRecorder          recorder;
     std::optional<unsigned int>  stop_after;
-    double                       last_checkpoint = 0; // [s] on this session's clock
+    double                       last_checkpoint = 0; // [s] on this process's clock
     const Timer                 &timer;
 
     // Of the run so far, earlier parts before a resume included [s].
@@ -54,87 +54,87 @@ namespace indentsim::problems
     output_directory_ = output_directory;
     if (resume && output_directory_.empty())
       throw io::CaseFileError("--resume needs the output directory of the stopped run");
-    RunSession session(case_, wall_timer_);
-    start_run(session, resume);
+    RunContext context(case_, wall_timer_);
+    start_run(context, resume);
     // Stop requests: signals, stop_after_step(), and INDENTSIM_STOP_AFTER_STEP.
     const output::checkpoint::StopRequest stop_request;
-    session.stop_after = stop_after_step_;
+    context.stop_after = stop_after_step_;
     if (const char *text = std::getenv("INDENTSIM_STOP_AFTER_STEP"); text != nullptr && *text)
-      session.stop_after = static_cast<unsigned int>(std::stoul(text));
-    session.last_checkpoint = wall_timer_.wall_time();
+      context.stop_after = static_cast<unsigned int>(std::stoul(text));
+    context.last_checkpoint = wall_timer_.wall_time();
 
-    LoopState &loop = session.loop;
-    while (loop.segment < session.programme.segments.size())
+    LoopState &loop = context.loop;
+    while (loop.segment < context.programme.segments.size())
       {
-        const Segment &segment = session.programme.segments[loop.segment];
+        const Segment &segment = context.programme.segments[loop.segment];
         if (!loop.in_segment)
           {
             loop.in_segment = true;
-            loop.control.start_segment(session.programme.maximum / segment.steps,
-                                       session.programme.paced(segment));
+            loop.control.start_segment(context.programme.maximum / segment.steps,
+                                       context.programme.paced(segment));
           }
         // Force control from a state that carries no load has no contact stiffness to steer
         // the depth: the first contact is made under depth control.
-        if (session.programme.force_control && segment.kind != SegmentKind::unload &&
+        if (context.programme.force_control && segment.kind != SegmentKind::unload &&
             loop.step == 0 && force_converged_ <= 0)
           {
-            first_contact_step(session, segment);
+            first_contact_step(context, segment);
             continue;
           }
-        converged_step(session, segment);
-        if (checkpoint_or_stop(session))
+        converged_step(context, segment);
+        if (checkpoint_or_stop(context))
           return RunOutcome::stopped;
       }
-    finish_run(session);
+    finish_run(context);
     return RunOutcome::finished;
   }
 
   // Opens the records; from a checkpoint, the state and the curve so far, else the initial
   // state (record and VTU).
-  void IndentationProblem::start_run(RunSession &session, const bool resume)
+  void IndentationProblem::start_run(RunContext &context, const bool resume)
   {
     // Collective (an MPI sum): every rank counts, rank 0 writes it.
     const unsigned int n_constrained = n_constrained_dofs();
     pileup_results_.clear();
     if (resume)
-      read_checkpoint(session.loop, session.snapshots);
+      read_checkpoint(context.loop, context.snapshots);
     if (Utilities::MPI::this_mpi_process(communicator_) == 0)
-      session.recorder.open(output_directory_,
+      context.recorder.open(output_directory_,
                             {n_cells(), n_dofs(), n_constrained,
                              Utilities::MPI::n_mpi_processes(communicator_)});
     wall_timer_.restart();
-    session.wall_offset = session.loop.wall_time;
+    context.wall_offset = context.loop.wall_time;
     if (resume)
       {
         // The curve so far, from the saved records: the files are consistent with the state
         // even if the stopped run went on beyond its last checkpoint.
         for (const StepRecord &r : records_)
           {
-            session.recorder.csv_row(r);
+            context.recorder.csv_row(r);
             if (r.step > 0)
-              session.recorder.log_row(r);
+              context.recorder.log_row(r);
           }
-        session.recorder.log_note("resumed at step " + std::to_string(session.loop.step));
-        pcout_ << "Resumed at step " << session.loop.step << " (depth " << std::setprecision(6)
-               << session.loop.depth << " um) from the checkpoint in " << checkpoint_directory()
+        context.recorder.log_note("resumed at step " + std::to_string(context.loop.step));
+        pcout_ << "Resumed at step " << context.loop.step << " (depth " << std::setprecision(6)
+               << context.loop.depth << " um) from the checkpoint in " << checkpoint_directory()
                << std::endl;
         return;
       }
     records_.push_back(StepRecord());
-    session.recorder.csv_row(records_.back());
+    context.recorder.csv_row(records_.back());
     if (!output_directory_.empty())
       {
         const output::RunStatistics::Scope timer(statistics_.output);
-        write_vtu(session.loop.vtu_index++);
+        write_vtu(context.loop.vtu_index++);
       }
   }
 
   // Force control's first step: the first touch under depth control, 0.1 % of a contact element
   // beyond the nearest node (a recorded step; its force lies below the first target in the
   // examples).
-  void IndentationProblem::first_contact_step(RunSession &session, const Segment &segment)
+  void IndentationProblem::first_contact_step(RunContext &context, const Segment &segment)
   {
-    LoopState &loop = session.loop;
+    LoopState &loop = context.loop;
     StepRecord record;
     contact_->evaluate(solution_, depth_converged_);
     const double touch = depth_converged_ + std::max(contact_->min_gap(), 0.0) +
@@ -149,20 +149,20 @@ namespace indentsim::problems
     record.step = loop.step;
     record.cycle = segment.cycle;
     record.segment = to_string(segment.kind);
-    record.wall_time = session.wall_time();
+    record.wall_time = context.wall_time();
     loop.total_newton += record.newton_iterations;
     records_.push_back(record);
     accept_increment();
-    session.recorder.csv_row(record);
+    context.recorder.csv_row(record);
     pcout_ << "step " << std::setw(3) << loop.step << " touch   depth " << loop.depth
            << " um  force " << record.force << " mN (first contact, depth control)" << std::endl;
   }
 
   // One converged step of `segment`, with retries and cut-backs, then its outputs.
-  void IndentationProblem::converged_step(RunSession &session, const Segment &segment)
+  void IndentationProblem::converged_step(RunContext &context, const Segment &segment)
   {
-    LoopState                         &loop = session.loop;
-    const nonlinear::LoadingProgramme &programme = session.programme;
+    LoopState                         &loop = context.loop;
+    const nonlinear::LoadingProgramme &programme = context.programme;
     loop.control.increment =
       std::min(loop.control.increment, programme.maximum / segment.steps);
     const double depth_before = loop.depth, force_before = records_.back().force;
@@ -186,7 +186,7 @@ namespace indentsim::problems
       std::ostringstream note;
       note << std::setprecision(4) << "step " << event.step << ": " << to_string(event.status)
            << ", increment cut back to " << event.next_increment << programme.unit();
-      session.recorder.log_note(note.str());
+      context.recorder.log_note(note.str());
     };
     unsigned int cutbacks = 0;
     loop.value = nonlinear::solve_with_cutbacks(programme, segment, loop.control, loop.value,
@@ -202,22 +202,22 @@ namespace indentsim::problems
         " um, the depth the mesh is designed for; lower loading.max_force or raise "
         "loading.max_depth with specimen.refined_region");
     record.cutbacks = cutbacks;
-    complete_step(session, segment, record, depth_before, force_before);
+    complete_step(context, segment, record, depth_before, force_before);
   }
 
   // Records a converged step, writes its outputs, accepts it and moves the programme on.
-  void IndentationProblem::complete_step(RunSession &session, const Segment &segment,
+  void IndentationProblem::complete_step(RunContext &context, const Segment &segment,
                                          StepRecord &record, const double depth_before,
                                          const double force_before)
   {
-    LoopState                         &loop = session.loop;
-    const nonlinear::LoadingProgramme &programme = session.programme;
+    LoopState                         &loop = context.loop;
+    const nonlinear::LoadingProgramme &programme = context.programme;
     ++loop.step;
     ++loop.control.segment_steps;
     record.step = loop.step;
     record.cycle = segment.cycle;
     record.segment = to_string(segment.kind);
-    record.wall_time = session.wall_time();
+    record.wall_time = context.wall_time();
     loop.total_newton += record.newton_iterations;
     records_.push_back(record);
     loop.max_force = std::max(loop.max_force, record.force);
@@ -245,12 +245,12 @@ namespace indentsim::problems
         write_vtu(loop.vtu_index++);
       if (writing && at_max)
         {
-          std::erase_if(session.snapshots,
+          std::erase_if(context.snapshots,
                         [](const SurfaceSnapshot &s) { return s.stage == "max_depth"; });
-          session.snapshots.push_back({"max_depth", loop.depth, gather_top_surface()});
+          context.snapshots.push_back({"max_depth", loop.depth, gather_top_surface()});
         }
       if (writing && finished && segment.kind == SegmentKind::unload)
-        session.snapshots.push_back({"unloaded", loop.depth, gather_top_surface()});
+        context.snapshots.push_back({"unloaded", loop.depth, gather_top_surface()});
       if (at_max)
         {
           loop.contact_radius_at_max = record.contact_radius;
@@ -266,8 +266,8 @@ namespace indentsim::problems
                                    programme.force_control ? &loop.value : nullptr,
                                    contact_->friction_coefficient() > 0, eta}
            << std::endl;
-    session.recorder.csv_row(record);
-    session.recorder.log_row(record);
+    context.recorder.csv_row(record);
+    context.recorder.log_row(record);
 
     if (segment_done)
       {
@@ -283,24 +283,24 @@ namespace indentsim::problems
   // Checkpoint and stop, decided together by all ranks (each rank's signal flag and clock may
   // differ). Nothing is saved after the last step: the run is complete. Returns whether the run
   // stops here.
-  bool IndentationProblem::checkpoint_or_stop(RunSession &session)
+  bool IndentationProblem::checkpoint_or_stop(RunContext &context)
   {
-    const LoopState &loop = session.loop;
-    if (output_directory_.empty() || loop.segment == session.programme.segments.size())
+    const LoopState &loop = context.loop;
+    if (output_directory_.empty() || loop.segment == context.programme.segments.size())
       return false;
     const double interval = case_.output.checkpoint_interval_s;
     const bool   stop_local = output::checkpoint::StopRequest::requested() ||
-                            (session.stop_after && loop.step >= *session.stop_after);
+                            (context.stop_after && loop.step >= *context.stop_after);
     const bool due_local =
-      interval > 0 && wall_timer_.wall_time() - session.last_checkpoint >= interval;
+      interval > 0 && wall_timer_.wall_time() - context.last_checkpoint >= interval;
     const unsigned int stop = Utilities::MPI::max(stop_local ? 1u : 0u, communicator_);
     const unsigned int due = Utilities::MPI::max(due_local ? 1u : 0u, communicator_);
     if (stop || due)
       {
-        session.loop.wall_time = session.wall_time();
+        context.loop.wall_time = context.wall_time();
         const output::RunStatistics::Scope timer(statistics_.output);
-        write_checkpoint(session.loop, session.snapshots);
-        session.last_checkpoint = wall_timer_.wall_time();
+        write_checkpoint(context.loop, context.snapshots);
+        context.last_checkpoint = wall_timer_.wall_time();
       }
     if (!stop)
       return false;
@@ -308,32 +308,32 @@ namespace indentsim::problems
       case_.source_file.empty() ? std::string("CASE.yaml") : case_.source_file;
     pcout_ << "stopped at step " << loop.step << " (depth " << std::setprecision(6) << loop.depth
            << " um); resume with: indentsim run " << case_name << " --resume" << std::endl;
-    session.recorder.log_note("stopped at step " + std::to_string(loop.step) +
+    context.recorder.log_note("stopped at step " + std::to_string(loop.step) +
                               "; checkpoint in " + checkpoint_directory());
     return true;
   }
 
   // The end of a finished run: pile-up analysis, statistics, run_summary.json; the checkpoint
   // is removed.
-  void IndentationProblem::finish_run(RunSession &session)
+  void IndentationProblem::finish_run(RunContext &context)
   {
-    const LoopState &loop = session.loop;
+    const LoopState &loop = context.loop;
     const bool       root = Utilities::MPI::this_mpi_process(communicator_) == 0;
     pcout_ << "Finished: " << loop.step << " steps, " << loop.total_newton
-           << " Newton iterations, wall time " << output::format_duration(session.wall_time())
+           << " Newton iterations, wall time " << output::format_duration(context.wall_time())
            << '\n';
     {
       std::ostringstream note;
       note << std::setprecision(4) << "finished: " << loop.step << " steps, " << loop.total_newton
-           << " Newton iterations, " << session.wall_time() << " s";
-      session.recorder.log_note(note.str());
+           << " Newton iterations, " << context.wall_time() << " s";
+      context.recorder.log_note(note.str());
     }
     if (root && !output_directory_.empty())
       {
         const output::RunStatistics::Scope timer(statistics_.output);
-        write_pileup(session.snapshots, loop.contact_radius_at_max);
+        write_pileup(context.snapshots, loop.contact_radius_at_max);
       }
-    statistics_.total = statistics_.setup + session.wall_time();
+    statistics_.total = statistics_.setup + context.wall_time();
     const output::RunStatistics &s = statistics_;
     pcout_ << "Time [s]: setup " << s.setup << ", assembly " << s.assembly << ", contact "
            << s.contact << ", linear solve " << s.linear_solve << " (" << s.linear_solves
@@ -353,7 +353,7 @@ namespace indentsim::problems
     description.threads = MultithreadInfo::n_threads();
     description.final_value = loop.value_at_max;
     description.final_value_name =
-      session.programme.force_control ? "depth_at_max_force_um" : "force_at_max_depth_mN";
+      context.programme.force_control ? "depth_at_max_force_um" : "force_at_max_depth_mN";
     output::write_run_summary(output_directory_ + "/" + io::output_files::run_summary,
                               description, statistics_, communicator_);
     // A finished run needs no checkpoint (an earlier one, if any, is removed).

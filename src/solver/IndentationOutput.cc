@@ -3,6 +3,7 @@
 // fields (pressure, status, friction traction); the pile-up files of the top surface.
 // Units: um, GPa.
 #include "io/CaseFile.h"
+#include "output/PythonScripts.h"
 #include "solver/FiniteStrainElement.h"
 #include "solver/IndentationProblem.h"
 #include "solver/PileUp.h"
@@ -210,7 +211,7 @@ namespace indentsim::solver
     profiles.close();
 
     // The maps and profiles as PNG files; a missing Python or matplotlib leaves a warning only.
-    const std::string script = std::string(INDENTSIM_SOURCE_DIR) + "/python/plot_pileup.py";
+    const std::string script = indentsim::output::python_script("plot_pileup.py");
     const std::string command = "python3 \"" + script + "\" \"" + output_directory_ + "\"";
     if (std::system(command.c_str()) != 0)
       std::cerr << "warning: the pile-up plots in " << output_directory_

@@ -39,10 +39,10 @@ done
 
 # A copy of the default example in an empty directory, shortened through its own keys (the
 # block and mesh stay those of the example).
-sed -e 's/^  max_depth: 6.0 /  max_depth: 1.0 /' -e 's/^  steps: 64 /  steps: 4 /' \
+sed -e 's/^  max_depth: 6\.0 /  max_depth: 1.0 /' -e 's/^  steps: 64$/  steps: 4/' \
   "$prefix/share/indentsim/examples/paper_j2_n12.yaml" > "$out/case/paper_j2_n12.yaml"
 grep -q "^  max_depth: 1.0 " "$out/case/paper_j2_n12.yaml" || fail "max_depth was not shortened"
-grep -q "^  steps: 4 " "$out/case/paper_j2_n12.yaml" || fail "steps was not shortened"
+grep -q "^  steps: 4$" "$out/case/paper_j2_n12.yaml" || fail "steps was not shortened"
 
 # Run there with a bare environment: no INDENTSIM_* variable, no path into the trees.
 (cd "$out/case" && env -i PATH=/usr/bin:/bin HOME="$out" OMP_NUM_THREADS=1 \

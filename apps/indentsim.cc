@@ -6,6 +6,7 @@
 #include "analysis/AnalyzeCommand.h"
 #include "io/CaseFile.h"
 #include "io/CommandLine.h"
+#include "output/PythonScripts.h"
 #include "problems/IndentationProblem.h"
 #include "problems/TensileProblem.h"
 #include "study/StudyFile.h"
@@ -26,8 +27,7 @@ namespace
   // With `measured_csv` (um, mN) the measured curve is overlaid.
   void plot_load_penetration(const std::string &directory, const std::string &measured_csv = "")
   {
-    const std::string script =
-      std::string(INDENTSIM_SOURCE_DIR) + "/python/plot_load_penetration.py";
+    const std::string script = indentsim::output::python_script("plot_load_penetration.py");
     std::string command = "python3 \"" + script + "\" \"" + directory + "/load_penetration.csv\"";
     if (!measured_csv.empty())
       command += " \"" + measured_csv + "\" --label computed --label measured";
@@ -40,7 +40,7 @@ namespace
   // Writes the PNG plot of the tensile curve(s): the case's model and, if present, J2.
   void plot_stress_strain(const std::string &directory, const std::string &model, bool with_j2)
   {
-    const std::string script = std::string(INDENTSIM_SOURCE_DIR) + "/python/plot_stress_strain.py";
+    const std::string script = indentsim::output::python_script("plot_stress_strain.py");
     std::string command = "python3 \"" + script + "\" \"" + directory + "/" +
                           io::output_files::stress_strain_csv + "\" --label \"" + model + "\"";
     if (with_j2)

@@ -23,7 +23,7 @@ height from pileup.json, maps); the paper's numbers beside ours; how to reproduc
 whose cases are missing says so.
 
 The numbers (observed order, Richardson extrapolation, grid convergence index, interpolation)
-are plain Python functions, tested by tests/python/test_study_report.py.
+are plain Python functions, tested by tests/unit/python/test_study_report.py.
 
 Units: lengths um (µm in the text), forces mN, stresses GPa, times s.
 """

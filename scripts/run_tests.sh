@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The whole test suite: installs what is missing, builds, runs unit, verification, regression
-# and MPI (1 vs 2 ranks) tests with CTest.
+# The whole test suite: installs what is missing, builds, runs the unit, verification, system,
+# mpi (1 vs 2 ranks) and regression tiers with CTest (tests/CMakeLists.txt; one tier alone:
+# cd build && ctest -L unit).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"

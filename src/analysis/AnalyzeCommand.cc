@@ -4,6 +4,7 @@
 #include "analysis/OliverPharr.h"
 #include "indenter/IndenterFactory.h"
 #include "io/CaseFile.h"
+#include "output/PythonScripts.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -59,7 +60,7 @@ namespace indentsim::analysis
           throw std::invalid_argument(json_path + ": writing failed");
       }
       fs::rename(temporary, json_path);
-      const std::string script = std::string(INDENTSIM_SOURCE_DIR) + "/python/plot_oliver_pharr.py";
+      const std::string script = indentsim::output::python_script("plot_oliver_pharr.py");
       const std::string command = "python3 \"" + script + "\" \"" + json_path + "\" -o \"" +
                                   directory + "/" + io::output_files::oliver_pharr_png + "\"";
       if (std::system(command.c_str()) != 0)

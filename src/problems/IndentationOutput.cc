@@ -3,9 +3,10 @@
 // fields (pressure, status, friction traction); the pile-up files of the top surface.
 // Units: um, GPa.
 #include "io/CaseFile.h"
-#include "fem/FiniteStrainElement.h"
-#include "problems/IndentationProblem.h"
 #include "analysis/PileUp.h"
+#include "fem/FiniteStrainElement.h"
+#include "output/PythonScripts.h"
+#include "problems/IndentationProblem.h"
 
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -214,7 +215,7 @@ namespace indentsim::problems
     profiles.close();
 
     // The maps and profiles as PNG files; a missing Python or matplotlib leaves a warning only.
-    const std::string script = std::string(INDENTSIM_SOURCE_DIR) + "/python/plot_pileup.py";
+    const std::string script = indentsim::output::python_script("plot_pileup.py");
     const std::string command = "python3 \"" + script + "\" \"" + output_directory_ + "\"";
     if (std::system(command.c_str()) != 0)
       std::cerr << "warning: the pile-up plots in " << output_directory_

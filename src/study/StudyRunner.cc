@@ -5,6 +5,7 @@
 #include <io/CaseFile.h>
 #include <io/JsonText.h>
 #include <io/Version.h>
+#include <output/PythonScripts.h>
 
 #include <fcntl.h>
 #include <signal.h>
@@ -26,10 +27,6 @@
 #include <sstream>
 #include <system_error>
 #include <thread>
-
-#ifndef INDENTSIM_SOURCE_DIR
-#  define INDENTSIM_SOURCE_DIR "."
-#endif
 
 extern char **environ;
 
@@ -257,7 +254,7 @@ namespace indentsim::study
     if (settings_.executable.empty())
       settings_.executable = self_executable();
     if (settings_.report_script.empty())
-      settings_.report_script = std::string(INDENTSIM_SOURCE_DIR) + "/python/study_report.py";
+      settings_.report_script = indentsim::output::python_script("study_report.py");
     for (const auto &name : settings_.only)
       {
         bool found = false;

@@ -1,14 +1,17 @@
-// Regression: a small J2 indentation (load and unload) against a gold CSV. Tolerance 1e-6
-// relative on the force (the Newton tolerance is 1e-8 relative; the solver is deterministic, so
-// a change beyond 1e-6 means the physics or the algorithm changed). Regenerate the gold file
-// after an intended change with INDENTSIM_REGENERATE_GOLD=1 and explain the change in the commit.
+// Regression: a small J2 indentation (load and unload) against a gold CSV. Tolerance 1e-6 relative
+// on the force, 1e-6 mN below 1 mN (the Newton tolerance is 1e-8 relative; the solver is
+// deterministic, so a change beyond 1e-6 means the physics or the algorithm changed), 1e-9 um on
+// the prescribed depth, the active contact nodes exactly. The test only reads the gold file: after
+// an intended change scripts/regenerate_gold.sh rewrites it from regression/small_j2.yaml (the same
+// case as a file), and the commit explains the change.
 #include "../test_cases.h"
 #include "io/Case.h"
 #include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -35,17 +38,6 @@ TEST(Regression, SmallJ2IndentationMatchesGold)
   problem.setup();
   problem.run("");
   const auto &records = problem.records();
-
-  if (std::getenv("INDENTSIM_REGENERATE_GOLD"))
-    {
-      std::ofstream out(gold_file);
-      out << "# small J2 indentation (tests/regression/test_regression.cc); units um, mN\n"
-          << "depth_um,force_mN,n_active_nodes\n";
-      out.precision(12);
-      for (const auto &r : records)
-        out << r.depth << ',' << r.force << ',' << r.n_active_nodes << '\n';
-      GTEST_SKIP() << "gold file regenerated: " << gold_file;
-    }
 
   std::ifstream in(gold_file);
   ASSERT_TRUE(in) << "missing gold file " << gold_file;

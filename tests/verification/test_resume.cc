@@ -1,7 +1,8 @@
 // Stop and resume of indentation runs (README "Stopping and resuming"): a run stopped after a
-// converged step and resumed in a fresh problem from its checkpoint gives the uninterrupted
-// run's curve and pile-up (the direct solver makes both deterministic, so to round-off: 1e-10
-// relative), and a checkpoint of another case or a missing one is refused with a message.
+// converged step and resumed in a fresh problem from its checkpoint gives the uninterrupted run's
+// curve and pile-up (the direct solver makes both deterministic, so to round-off: 1e-10 relative,
+// the pile-up height 1e-9), and a checkpoint of another case or a missing one is refused with a
+// message.
 #include "../test_cases.h"
 #include "../test_files.h"
 #include "io/Case.h"

@@ -1,7 +1,7 @@
 // Verification of the tensile test (problems/TensileProblem): homogeneous uniaxial tension of J2
 // against the independent reference of python/reference_j2_uniaxial.py, of neo-Hookean against
 // the closed form, the crystal polycrystal's reproducibility and orientation handling, the
-// cut-back, and 1 versus 2 MPI ranks (MpiTensile, run under mpirun by CTest Mpi.TwoRanks).
+// cut-back, and 1 versus 2 MPI ranks (MpiTensile, run under mpirun -np 2 by CTest).
 // Units: um, mN, GPa.
 #include "io/Case.h"
 #include "materials/MaterialFactory.h"
@@ -45,23 +45,6 @@ namespace
     problem.setup();
     problem.run("", "", false);
     return problem.records();
-  }
-
-  // The crystal model is written in parallel with this test; until the factory knows it the
-  // crystal tests are skipped.
-  bool crystal_available()
-  {
-    try
-      {
-        io::MaterialParameters parameters;
-        parameters.model = "crystal";
-        materials::create_material(parameters);
-        return true;
-      }
-    catch (const std::invalid_argument &)
-      {
-        return false;
-      }
   }
 } // namespace
 
@@ -167,8 +150,6 @@ TEST(Tensile, FailedIncrementIsCutBack)
 // Random grains: the same seed gives the identical curve, another seed another polycrystal.
 TEST(Tensile, CrystalGrainsAreReproducible)
 {
-  if (!crystal_available())
-    GTEST_SKIP() << "material.model crystal is not available yet";
   io::Case c = tensile_case("crystal");
   c.specimen.grains = "per_element";
   c.specimen.seed = 1;
@@ -199,8 +180,6 @@ TEST(Tensile, CrystalGrainsAreReproducible)
 // one pulled along [111] (smaller Schmid factors, so a higher flow stress).
 TEST(Tensile, SingleCrystalOrientationIsApplied)
 {
-  if (!crystal_available())
-    GTEST_SKIP() << "material.model crystal is not available yet";
   io::Case c = tensile_case("crystal");
   c.specimen.elements_per_side = 1;
   c.loading.max_strain = 0.02;
@@ -224,9 +203,7 @@ TEST(Tensile, SingleCrystalOrientationIsApplied)
 // the element positions, not the partition (runs under mpirun -np 2).
 TEST(MpiTensile, OneVersusManyRanksGiveTheSameCurve)
 {
-  // Without the crystal model the random orientations are ignored, but the parallel assembly,
-  // reaction and volume are still compared.
-  io::Case c = tensile_case(crystal_available() ? "crystal" : "j2");
+  io::Case c = tensile_case("crystal");
   c.specimen.elements_per_side = 3;
   c.specimen.grains = "per_element";
   c.loading.max_strain = 0.02;

@@ -1,6 +1,6 @@
 // MPI consistency: the load-penetration curve computed on all ranks of MPI_COMM_WORLD equals
-// the one computed by a single process (MPI_COMM_SELF). Runs under `mpirun -np 2` (CTest
-// Mpi.TwoRanks); with one rank it still checks that two identical runs agree.
+// the one computed by a single process (MPI_COMM_SELF). Runs under `mpirun -np 2` (one CTest
+// entry per test, label mpi); with one rank it still checks that two identical runs agree.
 #include "../test_cases.h"
 #include "../test_files.h"
 #include "io/Case.h"

@@ -5,7 +5,7 @@
 // count instructions with valgrind --tool=callgrind (repeatable, unlike times on a shared machine).
 #include <materials/CrystalPlasticity.h>
 #include <materials/J2Plasticity.h>
-#include <materials/Orientation.h>
+#include <materials/crystal/Orientation.h>
 
 #include <deal.II/base/tensor.h>
 

@@ -7,10 +7,11 @@
 //   R_E   = E_e - 1/2 (A^T C_e^tr A - I),  A = exp(-Delta L_p),  C_e^tr = F_p,n^-T C F_p,n^-1,
 //   R_f   = Phi(tau, tau_c) - 1,
 //   R_tc  = tau_c^r - tau_c,n^r - Delta tau_c^r(Delta gamma)   (the hardening law),
-//   Delta gamma^r = Delta lambda N_r,  N_r = dPhi/dtau^r        (the flow rule),
+//   Delta gamma^r = Delta lambda dPhi/dtau^r                  (the flow rule),
 //   tau^r = M_e : (m_0^r (x) n_0^r),  M_e = C_e S_e (eq. 10),    S_e = L^e : E_e (the elasticity).
 // The Jacobian is written out by the chain rule in plain doubles:
-//   dDelta gamma^r = N_r dlambda + lambda dN_r   (dN from the flow rule's linearization),
+//   dDelta gamma^r = N_r dlambda + c_r (drho_r - d_r dPhi) + D_r dtau_c^r  (the flow rule's
+//                    linearization, rho_r = tau^r / tau_c^r, dPhi = sum_s g_s drho_s),
 //   dtau^r = (m_0^r (x) n_0^r) : (2 dE_e S_e + C_e (L^e : dE_e)),
 //   dR_E = dE_e - 1/2 sum_r dC_e/dDelta gamma^r dDelta gamma^r,  C_e = A^T C_e^tr A,
 // with dA/dX (X = -Delta L_p) from exp_matrix_and_derivative. The critical shears are
@@ -41,25 +42,24 @@ namespace indentsim::materials::crystal
     double            stiffness_scale; // [GPa]
   };
 
-  // Everything that follows from (E_e, tau_c, Delta lambda): S_e = L^e : E_e, the scaled resolved
-  // shears tau^r / tau_ref, the flow rule's Phi and N, and Delta gamma^r = Delta lambda N_r.
+  // Everything that follows from (E_e, tau_c, Delta lambda): S_e = L^e : E_e, the resolved shears
+  // tau^r [GPa] and the flow rule's rho_r = tau^r / tau_c^r, Phi and Delta gamma^r.
   template <typename FlowRule, int n_slip>
   struct SlipState
   {
-    Matrix                                     S_e;
-    std::array<double, n_slip>                 tau;
+    Matrix                                       S_e;
+    std::array<double, n_slip>                   tau;
     typename FlowRule::template Response<n_slip> flow;
-    std::array<double, n_slip>                 delta_gamma;
   };
 
-  // S_e and the scaled resolved shears of an unrolled elastic strain.
+  // S_e and the resolved shears [GPa] of an unrolled elastic strain.
   template <typename Laws>
   void resolved_shears(const Laws &laws, const double *E_e, const int n_slip, Matrix &S_e, double *tau)
   {
     S_e = laws.elasticity->stress(symmetric_matrix(E_e));
     const Matrix M_e = multiply(right_cauchy_green(E_e), S_e);
     for (int r = 0; r < n_slip; ++r)
-      tau[r] = contract(M_e, laws.schmid[r]) / laws.stress_scale;
+      tau[r] = contract(M_e, laws.schmid[r]);
   }
 
   template <typename Laws, typename FlowRule, int n_slip>
@@ -70,9 +70,7 @@ namespace indentsim::materials::crystal
                      SlipState<FlowRule, n_slip>  &out)
   {
     resolved_shears(laws, E_e, n_slip, out.S_e, out.tau.data());
-    laws.flow_rule->template evaluate<n_slip>(out.tau, tau_c, out.flow);
-    for (int r = 0; r < n_slip; ++r)
-      out.delta_gamma[r] = lambda * out.flow.direction[r];
+    laws.flow_rule->template evaluate<n_slip>(out.tau, tau_c, lambda, laws.stress_scale, out.flow);
   }
 
   template <typename Elasticity, typename FlowRule, typename Hardening, int n_slip>
@@ -110,7 +108,7 @@ namespace indentsim::materials::crystal
             double sum = 0.0;
             for (int r = 0; r < n_slip; ++r)
               if (laws.schmid[r][i][j] != 0.0)
-                sum -= slip.delta_gamma[r] * laws.schmid[r][i][j];
+                sum -= slip.flow.delta_gamma[r] * laws.schmid[r][i][j];
             X[i][j] = sum;
           }
       return X;
@@ -152,7 +150,7 @@ namespace indentsim::materials::crystal
       std::array<double, n_slip> abs_delta_gamma;
       for (int r = 0; r < n_slip; ++r)
         {
-          abs_delta_gamma[r] = slip.delta_gamma[r] >= 0 ? slip.delta_gamma[r] : -slip.delta_gamma[r];
+          abs_delta_gamma[r] = slip.flow.delta_gamma[r] >= 0 ? slip.flow.delta_gamma[r] : -slip.flow.delta_gamma[r];
           delta_Gamma += abs_delta_gamma[r];
         }
       HardeningIncrement<n_slip> hardening;
@@ -171,35 +169,38 @@ namespace indentsim::materials::crystal
     {
       const double  lambda = x[lambda_index];
       const double *tau_c = &x[tau_c_index];
-      const auto   &N = slip.flow.direction;
 
-      // dtau^r/dE_k = (m_0^r (x) n_0^r) : dM_e/dE_k / tau_ref, dM_e = 2 dE S_e + C_e (L^e : dE).
-      const Matrix             C_e_of_E = right_cauchy_green(&x[0]);
-      std::array<Matrix, 6>    dM_dE;
+      // drho_r/dE_k = (m_0^r (x) n_0^r) : dM_e/dE_k / (tau_ref tau_c^r),
+      // dM_e = 2 dE S_e + C_e (L^e : dE) (eq. 10).
+      const Matrix          C_e_of_E = right_cauchy_green(&x[0]);
+      std::array<Matrix, 6> dM_dE;
       for (unsigned int k = 0; k < 6; ++k)
         {
           Matrix dE{};
           dE[sym_i[k]][sym_j[k]] = 1.0;
           dE[sym_j[k]][sym_i[k]] = 1.0;
+          const Matrix dS = laws.elasticity->stress(dE);
           const Matrix first = multiply(dE, slip.S_e);
-          const Matrix second = multiply(C_e_of_E, laws.elasticity->stress(dE));
+          const Matrix second = multiply(C_e_of_E, dS);
           for (unsigned int i = 0; i < 3; ++i)
             for (unsigned int j = 0; j < 3; ++j)
               dM_dE[k][i][j] = 2.0 * first[i][j] + second[i][j];
         }
       typename FlowRule::template Linearization<n_slip> flow;
-      laws.flow_rule->template linearize<n_slip>(slip.flow, tau_c, flow);
+      laws.flow_rule->template linearize<n_slip>(slip.flow, tau_c, lambda, flow);
 
       std::array<double, n_unknowns>            dPhi_dx{};
-      std::array<std::array<double, 6>, n_slip> dtau_dE;
+      std::array<std::array<double, 6>, n_slip> drho_dE;
       for (int r = 0; r < n_slip; ++r)
         {
+          const double scale = 1.0 / (laws.stress_scale * tau_c[r]);
           for (unsigned int k = 0; k < 6; ++k)
-            {
-              dtau_dE[r][k] = contract(dM_dE[k], laws.schmid[r]) / laws.stress_scale;
-              dPhi_dx[k] += N[r] * dtau_dE[r][k];
-            }
-          dPhi_dx[tau_c_index + r] = flow.dPhi_dtau_c[r];
+            drho_dE[r][k] = contract(dM_dE[k], laws.schmid[r]) * scale;
+          const double g = flow.dPhi_dratio[r];
+          for (unsigned int k = 0; k < 6; ++k)
+            dPhi_dx[k] += g * drho_dE[r][k];
+          // drho_r/dtau_c^r = -rho_r / tau_c^r
+          dPhi_dx[tau_c_index + r] = -g * slip.flow.ratio[r] / tau_c[r];
         }
 
       // dDelta gamma^r/dtau_c^s = delta_rs D_r + u_r v_s (the critical shear of the system
@@ -207,13 +208,14 @@ namespace indentsim::materials::crystal
       std::array<double, n_slip> D, u, v;
       for (int r = 0; r < n_slip; ++r)
         {
-          auto &row = ddelta_gamma_dx[r];
+          auto        &row = ddelta_gamma_dx[r];
+          const double c = flow.ratio_rate[r];
           for (unsigned int k = 0; k < 6; ++k)
-            row[k] = lambda * (flow.diagonal_tau[r] * dtau_dE[r][k] - flow.coupling[r] * dPhi_dx[k]);
-          row[lambda_index] = N[r];
-          D[r] = lambda * flow.diagonal_tau_c[r];
-          u[r] = lambda * flow.coupling[r];
-          v[r] = -flow.dPhi_dtau_c[r];
+            row[k] = c * (drho_dE[r][k] - flow.relative_ratio[r] * dPhi_dx[k]);
+          row[lambda_index] = flow.lambda_rate[r];
+          D[r] = flow.tau_c_rate[r];
+          u[r] = c * flow.relative_ratio[r];
+          v[r] = -dPhi_dx[tau_c_index + r];
         }
       for (int r = 0; r < n_slip; ++r)
         for (int s = 0; s < n_slip; ++s)
@@ -271,7 +273,7 @@ namespace indentsim::materials::crystal
       std::array<double, n_slip>     sign;
       for (int r = 0; r < n_slip; ++r)
         {
-          sign[r] = slip.delta_gamma[r] >= 0 ? 1.0 : -1.0;
+          sign[r] = slip.flow.delta_gamma[r] >= 0 ? 1.0 : -1.0;
           for (int j = 0; j < tau_c_index; ++j)
             ddelta_Gamma_dx[j] += sign[r] * ddelta_gamma_dx[r][j];
           sign_u += sign[r] * u[r];
@@ -287,7 +289,7 @@ namespace indentsim::materials::crystal
           low_rank_Q[r] = {{ddelta_Gamma_dx[tau_c_index + r], v[r]}};
           auto &row = J[tau_c_index + r];
           for (int j = 0; j < tau_c_index; ++j)
-            row[j] = -(a * ddelta_Gamma_dx[j] + b * ddelta_gamma_dx[r][j]) / C;
+            row[j] = -(low_rank_P[r][0] * C * ddelta_Gamma_dx[j] + b * ddelta_gamma_dx[r][j]) / C;
         }
       for (int r = 0; r < n_slip; ++r)
         for (int s = 0; s < n_slip; ++s)

@@ -133,7 +133,9 @@ namespace indentsim::materials
     bool plastic_tangent(LocalProblem                         &problem,
                          const typename LocalProblem::Jacobian &jacobian,
                          const crystal::Matrix                &F_e_trial,
+                         const crystal::Matrix                &F_e,
                          const crystal::Matrix                &F_p_n_inverse,
+                         const crystal::Matrix                &G_A,
                          Tensor<4, 3>                         &dP_dF) const;
 
     SlipSystems                  systems;

@@ -124,8 +124,6 @@ namespace indentsim::materials
     Matrix              S_e;
     std::vector<double> tau(n_systems);
     resolved_shears(laws, E.data(), n_systems, S_e, tau.data());
-    for (double &tau_r : tau)
-      tau_r *= tau_ref;
     return tau;
   }
 
@@ -204,7 +202,7 @@ namespace indentsim::materials
     evaluate_slip<decltype(laws), FlowRule, n_slip>(laws, x.data(), &x[7], 1.0, unit);
     double unit_Gamma = 0.0;
     for (int r = 0; r < n_slip; ++r)
-      unit_Gamma += std::abs(unit.delta_gamma[r]);
+      unit_Gamma += std::abs(unit.flow.delta_gamma[r]);
     if (!(unit_Gamma > 0.0) || !std::isfinite(unit_Gamma))
       return false;
     x[6] = delta_Gamma / unit_Gamma;
@@ -262,10 +260,10 @@ namespace indentsim::materials
     resolved_shears(laws, E_trial.data(), n_slip, trial.S_e, trial.tau.data());
     bool certainly_elastic = true;
     for (int r = 0; r < n_slip && certainly_elastic; ++r)
-      certainly_elastic = std::abs(trial.tau[r]) < elastic_limit * tau_c_n_scaled[r];
+      certainly_elastic = std::abs(trial.tau[r]) < tau_ref * elastic_limit * tau_c_n_scaled[r];
     if (certainly_elastic)
       return elastic_step(trial.S_e);
-    flow.template evaluate<n_slip>(trial.tau, tau_c_n_scaled.data(), trial.flow);
+    flow.template evaluate<n_slip>(trial.tau, tau_c_n_scaled.data(), 0.0, tau_ref, trial.flow);
     if (!std::isfinite(trial.flow.Phi))
       return UpdateStatus::invalid_deformation;
     // KKT (eq. 8): no plastic flow while Phi <= 1.
@@ -331,11 +329,13 @@ namespace indentsim::materials
         a = -a;
     double delta_Gamma = 0.0;
     for (int r = 0; r < n_slip; ++r)
-      delta_Gamma += std::abs(problem.slip.delta_gamma[r]);
+      delta_Gamma += std::abs(problem.slip.flow.delta_gamma[r]);
     const Matrix F_p_new = multiply(exp_matrix(delta_L_p), to_matrix(plastic_deformation(state_old)));
     const Matrix F_p_new_inverse = multiply(F_p_n_inverse, problem.A);
-    write_stress(multiply(F_e_trial, problem.A), problem.slip.S_e, F_p_new_inverse, F, response);
-    if (compute_tangent && !plastic_tangent(problem, jacobian, F_e_trial, F_p_n_inverse, response.dP_dF))
+    const Matrix F_e = multiply(F_e_trial, problem.A);
+    write_stress(F_e, problem.slip.S_e, F_p_new_inverse, F, response);
+    if (compute_tangent &&
+        !plastic_tangent(problem, jacobian, F_e_trial, F_e, F_p_n_inverse, F_p_new_inverse, response.dP_dF))
       return failure();
 
     for (unsigned int i = 0; i < 3; ++i)
@@ -354,14 +354,17 @@ namespace indentsim::materials
   // -(dR/dx)^-1 dR/dC_e^tr, where only R_E depends on C_e^tr: dR_E/dC_e^tr_m = -1/2 A^T U_m A
   // (U_m the unit symmetric tensor of entry m). Then, with F_e = F G A and F_p^-1 = G A
   // (G = F_p,n^-1), P = F_e S_e F_p^-T gives
-  //   dP = (dF G A + F G dA) S_e F_p^-T + F_e (L^e : dE_e) F_p^-T + F_e S_e (G dA)^T.
+  //   dP = (dF G A + F G dA) S_e F_p^-T + F_e (L^e : dE_e) F_p^-T + F_e S_e (G dA)^T,
+  // with F_e_trial = F G and G_A = G A = F_p^-1.
   template <typename Elasticity, typename FlowRule, typename Hardening>
   template <typename LocalProblem>
   bool CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::plastic_tangent(
     LocalProblem                          &problem,
     const typename LocalProblem::Jacobian &jacobian,
     const crystal::Matrix                 &F_e_trial,
+    const crystal::Matrix                 &F_e,
     const crystal::Matrix                 &F_p_n_inverse,
+    const crystal::Matrix                 &G_A,
     Tensor<4, 3>                          &dP_dF) const
   {
     using namespace crystal;
@@ -393,8 +396,6 @@ namespace indentsim::materials
         }
 
     const Matrix &S_e = problem.slip.S_e;
-    const Matrix  G_A = multiply(F_p_n_inverse, A); // F_p^-1
-    const Matrix  F_e = multiply(F_e_trial, A);
     const Matrix  S_F_p_inverse_T = multiply_transposed_second(S_e, G_A);
     const Matrix  F_e_S = multiply(F_e, S_e);
     for (unsigned int k = 0; k < 3; ++k)

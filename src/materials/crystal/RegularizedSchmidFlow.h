@@ -6,13 +6,18 @@
 // size does not explode as (tau/tau_c)^(2n-1) while a Newton iterates from an elastic trial far
 // outside the yield surface.
 //
-// A flow rule for CrystalPlasticityModel (crystal/CrystalPlasticityModel.h) supplies, in stresses
-// scaled by the initial critical shear (hats below, as the integrator's unknowns are):
-//   evaluate(tau, tau_c, response)   Phi and its gradient N_r = dPhi/dtau^r (Delta gamma = lambda N),
-//   linearize(response, tau_c, ...)  dN_r = a_r dtau^r + b_r dtau_c^r - u_r dPhi and dPhi/dtau_c:
-//                                    the second derivatives, diagonal plus one rank-one term
-//                                    along dPhi, the structure the integrator's solve exploits,
-//   elastic_limit(n_slip)            a bound on max_r |tau^r / tau_c^r| below which Phi < 1,
+// A flow rule for CrystalPlasticityModel (crystal/CrystalPlasticityModel.h) supplies, with the
+// resolved shears tau^r in GPa and the critical shears and the multiplier in units of a stress
+// scale tau_ref (as the integrator's unknowns are):
+//   evaluate(tau, tau_c, lambda, tau_ref, response)
+//                                    rho_r = tau^r / tau_c^r, Phi and Delta gamma^r,
+//   linearize(response, tau_c, lambda, linearization)
+//                                    dDelta gamma^r = N_r dlambda + c_r (drho_r - d_r dPhi) + D_r dtau_c^r,
+//                                    dPhi = sum_s g_s drho_s, with drho_r the change of rho_r at
+//                                    fixed tau_c (its tau_c part is the integrator's chain rule):
+//                                    each system's own ratio plus one coupling through Phi, the
+//                                    structure the integrator's solve exploits,
+//   elastic_limit(n_slip)            a bound on max_r |rho_r| below which Phi < 1,
 //   value(tau, tau_c)                Phi for vectors of any length,
 //   parameter_error()                nullptr, or what is wrong with the parameters.
 #pragma once
@@ -33,31 +38,37 @@ namespace indentsim::materials
     template <int n_slip>
     struct Response
     {
-      std::array<double, n_slip> ratio;      // rho_r = tau^r / tau_c^r
+      std::array<double, n_slip> ratio;       // rho_r = tau^r / tau_c^r
       double                     Phi;
-      std::array<double, n_slip> flow_power; // (rho_r / Phi)^(2n-2)
-      std::array<double, n_slip> direction;  // N_r = dPhi/dtau^r = (rho_r / Phi)^(2n-1) / tau_c^r
+      std::array<double, n_slip> flow_power;  // (rho_r / Phi)^(2n-2)
+      std::array<double, n_slip> delta_gamma; // Delta gamma^r
     };
 
-    // dN_r = diagonal_tau_r dtau^r + diagonal_tau_c_r dtau_c^r - coupling_r dPhi,
-    // dPhi = sum_s N_s dtau^s + dPhi_dtau_c_s dtau_c^s.
+    // The coefficients of dDelta gamma^r (see the header).
     template <int n_slip>
     struct Linearization
     {
-      std::array<double, n_slip> diagonal_tau, diagonal_tau_c, coupling, dPhi_dtau_c;
+      std::array<double, n_slip> dPhi_dratio;    // g_r
+      std::array<double, n_slip> relative_ratio; // d_r
+      std::array<double, n_slip> ratio_rate;     // c_r
+      std::array<double, n_slip> tau_c_rate;     // D_r
+      std::array<double, n_slip> lambda_rate;    // N_r
     };
 
     // Phi = |rho_max| (sum (rho_r / rho_max)^2n)^(1/2n), safe from overflow; one power per
-    // system serves Phi and N: (rho_r / Phi)^(2n-2) = (rho_r / rho_max)^(2n-2) sum^(-(n-1)/n).
+    // system serves Phi and the flow direction: (rho_r / Phi)^(2n-2) = (rho_r / rho_max)^(2n-2)
+    // sum^(-(n-1)/n), and Delta gamma^r = lambda / tau_c^r (rho_r / Phi)^(2n-1).
     template <int n_slip>
     void evaluate(const std::array<double, n_slip> &tau,
                   const double                     *tau_c,
+                  const double                      lambda,
+                  const double                      tau_ref,
                   Response<n_slip>                 &out) const
     {
       unsigned int largest = 0;
       for (int r = 0; r < n_slip; ++r)
         {
-          out.ratio[r] = tau[r] / tau_c[r];
+          out.ratio[r] = tau[r] / (tau_ref * tau_c[r]);
           if (std::abs(out.ratio[r]) > std::abs(out.ratio[largest]))
             largest = r;
         }
@@ -66,7 +77,7 @@ namespace indentsim::materials
         {
           out.Phi = 0.0;
           out.flow_power.fill(0.0);
-          out.direction.fill(0.0);
+          out.delta_gamma.fill(0.0);
           return;
         }
       double sum = 0.0;
@@ -82,32 +93,36 @@ namespace indentsim::materials
       for (int r = 0; r < n_slip; ++r)
         {
           out.flow_power[r] *= power_scale;
-          out.direction[r] = 1.0 / tau_c[r] * (out.ratio[r] / out.Phi) * out.flow_power[r];
+          out.delta_gamma[r] = lambda / tau_c[r] * (out.ratio[r] / out.Phi) * out.flow_power[r];
         }
     }
 
-    // With d_r = rho_r / Phi, g_r = d_r^(2n-1), w_r = (2n-1) d_r^(2n-2) and N_r = g_r / tau_c^r:
-    //   dN_r = w_r / (tau_c^r Phi) (drho_r - d_r dPhi) - g_r / tau_c^r^2 dtau_c^r,
-    //   drho_r = dtau^r / tau_c^r - rho_r / tau_c^r dtau_c^r.
+    // With d_r = rho_r / Phi, g_r = d_r^(2n-1) = dPhi/drho_r and w_r = (2n-1) d_r^(2n-2):
+    //   dDelta gamma^r = g_r / tau_c^r dlambda - lambda g_r / tau_c^r^2 dtau_c^r
+    //                    + lambda w_r / (tau_c^r Phi) (drho_r - d_r dPhi),
+    // and the tau_c part of drho_r, -rho_r / tau_c^r dtau_c^r, moved into D_r.
     template <int n_slip>
     void linearize(const Response<n_slip> &response,
                    const double           *tau_c,
+                   const double            lambda,
                    Linearization<n_slip>  &out) const
     {
+      const bool yielding = response.Phi != 0.0;
       for (int r = 0; r < n_slip; ++r)
         {
-          if (response.Phi == 0.0)
+          double d = 0.0, g = 0.0, w = 0.0;
+          if (yielding)
             {
-              out.diagonal_tau[r] = out.diagonal_tau_c[r] = out.coupling[r] = out.dPhi_dtau_c[r] = 0.0;
-              continue;
+              d = response.ratio[r] / response.Phi;
+              g = d * response.flow_power[r];
+              w = (2.0 * n - 1.0) * response.flow_power[r];
             }
-          const double d = response.ratio[r] / response.Phi;
-          const double w = (2.0 * n - 1.0) * response.flow_power[r];
-          const double c = w / (tau_c[r] * response.Phi);
-          out.diagonal_tau[r] = c / tau_c[r];
-          out.diagonal_tau_c[r] = -c * response.ratio[r] / tau_c[r] - response.direction[r] / tau_c[r];
-          out.coupling[r] = c * d;
-          out.dPhi_dtau_c[r] = -response.direction[r] * response.ratio[r];
+          const double c = yielding ? lambda * w / (tau_c[r] * response.Phi) : 0.0;
+          out.dPhi_dratio[r] = g;
+          out.relative_ratio[r] = d;
+          out.ratio_rate[r] = c;
+          out.tau_c_rate[r] = -c * response.ratio[r] / tau_c[r] - lambda * g / (tau_c[r] * tau_c[r]);
+          out.lambda_rate[r] = g / tau_c[r];
         }
     }
 

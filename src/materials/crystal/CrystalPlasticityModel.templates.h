@@ -40,11 +40,56 @@ namespace indentsim::materials
           }
     }
 
+    // The settings of the crystal's local Newton for strains of size strain_scale.
+    inline LocalNewtonSettings local_newton_settings(const double strain_scale)
+    {
+      LocalNewtonSettings settings;
+      settings.max_iterations = 50;
+      settings.max_line_search_steps = 20;
+      // Forming A^T C_e^tr A near the identity leaves round-off ~1e-16 in E_e whatever its size.
+      settings.tolerance = std::max(1e-13 * strain_scale, 2e-15);
+      settings.stagnation_tolerance = std::max(1e-10 * strain_scale, 1e-13);
+      return settings;
+    }
+
     // The unrolled elastic strain of F with plastic part F_p^-1 = G: E_e = 1/2 ((F G)^T F G - I).
     inline Symmetric elastic_strain(const Matrix &F, const Matrix &G)
     {
       const Matrix F_e = multiply(F, G);
       return green_lagrange_strain(multiply_transposed_first(F_e, F_e));
+    }
+
+    // The state at the converged plastic point: F_p = exp(Delta L_p) F_p,n (eq. 12), tau_c^r and
+    // Gamma_n + sum_r |Delta gamma^r|. False if any entry is not finite.
+    template <typename LocalProblem>
+    bool store_plastic_state(const LocalProblem                    &problem,
+                             const typename LocalProblem::Unknowns &unknowns,
+                             std::span<const double>                state_old,
+                             std::span<double>                      state_new)
+    {
+      constexpr int n_slip = LocalProblem::n_unknowns - 7;
+      Matrix        delta_L_p = problem.minus_delta_L_p();
+      for (auto &row : delta_L_p)
+        for (double &a : row)
+          a = -a;
+      double delta_Gamma = 0.0;
+      for (int r = 0; r < n_slip; ++r)
+        delta_Gamma += std::abs(problem.slip.flow.delta_gamma[r]);
+      Matrix F_p_n;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          F_p_n[i][j] = state_old[3 * i + j];
+      const Matrix F_p_new = multiply(exp_matrix(delta_L_p), F_p_n);
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          state_new[3 * i + j] = F_p_new[i][j];
+      for (int r = 0; r < n_slip; ++r)
+        state_new[9 + r] = problem.laws.stress_scale * unknowns[LocalProblem::tau_c_index + r];
+      state_new[9 + n_slip] = state_old[9 + n_slip] + delta_Gamma;
+      for (const double v : state_new)
+        if (!std::isfinite(v))
+          return false;
+      return true;
     }
   } // namespace crystal
 
@@ -280,12 +325,7 @@ namespace indentsim::materials
     double                         strain_scale = tau_ref / elasticity.stiffness_scale();
     for (unsigned int k = 0; k < 6; ++k)
       strain_scale = std::max(strain_scale, std::abs(E_trial[k]));
-    LocalNewtonSettings settings;
-    settings.max_iterations = 50;
-    settings.max_line_search_steps = 20;
-    // Forming A^T C_e^tr A near the identity leaves round-off ~1e-16 in E_e whatever its size.
-    settings.tolerance = std::max(1e-13 * strain_scale, 2e-15);
-    settings.stagnation_tolerance = std::max(1e-10 * strain_scale, 1e-13);
+    const LocalNewtonSettings settings = local_newton_settings(strain_scale);
 
     typename LocalProblem::Jacobian jacobian;
     LocalNewtonResult               newton;
@@ -323,14 +363,6 @@ namespace indentsim::materials
         std::array<double, n_unknowns> residual;
         problem(unknowns, residual, &jacobian);
       }
-    Matrix delta_L_p = problem.minus_delta_L_p();
-    for (auto &row : delta_L_p)
-      for (double &a : row)
-        a = -a;
-    double delta_Gamma = 0.0;
-    for (int r = 0; r < n_slip; ++r)
-      delta_Gamma += std::abs(problem.slip.flow.delta_gamma[r]);
-    const Matrix F_p_new = multiply(exp_matrix(delta_L_p), to_matrix(plastic_deformation(state_old)));
     const Matrix F_p_new_inverse = multiply(F_p_n_inverse, problem.A);
     const Matrix F_e = multiply(F_e_trial, problem.A);
     write_stress(F_e, problem.slip.S_e, F_p_new_inverse, F, response);
@@ -338,15 +370,8 @@ namespace indentsim::materials
         !plastic_tangent(problem, jacobian, F_e_trial, F_e, F_p_n_inverse, F_p_new_inverse, response.dP_dF))
       return failure();
 
-    for (unsigned int i = 0; i < 3; ++i)
-      for (unsigned int j = 0; j < 3; ++j)
-        state_new[3 * i + j] = F_p_new[i][j];
-    for (int r = 0; r < n_slip; ++r)
-      state_new[9 + r] = tau_ref * unknowns[LocalProblem::tau_c_index + r];
-    state_new[9 + n_slip] = Gamma_n + delta_Gamma;
-    for (const double v : state_new)
-      if (!std::isfinite(v))
-        return failure();
+    if (!crystal::store_plastic_state(problem, unknowns, state_old, state_new))
+      return failure();
     return UpdateStatus::success;
   }
 

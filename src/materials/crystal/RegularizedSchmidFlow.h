@@ -12,10 +12,11 @@
 //   evaluate(tau, tau_c, lambda, tau_ref, response)
 //                                    rho_r = tau^r / tau_c^r, Phi and Delta gamma^r,
 //   linearize(response, tau_c, lambda, linearization)
+//                                    the coefficients of
 //                                    dDelta gamma^r = N_r dlambda + c_r (drho_r - d_r dPhi) + D_r dtau_c^r,
-//                                    dPhi = sum_s g_s drho_s, with drho_r the change of rho_r at
-//                                    fixed tau_c (its tau_c part is the integrator's chain rule):
-//                                    each system's own ratio plus one coupling through Phi, the
+//                                    dPhi = sum_s g_s drho_s, where the first drho_r is taken at
+//                                    fixed tau_c (D_r holds the rest) and dPhi is complete: each
+//                                    system's own ratio plus one coupling through Phi, the
 //                                    structure the integrator's solve exploits,
 //   elastic_limit(n_slip)            a bound on max_r |rho_r| below which Phi < 1,
 //   value(tau, tau_c)                Phi for vectors of any length,

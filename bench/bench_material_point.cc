@@ -1,11 +1,13 @@
 // Cost of one material-point update [us], elastic and plastic, with and without the tangent,
-// for the J2 model of Table 1 and the crystal model of Table 2 (issue 5's "profile the material
-// update"). Run on demand: build/bench_material_point. Not a test: timings are machine facts.
+// for the J2 model of Table 1 and the crystal model of Table 2. Run on demand:
+// build/bench_material_point. Not a test: timings are machine facts.
 // `build/bench_material_point crystal plastic yes 100` runs one row only, 100 times: the form to
 // count instructions with valgrind --tool=callgrind (repeatable, unlike times on a shared machine).
+// Each repetition updates from the same old state into the same state_new, so the crystal's local
+// Newton starts from the previous repetition's result from the second repetition on.
 #include <materials/CrystalPlasticity.h>
 #include <materials/J2Plasticity.h>
-#include <materials/Orientation.h>
+#include <materials/crystal/Orientation.h>
 
 #include <deal.II/base/tensor.h>
 

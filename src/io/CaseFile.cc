@@ -6,7 +6,7 @@
 
 #include "analysis/OliverPharr.h"
 #include <materials/MaterialFactory.h>
-#include <materials/Orientation.h>
+#include <materials/crystal/Orientation.h>
 
 #include <yaml-cpp/yaml.h>
 

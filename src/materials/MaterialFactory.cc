@@ -2,7 +2,7 @@
 #include <materials/J2Plasticity.h>
 #include <materials/MaterialFactory.h>
 #include <materials/NeoHookean.h>
-#include <materials/Orientation.h>
+#include <materials/crystal/Orientation.h>
 
 #include <stdexcept>
 

@@ -44,7 +44,7 @@ namespace indentsim::materials
     virtual void initial_state(std::span<double> state) const = 0;
 
     // The same for a material point whose crystal lattice has the orientation g (Bunge, passive:
-    // v_crystal = g v_sample; see materials/Orientation.h). Anisotropic models store it in the
+    // v_crystal = g v_sample; see materials/crystal/Orientation.h). Anisotropic models store it in the
     // state, so polycrystals need nothing but a per-point initial state; isotropic models ignore
     // it.
     virtual void oriented_initial_state(std::span<double>   state,

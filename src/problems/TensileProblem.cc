@@ -3,7 +3,7 @@
 #include "io/CaseFile.h"
 #include "io/Version.h"
 #include "materials/MaterialFactory.h"
-#include "materials/Orientation.h"
+#include "materials/crystal/Orientation.h"
 
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/function.h>

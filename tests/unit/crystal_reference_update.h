@@ -1,8 +1,8 @@
-// The crystal-plasticity update as it was before the analytic-Jacobian integrator (git history:
-// src/materials/CrystalPlasticity.cc at 609c2ec): the full 19-unknown local Newton (E_e,
-// Delta lambda / tau0, tau_c^r / tau0) with its Jacobian and the consistent tangent by forward AD
-// (Sacado) through everything, the matrix exponential included. Slow but straightforward: the
-// oracle against which the fast update must agree to round-off. Units: GPa.
+// The crystal-plasticity update of CrystalPlasticity solved the straightforward way: the full
+// 19-unknown local Newton (E_e, Delta lambda / tau0, tau_c^r / tau0) with its Jacobian and the
+// consistent tangent by forward AD (Sacado) through everything, the matrix exponential included.
+// Slow but independent of the hand-derived Jacobian: the oracle against which the fast update
+// must agree to round-off. Units: GPa.
 #pragma once
 
 #include <materials/CrystalPlasticity.h>
@@ -412,8 +412,7 @@ namespace indentsim::testing::reference
 
   using namespace internal;
 
-  // Old CrystalPlasticity::update_impl<12>, verbatim but for the model's data read through its
-  // accessors.
+  // CrystalPlasticity::update by forward AD, the model's data read through its accessors.
   inline UpdateStatus update(const CrystalPlasticity &model,
                              const Tensor<2, 3>      &F,
                              std::span<const double>  state_old,

@@ -5,8 +5,8 @@
 #include <io/Case.h>
 #include <materials/CrystalPlasticity.h>
 #include <materials/MaterialFactory.h>
-#include <materials/Orientation.h>
-#include <materials/SlipSystems.h>
+#include <materials/crystal/Orientation.h>
+#include <materials/crystal/SlipSystems.h>
 
 #include "crystal_reference_update.h"
 #include "material_test_utilities.h"

@@ -1,4 +1,4 @@
-#include <materials/Orientation.h>
+#include <materials/crystal/Orientation.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,106 @@
+// Extended Voce hardening (Tome et al. 1984) with latent hardening, the paper's Table 2:
+//   tau_c(Gamma) = tau0 + (tau1 + theta1 Gamma)(1 - exp(-theta0 Gamma / tau1)),
+//   tau_c_dot^r = h(Gamma) sum_s h_rs |gamma_dot^s|,  h = dtau_c/dGamma,  h_rs = q + (1 - q) delta_rs,
+//   Gamma = sum_r int |gamma_dot^r| dt.
+// Over an increment the rate h is replaced by the secant
+//   Hbar = (tau_c(Gamma_n + Delta Gamma) - tau_c(Gamma_n)) / Delta Gamma,
+//   Delta tau_c^r = Hbar (q Delta Gamma + (1 - q) |Delta gamma^r|):
+// exact whenever the slip rates keep their proportions during the increment (in particular for
+// q = 1, where tau_c^r = tau_c(Gamma) exactly), so a monotonic single-crystal path does not
+// depend on the step size.
+//
+// A hardening law for CrystalPlasticityModel (crystal/CrystalPlasticityModel.h) supplies:
+//   initial_critical_shear()     tau_c^r of the virgin state [GPa], also the integrator's stress scale,
+//   increment(Gamma_n, |Delta gamma|, Delta Gamma, out)
+//                                Delta tau_c^r over the increment and its derivative in the form
+//                                dDelta tau_c^r = a_r dDelta Gamma + b_r d|Delta gamma^r|
+//                                (total slip plus the system's own: any h_rs = q + (1 - q) delta_rs),
+//   parameter_error()            nullptr, or what is wrong with the parameters.
+#pragma once
+
+#include <materials/TensorFunctions.h>
+
+#include <Sacado.hpp>
+
+#include <array>
+
+namespace indentsim::materials
+{
+  template <int n_slip>
+  struct HardeningIncrement
+  {
+    std::array<double, n_slip> value;      // Delta tau_c^r [GPa]
+    std::array<double, n_slip> total_rate; // a_r = dDelta tau_c^r / dDelta Gamma [GPa]
+    std::array<double, n_slip> own_rate;   // b_r = dDelta tau_c^r / d|Delta gamma^r| [GPa]
+  };
+
+  struct ExtendedVoceHardening
+  {
+    double tau0 = 0.12;    // initial critical resolved shear stress [GPa]
+    double tau1 = 0.02;    // [GPa]
+    double theta0 = 0.1;   // initial hardening rate [GPa]
+    double theta1 = 0.006; // asymptotic hardening rate [GPa]
+    double q = 1.4;        // latent hardening ratio [-]
+
+    // tau_c(Gamma) [GPa].
+    double critical_shear(double Gamma) const;
+    // h(Gamma) = dtau_c/dGamma [GPa].
+    double hardening_rate(double Gamma) const;
+
+    double initial_critical_shear() const { return tau0; }
+
+    // Hbar = theta1 (1 - e_n e^-x) + (tau1 + theta1 Gamma_n) e_n k phi(x),
+    //   k = theta0 / tau1, e_n = exp(-k Gamma_n), x = k Delta Gamma, phi(x) = (1 - e^-x) / x;
+    // Hbar -> h(Gamma_n) as Delta Gamma -> 0 (phi by its series for small x).
+    template <typename Number>
+    Number secant_modulus(double Gamma_n, const Number &delta_Gamma) const;
+
+    // Hbar' by one forward-AD direction.
+    template <int n_slip>
+    void increment(const double                      Gamma_n,
+                   const std::array<double, n_slip> &abs_delta_gamma,
+                   const double                      delta_Gamma,
+                   HardeningIncrement<n_slip>       &out) const
+    {
+      using SecantDerivative = Sacado::Fad::SFad<double, 1>;
+      const SecantDerivative H_bar_ad = secant_modulus(Gamma_n, SecantDerivative(1, 0, delta_Gamma));
+      const double           H_bar = H_bar_ad.val(), dH_bar = H_bar_ad.fastAccessDx(0);
+      for (int r = 0; r < n_slip; ++r)
+        {
+          const double latent_slip = q * delta_Gamma + (1.0 - q) * abs_delta_gamma[r];
+          out.value[r] = H_bar * latent_slip;
+          out.total_rate[r] = dH_bar * latent_slip + H_bar * q;
+          out.own_rate[r] = H_bar * (1.0 - q);
+        }
+    }
+
+    const char *parameter_error() const;
+  };
+
+  template <typename Number>
+  Number ExtendedVoceHardening::secant_modulus(const double Gamma_n, const Number &delta_Gamma) const
+  {
+    using std::exp;
+    if (theta0 == 0.0 || tau1 == 0.0)
+      return Number(0.0);
+    const double k = theta0 / tau1;
+    const double e_n = std::exp(-k * Gamma_n);
+    const Number x = k * delta_Gamma;
+    Number       phi;
+    if (scalar_value(x) < 0.1)
+      {
+        // sum_{j>=0} (-x)^j / (j+1)!, to j = 9 (error < 3e-17 for x < 0.1)
+        phi = 1.0 / 3628800.0;
+        for (int j = 8; j >= 0; --j)
+          {
+            double factorial = 1.0;
+            for (int m = 2; m <= j + 1; ++m)
+              factorial *= m;
+            phi = 1.0 / factorial - x * phi;
+          }
+      }
+    else
+      phi = (1.0 - exp(-x)) / x;
+    return theta1 * (1.0 - e_n * exp(-x)) + (tau1 + theta1 * Gamma_n) * e_n * k * phi;
+  }
+} // namespace indentsim::materials

@@ -4,7 +4,7 @@
 // Thin application layer: parse the command line and the case file, build the problem, run it,
 // write the outputs. No physics here.
 #include "analysis/AnalyzeCommand.h"
-#include "io/CaseFile.h"
+#include "case/CaseFile.h"
 #include "io/CommandLine.h"
 #include "solver/IndentationProblem.h"
 #include "solver/TensileProblem.h"

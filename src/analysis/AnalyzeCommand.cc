@@ -3,7 +3,7 @@
 #include "analysis/CurveComparison.h"
 #include "analysis/OliverPharr.h"
 #include "indenter/IndenterFactory.h"
-#include "io/CaseFile.h"
+#include "case/CaseFile.h"
 
 #include <cstdlib>
 #include <filesystem>

@@ -2,7 +2,7 @@
 #pragma once
 
 #include <indenter/IndenterSurface.h>
-#include <io/Case.h>
+#include <case/Case.h>
 
 #include <memory>
 

@@ -1,7 +1,7 @@
 // Builds the constitutive model named in the case file (the `material` block of io::Case).
 #pragma once
 
-#include <io/Case.h>
+#include <case/Case.h>
 #include <materials/MaterialModel.h>
 
 #include <memory>

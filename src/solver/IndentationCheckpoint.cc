@@ -5,7 +5,7 @@
 // the records so far and the pile-up snapshot at maximum depth. A rebuilt problem (same case,
 // same number of ranks: the mesh, the partition and the DoF numbering are deterministic)
 // continues from it as if it had never stopped.
-#include "io/CaseFile.h"
+#include "case/CaseFile.h"
 #include "solver/Checkpoint.h"
 #include "solver/IndentationProblem.h"
 

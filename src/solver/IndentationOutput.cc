@@ -2,7 +2,7 @@
 // cell-averaged Cauchy stress, von Mises stress, equivalent plastic strain and the nodal contact
 // fields (pressure, status, friction traction); the pile-up files of the top surface.
 // Units: um, GPa.
-#include "io/CaseFile.h"
+#include "case/CaseFile.h"
 #include "solver/FiniteStrainElement.h"
 #include "solver/IndentationProblem.h"
 #include "solver/PileUp.h"

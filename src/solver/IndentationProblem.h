@@ -11,7 +11,7 @@
 #include "contact/ContactArea.h"
 #include "contact/NodeToSurfaceContact.h"
 #include "indenter/IndenterSurface.h"
-#include "io/Case.h"
+#include "case/Case.h"
 #include "materials/MaterialModel.h"
 #include "mesh/IndentationMesh.h"
 #include "solver/CellWorkspace.h"

@@ -28,7 +28,7 @@
 // bench/bench_linear_solver.
 #pragma once
 
-#include "io/Case.h"
+#include "case/Case.h"
 #include "solver/BlockMatrixCopy.h"
 
 #include <deal.II/dofs/dof_handler.h>

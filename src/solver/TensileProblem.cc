@@ -1,6 +1,6 @@
 #include "solver/TensileProblem.h"
 
-#include "io/CaseFile.h"
+#include "case/CaseFile.h"
 #include "io/Version.h"
 #include "materials/MaterialFactory.h"
 #include "materials/Orientation.h"

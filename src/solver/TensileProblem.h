@@ -21,7 +21,7 @@
 // successive halvings); nothing is recorded from an unconverged state.
 #pragma once
 
-#include "io/Case.h"
+#include "case/Case.h"
 #include "materials/MaterialModel.h"
 #include "solver/CellWorkspace.h"
 #include "solver/FiniteStrainElement.h"

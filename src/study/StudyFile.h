@@ -22,7 +22,7 @@
 // The overrides are merged onto the base YAML: maps key by key, anything else (numbers, lists,
 // words) replaced, a null value (~) removes the key (its default applies). material.orientation
 // is replaced as a whole, since its keys are alternatives. The merged text goes through the case
-// file reader and validator (io/CaseFile.h), so a case is checked exactly as `indentsim run`
+// file reader and validator (case/CaseFile.h), so a case is checked exactly as `indentsim run`
 // would check it; output.directory is set by the study: <output>/cases/<name>-<key>.
 //
 // The key of a case is the FNV-1a 64-bit hash (16 hex digits) of its resolved case in a
@@ -35,8 +35,8 @@
 // and what is allowed.
 #pragma once
 
-#include <io/Case.h>
-#include <io/CaseFile.h>
+#include <case/Case.h>
+#include <case/CaseFile.h>
 
 #include <yaml-cpp/yaml.h>
 

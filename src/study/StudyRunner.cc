@@ -2,7 +2,7 @@
 // the study index and the report. See StudyRunner.h. Units: um, mN, GPa; times in s.
 #include <study/StudyRunner.h>
 
-#include <io/CaseFile.h>
+#include <case/CaseFile.h>
 #include <io/JsonText.h>
 #include <io/Version.h>
 

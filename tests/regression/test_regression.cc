@@ -3,7 +3,7 @@
 // a change beyond 1e-6 means the physics or the algorithm changed). Regenerate the gold file
 // after an intended change with INDENTSIM_REGENERATE_GOLD=1 and explain the change in the commit.
 #include "../test_cases.h"
-#include "io/Case.h"
+#include "case/Case.h"
 #include "solver/IndentationProblem.h"
 
 #include <gtest/gtest.h>

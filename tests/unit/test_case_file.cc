@@ -1,5 +1,5 @@
 // Case files, the resolved case, output-directory protection and the command line.
-#include <io/CaseFile.h>
+#include <case/CaseFile.h>
 #include <io/CommandLine.h>
 #include <io/Version.h>
 

@@ -2,7 +2,7 @@
 // eqs 10-15, Table 2) and of its building blocks: FCC slip systems, orientations, directional
 // Young's moduli and initial yield stresses of REFERENCES.md, objectivity, the consistent
 // tangent against finite differences, and step-size independence. Units: GPa.
-#include <io/Case.h>
+#include <case/Case.h>
 #include <materials/CrystalPlasticity.h>
 #include <materials/MaterialFactory.h>
 #include <materials/Orientation.h>

@@ -3,7 +3,7 @@
 // Mpi.TwoRanks); with one rank it still checks that two identical runs agree.
 #include "../test_cases.h"
 #include "../test_files.h"
-#include "io/Case.h"
+#include "case/Case.h"
 #include "solver/IndentationProblem.h"
 
 #include <gtest/gtest.h>

@@ -4,8 +4,8 @@
 // relative), and a checkpoint of another case or a missing one is refused with a message.
 #include "../test_cases.h"
 #include "../test_files.h"
-#include "io/Case.h"
-#include "io/CaseFile.h"
+#include "case/Case.h"
+#include "case/CaseFile.h"
 #include "solver/IndentationProblem.h"
 
 #include <gtest/gtest.h>

@@ -17,7 +17,7 @@
 // the file, the key path (e.g. `material.poisson_ratio`), the offending value and what is allowed.
 #pragma once
 
-#include <io/Case.h>
+#include <case/Case.h>
 
 #include <array>
 #include <stdexcept>

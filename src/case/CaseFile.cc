@@ -2,7 +2,7 @@
 // every run's results. See CaseFile.h for the rules (required keys, defaults, messages).
 #include <indenter/IndenterFactory.h>
 #include <indenter/ProfileTable.h>
-#include <io/CaseFile.h>
+#include <case/CaseFile.h>
 
 #include "analysis/OliverPharr.h"
 #include <materials/MaterialFactory.h>

@@ -1,8 +1,8 @@
 // Builds the indenter surface named in the case file.
 #pragma once
 
+#include <case/IndenterParameters.h>
 #include <indenter/IndenterSurface.h>
-#include <case/Case.h>
 
 #include <memory>
 

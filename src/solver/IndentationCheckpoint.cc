@@ -6,6 +6,7 @@
 // same number of ranks: the mesh, the partition and the DoF numbering are deterministic)
 // continues from it as if it had never stopped.
 #include "case/CaseFile.h"
+#include "case/Fingerprint.h"
 #include "solver/Checkpoint.h"
 #include "solver/IndentationProblem.h"
 
@@ -58,11 +59,7 @@ namespace indentsim::solver
 
   std::uint64_t IndentationProblem::case_fingerprint() const
   {
-    io::Case neutral = case_;
-    neutral.output.directory = ".";
-    neutral.output.checkpoint_interval_s = 0;
-    neutral.source_file.clear();
-    return checkpoint::fingerprint(io::resolved_case_yaml(neutral));
+    return io::case_fingerprint(case_);
   }
 
   void IndentationProblem::write_checkpoint(const LoopState                    &loop,

@@ -931,7 +931,7 @@ namespace indentsim::solver
 
   unsigned int expected_steps(const io::LoadingParameters &loading)
   {
-    const bool   force_control = loading.control == "force";
+    const bool   force_control = loading.control == io::Control::force;
     unsigned int unload_steps = 0;
     if (loading.unload)
       unload_steps = !force_control && loading.unload_points > 0 ? loading.unload_points + 1 :
@@ -953,7 +953,7 @@ namespace indentsim::solver
     // is the indenter depth [um] or, under force control, the indenter force [mN] (whole
     // indent); then the depth is an unknown of every increment.
     const auto  &loading = case_.loading;
-    const bool   force_control = loading.control == "force";
+    const bool   force_control = loading.control == io::Control::force;
     const double maximum = force_control ? loading.max_force : loading.max_depth;
     // Under force control, unloading stops at 1 % of the maximum force: towards zero force the
     // contact stiffness vanishes and the depth is no longer determined by the force.
@@ -1307,7 +1307,7 @@ namespace indentsim::solver
       {
         RunDescription description;
         description.test = "indentation";
-        description.material_model = case_.material.model;
+        description.material_model = io::to_string(case_.material.model);
         description.linear_solver = linear_solver_.description();
         description.cells = n_cells();
         description.dofs = n_dofs();

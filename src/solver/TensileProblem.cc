@@ -129,7 +129,7 @@ namespace indentsim::solver
     // Orientations: one for the whole cube, or one random orientation per element numbered by
     // the element's position, so that every MPI partition sees the same polycrystal.
     const auto        &specimen = case_.specimen;
-    const bool         per_element = (specimen.grains == "per_element");
+    const bool         per_element = (specimen.grains == io::Grains::per_element);
     const unsigned int n_cells_total = n_per_side_ * n_per_side_ * n_per_side_;
     const std::vector<Tensor<2, 3>> orientations =
       per_element ?
@@ -352,7 +352,7 @@ namespace indentsim::solver
   {
     const bool    root = Utilities::MPI::this_mpi_process(communicator_) == 0;
     const auto   &loading = case_.loading;
-    const std::string model = case_.material.model;
+    const std::string model = io::to_string(case_.material.model);
     std::ofstream csv, log;
     if (root && !output_directory.empty())
       {

@@ -105,13 +105,13 @@ namespace indentsim::study
   // `overrides` merged onto a copy of `base` (see the rules above); neither is modified.
   YAML::Node merge_overrides(const YAML::Node &base, const YAML::Node &overrides);
 
-  // The canonical text that the key hashes: one "path: value" line per key of the resolved
-  // case, sorted, without output.directory, output.checkpoint_interval_s and solver.threads.
+  // The canonical text that the key hashes: io::canonical_case_text (case/Fingerprint.h), one
+  // "path: value" line per key that determines the results, sorted.
   std::string canonical_case_text(const io::Case &resolved_case);
 
   // 64-bit FNV-1a of `text`.
   std::uint64_t fnv1a_64(const std::string &text);
 
-  // The case key: fnv1a_64(canonical_case_text(...)) as 16 lower-case hex digits.
+  // The case key: io::case_fingerprint (case/Fingerprint.h) as 16 lower-case hex digits.
   std::string case_key(const io::Case &resolved_case);
 } // namespace indentsim::study

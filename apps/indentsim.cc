@@ -4,7 +4,7 @@
 // Thin application layer: parse the command line and the case file, build the problem, run it,
 // write the outputs. No physics here.
 #include "analysis/AnalyzeCommand.h"
-#include "io/CaseFile.h"
+#include "case/CaseFile.h"
 #include "io/CommandLine.h"
 #include "output/PythonScripts.h"
 #include "problems/IndentationProblem.h"
@@ -106,14 +106,14 @@ namespace
         // The same cube and loading with the isotropic model of material.young_modulus,
         // poisson_ratio, yield_stress and hardening_modulus.
         io::Case j2_case = the_case;
-        j2_case.material.model = "j2";
+        j2_case.material.model = io::ModelKind::j2;
         problems::TensileProblem problem(j2_case, communicator);
         problem.setup();
         problem.run(directory, io::output_files::stress_strain_j2_csv, false);
       }
     if (root)
       {
-        plot_stress_strain(directory, the_case.material.model, the_case.compare_j2);
+        plot_stress_strain(directory, io::to_string(the_case.material.model), the_case.compare_j2);
         std::cout << "Results in " << directory
                   << ": stress_strain.csv (log strain, true stress in GPa, force in mN)"
                   << (the_case.compare_j2 ? ", stress_strain_j2.csv" : "")
@@ -141,7 +141,7 @@ namespace
         return 0;
       }
 
-    if (options.resume && the_case.test != "indentation")
+    if (options.resume && the_case.test != io::TestKind::indentation)
       throw io::CaseFileError("--resume: only indentation runs can be stopped and resumed ("
                               "a tensile run is short; rerun it with --overwrite)");
     std::string error;
@@ -174,7 +174,7 @@ namespace
     if (root)
       std::cout << "Threads per MPI rank: " << dealii::MultithreadInfo::n_threads() << std::endl;
 
-    if (the_case.test == "tensile")
+    if (the_case.test == io::TestKind::tensile)
       run_tensile(the_case, communicator, root);
     else if (!run_indentation(the_case, communicator, root, options.resume))
       return 130; // stopped by a signal: the shell's convention for SIGINT

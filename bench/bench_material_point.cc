@@ -5,9 +5,9 @@
 // count instructions with valgrind --tool=callgrind (repeatable, unlike times on a shared machine).
 // Each repetition updates from the same old state into the same state_new, so the crystal's local
 // Newton starts from the previous repetition's result from the second repetition on.
-#include <materials/CrystalPlasticity.h>
-#include <materials/J2Plasticity.h>
-#include <materials/crystal/Orientation.h>
+#include "materials/CrystalPlasticity.h"
+#include "materials/J2Plasticity.h"
+#include "materials/crystal/Orientation.h"
 
 #include <deal.II/base/tensor.h>
 

@@ -1,7 +1,7 @@
 // Small cases shared by several tests. Units: um, mN, GPa.
 #pragma once
 
-#include "io/Case.h"
+#include "case/Case.h"
 
 namespace indentsim::test_cases
 {

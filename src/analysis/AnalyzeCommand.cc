@@ -3,7 +3,7 @@
 #include "analysis/CurveComparison.h"
 #include "analysis/OliverPharr.h"
 #include "indenter/IndenterFactory.h"
-#include "io/CaseFile.h"
+#include "case/CaseFile.h"
 #include "output/PythonScripts.h"
 
 #include <cstdlib>
@@ -24,16 +24,17 @@ namespace indentsim::analysis
     {
       std::ostringstream out;
       out << p.shape;
-      if (p.shape == "rounded_cone")
+      using Shape = io::IndenterShape;
+      if (p.shape == Shape::rounded_cone)
         out << " (a " << p.a << ", delta " << p.delta << " um)";
-      else if (p.shape == "sphere" || p.shape == "flat_punch")
+      else if (p.shape == Shape::sphere || p.shape == Shape::flat_punch)
         out << " (radius " << p.radius << " um)";
-      else if (p.shape == "cone")
+      else if (p.shape == Shape::cone)
         out << " (half-angle " << p.half_angle_deg << " deg, tip radius " << p.tip_radius
             << " um)";
-      else if (p.shape == "vickers" || p.shape == "berkovich")
+      else if (p.shape == Shape::vickers || p.shape == Shape::berkovich)
         out << " (tip radius " << p.tip_radius << " um)";
-      else if (p.shape == "profile_table")
+      else if (p.shape == Shape::profile_table)
         out << " (" << p.file << ")";
       return out.str();
     }
@@ -141,7 +142,7 @@ namespace indentsim::analysis
 
     OliverPharrSettings settings;
     settings.epsilon =
-      options.epsilon ? *options.epsilon : default_epsilon(indenter_parameters.shape);
+      options.epsilon ? *options.epsilon : default_epsilon(to_string(indenter_parameters.shape));
     settings.beta = options.beta;
     settings.fit_lower = options.fit_lower;
     settings.fit_upper = options.fit_upper;
@@ -173,8 +174,8 @@ namespace indentsim::analysis
     try
       {
         OliverPharrSettings settings;
-        settings.epsilon = default_epsilon(the_case.indenter.shape);
-        if (the_case.material.model != "crystal")
+        settings.epsilon = default_epsilon(to_string(the_case.indenter.shape));
+        if (the_case.material.model != io::ModelKind::crystal)
           settings.sample_poisson_ratio = the_case.material.poisson_ratio;
         const OliverPharrResult result = analyze_and_write(
           curve, indenter, the_case.indenter, settings, run_directory, curve.source);

@@ -5,7 +5,7 @@
 
 #include "analysis/OliverPharr.h"
 #include "indenter/IndenterSurface.h"
-#include "io/Case.h"
+#include "case/Case.h"
 #include "io/CommandLine.h"
 
 #include <optional>

@@ -18,6 +18,8 @@
 // same numbers come out for simulation and experiment.
 #pragma once
 
+#include "io/LoadCurveCsv.h"
+
 #include <functional>
 #include <limits>
 #include <optional>
@@ -26,15 +28,10 @@
 
 namespace indentsim::analysis
 {
-  // A load-penetration curve in the order it was recorded. contact_area (um^2, the simulation's
-  // true projected contact area) is empty for measured curves.
-  struct LoadCurve
-  {
-    std::vector<double> depth;        // [um]
-    std::vector<double> force;        // [mN]
-    std::vector<double> contact_area; // [um^2], empty or one per point
-    std::string         source;       // file it came from (for messages)
-  };
+  // The curve and its CSV reader live in io/LoadCurveCsv.h (the case reader checks a measured
+  // curve too); they are used here under their analysis names.
+  using io::LoadCurve;
+  using io::read_load_curve_csv;
 
   // P = alpha (h - h_f)^m on the fitted points.
   struct PowerLawFit
@@ -103,17 +100,6 @@ namespace indentsim::analysis
   std::string to_json(const OliverPharrResult &result, const OliverPharrSettings &settings,
                       const std::string &indenter_description, const std::string &source,
                       const LoadCurve *curve = nullptr);
-
-  // Reads a CSV with a header line (lines starting with '#' are comments). The depth and force
-  // columns are the named ones, or else the first header starting with depth/h/displacement/
-  // penetration and force/load/p. Units come from the column name (depth_um, depth_nm,
-  // "depth (nm)", force_mN, load_uN, force_N, ...) unless given ("um", "nm", "mm"; "mN", "uN",
-  // "N"). A column contact_area_um2, if present, is read as well. Throws std::invalid_argument
-  // naming the file, the column and the value on bad input.
-  LoadCurve read_load_curve_csv(const std::string &path, const std::string &depth_column = "",
-                                const std::string &force_column = "",
-                                const std::string &depth_unit = "",
-                                const std::string &force_unit = "");
 
   // The geometry factor epsilon of Oliver and Pharr for an indenter shape name.
   double default_epsilon(const std::string &shape);

@@ -1,6 +1,6 @@
 // The sharp or spherically tipped cone as a rounded sharp cone (MinkowskiRounding.h). Units: um.
-#include <indenter/Cone.h>
-#include <indenter/MinkowskiRounding.h>
+#include "indenter/Cone.h"
+#include "indenter/MinkowskiRounding.h"
 
 #include <cmath>
 #include <numbers>

@@ -8,7 +8,7 @@
 // cone's area function at h + Delta.
 #pragma once
 
-#include <indenter/IndenterSurface.h>
+#include "indenter/IndenterSurface.h"
 
 namespace indentsim::indenter
 {

@@ -1,6 +1,6 @@
 // The flat punch as a rounded solid cylinder (MinkowskiRounding.h). Units: um.
-#include <indenter/FlatPunch.h>
-#include <indenter/MinkowskiRounding.h>
+#include "indenter/FlatPunch.h"
+#include "indenter/MinkowskiRounding.h"
 
 #include <cmath>
 #include <limits>

@@ -4,7 +4,7 @@
 // quarter torus up to z = e, and the wall r = a continues upwards. Units: um.
 #pragma once
 
-#include <indenter/IndenterSurface.h>
+#include "indenter/IndenterSurface.h"
 
 namespace indentsim::indenter
 {

@@ -1,11 +1,11 @@
 // The one place that maps indenter.shape to an IndenterSurface implementation.
-#include <indenter/Cone.h>
-#include <indenter/FlatPunch.h>
-#include <indenter/IndenterFactory.h>
-#include <indenter/ProfileTable.h>
-#include <indenter/Pyramid.h>
-#include <indenter/RoundedCone.h>
-#include <indenter/Sphere.h>
+#include "indenter/Cone.h"
+#include "indenter/FlatPunch.h"
+#include "indenter/IndenterFactory.h"
+#include "indenter/ProfileTable.h"
+#include "indenter/Pyramid.h"
+#include "indenter/RoundedCone.h"
+#include "indenter/Sphere.h"
 
 #include <stdexcept>
 
@@ -13,24 +13,28 @@ namespace indentsim::indenter
 {
   std::unique_ptr<IndenterSurface> create_indenter(const io::IndenterParameters &parameters)
   {
-    const std::string &shape = parameters.shape;
-    if (shape == "rounded_cone")
-      return std::make_unique<RoundedCone>(parameters.a, parameters.delta);
-    if (shape == "sphere")
-      return std::make_unique<Sphere>(parameters.radius);
-    if (shape == "cone")
-      return std::make_unique<Cone>(parameters.half_angle_deg, parameters.tip_radius);
-    if (shape == "vickers")
-      return std::make_unique<Pyramid>(
-        Pyramid::vickers(parameters.tip_radius, parameters.rotation_deg));
-    if (shape == "berkovich")
-      return std::make_unique<Pyramid>(
-        Pyramid::berkovich(parameters.tip_radius, parameters.rotation_deg));
-    if (shape == "flat_punch")
-      return std::make_unique<FlatPunch>(parameters.radius, parameters.edge_radius);
-    if (shape == "profile_table")
-      return std::make_unique<ProfileTable>(ProfileTable::read(parameters.file));
-    throw std::invalid_argument("indenter.shape = '" + shape +
+    using Shape = io::IndenterShape;
+    if (parameters.shape.known())
+      switch (parameters.shape.value())
+        {
+          case Shape::rounded_cone:
+            return std::make_unique<RoundedCone>(parameters.a, parameters.delta);
+          case Shape::sphere:
+            return std::make_unique<Sphere>(parameters.radius);
+          case Shape::cone:
+            return std::make_unique<Cone>(parameters.half_angle_deg, parameters.tip_radius);
+          case Shape::vickers:
+            return std::make_unique<Pyramid>(
+              Pyramid::vickers(parameters.tip_radius, parameters.rotation_deg));
+          case Shape::berkovich:
+            return std::make_unique<Pyramid>(
+              Pyramid::berkovich(parameters.tip_radius, parameters.rotation_deg));
+          case Shape::flat_punch:
+            return std::make_unique<FlatPunch>(parameters.radius, parameters.edge_radius);
+          case Shape::profile_table:
+            return std::make_unique<ProfileTable>(ProfileTable::read(parameters.file));
+        }
+    throw std::invalid_argument("indenter.shape = '" + to_string(parameters.shape) +
                                 "': unknown indenter shape; allowed: rounded_cone | sphere | "
                                 "cone | vickers | berkovich | flat_punch | profile_table");
   }

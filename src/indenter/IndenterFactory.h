@@ -1,8 +1,8 @@
 // Builds the indenter surface named in the case file.
 #pragma once
 
-#include <indenter/IndenterSurface.h>
-#include <io/Case.h>
+#include "case/IndenterParameters.h"
+#include "indenter/IndenterSurface.h"
 
 #include <memory>
 

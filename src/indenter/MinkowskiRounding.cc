@@ -1,5 +1,5 @@
 // Offsetting a sharp convex solid's projection by the rounding radius. Units: um.
-#include <indenter/MinkowskiRounding.h>
+#include "indenter/MinkowskiRounding.h"
 
 #include <algorithm>
 #include <cmath>

@@ -13,7 +13,7 @@
 // the rounded surface in the specimen frame.
 #pragma once
 
-#include <indenter/IndenterSurface.h>
+#include "indenter/IndenterSurface.h"
 
 namespace indentsim::indenter
 {

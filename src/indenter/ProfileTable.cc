@@ -1,7 +1,7 @@
 // Tabulated axisymmetric indenter: reading, PCHIP interpolation, exact projection. Units: um.
-#include <indenter/ProfileTable.h>
+#include "indenter/ProfileTable.h"
 
-#include <indenter/MinkowskiRounding.h>
+#include "indenter/MinkowskiRounding.h"
 
 #include <algorithm>
 #include <array>

@@ -20,7 +20,7 @@
 // the last row is the last secant slope, and the profile continues with it beyond the table.
 #pragma once
 
-#include <indenter/IndenterSurface.h>
+#include "indenter/IndenterSurface.h"
 
 #include <stdexcept>
 #include <string>

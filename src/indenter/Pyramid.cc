@@ -1,6 +1,6 @@
 // Regular pyramids (Vickers, Berkovich), sharp or rounded (MinkowskiRounding.h). Units: um.
-#include <indenter/MinkowskiRounding.h>
-#include <indenter/Pyramid.h>
+#include "indenter/MinkowskiRounding.h"
+#include "indenter/Pyramid.h"
 
 #include <deal.II/base/quadrature_lib.h>
 

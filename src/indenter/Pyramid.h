@@ -19,7 +19,7 @@
 // rounding of one edge cuts off the polygon's corner (see corner_deficit()).
 #pragma once
 
-#include <indenter/IndenterSurface.h>
+#include "indenter/IndenterSurface.h"
 
 #include <vector>
 

@@ -1,5 +1,5 @@
 // Closest-point projection onto the rounded cone of eq. 16. Units: um.
-#include <indenter/RoundedCone.h>
+#include "indenter/RoundedCone.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // atan(a). delta = 0 gives the sharp cone z = r/a.
 #pragma once
 
-#include <indenter/IndenterSurface.h>
+#include "indenter/IndenterSurface.h"
 
 namespace indentsim::indenter
 {

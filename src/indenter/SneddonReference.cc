@@ -1,5 +1,5 @@
 // Sneddon's closed form for the rounded cone (see the header and REFERENCES.md).
-#include <indenter/SneddonReference.h>
+#include "indenter/SneddonReference.h"
 
 #include <algorithm>
 #include <cmath>

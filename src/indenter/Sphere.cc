@@ -1,6 +1,6 @@
 // The spherical indenter as a rounded half-line (MinkowskiRounding.h). Units: um.
-#include <indenter/MinkowskiRounding.h>
-#include <indenter/Sphere.h>
+#include "indenter/MinkowskiRounding.h"
+#include "indenter/Sphere.h"
 
 #include <cmath>
 #include <limits>

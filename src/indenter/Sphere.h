@@ -4,7 +4,7 @@
 // {(0, 0, z): z >= R} rounded by a ball of radius R. Units: um.
 #pragma once
 
-#include <indenter/IndenterSurface.h>
+#include "indenter/IndenterSurface.h"
 
 namespace indentsim::indenter
 {

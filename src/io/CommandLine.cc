@@ -1,8 +1,8 @@
 // Command-line parsing for the indentsim executable. No physics here: main() only parses,
 // reads the case and hands it on.
-#include <io/CommandLine.h>
-#include <io/TextNumber.h>
-#include <io/Version.h>
+#include "io/CommandLine.h"
+#include "io/TextNumber.h"
+#include "io/Version.h"
 
 #include <algorithm>
 #include <cmath>

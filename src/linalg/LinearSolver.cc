@@ -78,14 +78,15 @@ namespace indentsim::linalg
     call("OPENBLAS_NUM_THREADS", "openblas_set_num_threads");
   }
 
-  LinearSolver::Kind LinearSolver::choose_kind(const std::string &setting, const unsigned long n_dofs)
+  LinearSolver::Kind LinearSolver::choose_kind(const io::Choice<io::LinearSolverChoice> &setting,
+                                               const unsigned long n_dofs)
   {
-    if (setting == "direct")
+    if (setting == io::LinearSolverChoice::direct)
       return Kind::direct;
-    if (setting == "iterative")
+    if (setting == io::LinearSolverChoice::iterative)
       return Kind::iterative;
-    if (setting != "auto")
-      throw std::invalid_argument("solver.linear_solver: unknown value '" + setting +
+    if (setting != io::LinearSolverChoice::automatic)
+      throw std::invalid_argument("solver.linear_solver: unknown value '" + to_string(setting) +
                                   "' (allowed: auto, direct, iterative)");
     return n_dofs >= iterative_threshold_dofs ? Kind::iterative : Kind::direct;
   }

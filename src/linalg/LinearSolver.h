@@ -28,7 +28,7 @@
 // bench/bench_linear_solver.
 #pragma once
 
-#include "io/Case.h"
+#include "case/Case.h"
 #include "linalg/BlockMatrixCopy.h"
 
 #include <deal.II/dofs/dof_handler.h>
@@ -60,7 +60,7 @@ namespace indentsim::linalg
     // 60k DOFs; `solver.linear_solver: iterative` selects AMG.
     static constexpr unsigned long iterative_threshold_dofs = 60000;
     // The kind `setting` (solver.linear_solver: auto | direct | iterative) selects for a system of n_dofs unknowns.
-    static Kind choose_kind(const std::string &setting, unsigned long n_dofs);
+    static Kind choose_kind(const io::Choice<io::LinearSolverChoice> &setting, unsigned long n_dofs);
 
     // Sets the OpenMP threads of MUMPS and the threads of OpenBLAS to one, unless the user set
     // OMP_NUM_THREADS or OPENBLAS_NUM_THREADS. Our threads are TBB's (assembly) and MPI ranks;

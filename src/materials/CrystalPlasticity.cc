@@ -1,5 +1,5 @@
-#include <materials/CrystalPlasticity.h>
-#include <materials/crystal/CrystalPlasticityModel.templates.h>
+#include "materials/CrystalPlasticity.h"
+#include "materials/crystal/CrystalPlasticityModel.templates.h"
 
 namespace indentsim::materials
 {

@@ -9,11 +9,11 @@
 // on the slip systems of a lattice (crystal/SlipSystems.h; FCC {111}<110>).
 #pragma once
 
-#include <materials/crystal/CrystalPlasticityModel.h>
-#include <materials/crystal/CubicElasticity.h>
-#include <materials/crystal/ExtendedVoceHardening.h>
-#include <materials/crystal/RegularizedSchmidFlow.h>
-#include <materials/crystal/SlipSystems.h>
+#include "materials/crystal/CrystalPlasticityModel.h"
+#include "materials/crystal/CubicElasticity.h"
+#include "materials/crystal/ExtendedVoceHardening.h"
+#include "materials/crystal/RegularizedSchmidFlow.h"
+#include "materials/crystal/SlipSystems.h"
 
 namespace indentsim::materials
 {

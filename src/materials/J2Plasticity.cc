@@ -1,8 +1,8 @@
 #include <cstdio>
 #include <cstdlib>
-#include <materials/ImplicitLocalProblem.h>
-#include <materials/J2Plasticity.h>
-#include <materials/TensorFunctions.h>
+#include "materials/ImplicitLocalProblem.h"
+#include "materials/J2Plasticity.h"
+#include "materials/TensorFunctions.h"
 
 #include <Sacado.hpp>
 

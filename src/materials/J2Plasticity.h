@@ -23,8 +23,8 @@
 // then gamma_p. Units: GPa for moduli and stresses.
 #pragma once
 
-#include <materials/MaterialModel.h>
-#include <materials/NeoHookean.h>
+#include "materials/MaterialModel.h"
+#include "materials/NeoHookean.h"
 
 #include <deal.II/base/symmetric_tensor.h>
 

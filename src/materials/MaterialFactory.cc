@@ -1,8 +1,8 @@
-#include <materials/CrystalPlasticity.h>
-#include <materials/J2Plasticity.h>
-#include <materials/MaterialFactory.h>
-#include <materials/NeoHookean.h>
-#include <materials/crystal/Orientation.h>
+#include "materials/CrystalPlasticity.h"
+#include "materials/J2Plasticity.h"
+#include "materials/MaterialFactory.h"
+#include "materials/NeoHookean.h"
+#include "materials/crystal/Orientation.h"
 
 #include <stdexcept>
 
@@ -10,19 +10,19 @@ namespace indentsim::materials
 {
   std::unique_ptr<MaterialModel> create_material(const io::MaterialParameters &parameters)
   {
-    if (parameters.model == "neo_hookean")
+    if (parameters.model == io::ModelKind::neo_hookean)
       return std::make_unique<NeoHookean>(parameters.young_modulus, parameters.poisson_ratio);
 
-    if (parameters.model == "j2")
+    if (parameters.model == io::ModelKind::j2)
       {
         YieldStressMeasure measure;
-        if (parameters.yield_stress_measure == "cauchy")
+        if (parameters.yield_stress_measure == io::YieldStressMeasure::cauchy)
           measure = YieldStressMeasure::cauchy;
-        else if (parameters.yield_stress_measure == "kirchhoff")
+        else if (parameters.yield_stress_measure == io::YieldStressMeasure::kirchhoff)
           measure = YieldStressMeasure::kirchhoff;
         else
           throw std::invalid_argument("material.yield_stress_measure = \"" +
-                                      parameters.yield_stress_measure +
+                                      to_string(parameters.yield_stress_measure) +
                                       "\" is not supported; allowed: cauchy, kirchhoff");
         return std::make_unique<J2Plasticity>(parameters.young_modulus,
                                               parameters.poisson_ratio,
@@ -31,26 +31,26 @@ namespace indentsim::materials
                                               measure);
       }
 
-    if (parameters.model == "crystal")
+    if (parameters.model == io::ModelKind::crystal)
       return std::make_unique<CrystalPlasticity>(
-        slip_systems(parameters.lattice),
+        slip_systems(to_string(parameters.lattice)),
         CubicElasticity{parameters.C11, parameters.C12, parameters.C44},
         ExtendedVoceHardening{
           parameters.tau0, parameters.tau1, parameters.theta0, parameters.theta1, parameters.q},
         parameters.yield_exponent_n);
 
-    throw std::invalid_argument("material.model = \"" + parameters.model +
+    throw std::invalid_argument("material.model = \"" + to_string(parameters.model) +
                                 "\" is not supported; allowed: neo_hookean, j2, crystal");
   }
 
   dealii::Tensor<2, 3> create_orientation(const io::OrientationParameters &orientation)
   {
-    if (orientation.kind == "euler_bunge_deg")
+    if (orientation.kind == io::OrientationKind::euler_bunge_deg)
       return bunge_rotation(orientation.euler_bunge_deg);
-    if (orientation.kind == "surface_normal")
+    if (orientation.kind == io::OrientationKind::surface_normal)
       return rotation_from_surface_normal(orientation.surface_normal,
                                           orientation.reference_direction);
-    throw std::invalid_argument("material.orientation: kind \"" + orientation.kind +
+    throw std::invalid_argument("material.orientation: kind \"" + to_string(orientation.kind) +
                                 "\" is not supported; allowed: euler_bunge_deg, surface_normal");
   }
 } // namespace indentsim::materials

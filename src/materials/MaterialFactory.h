@@ -1,18 +1,18 @@
 // Builds the constitutive model named in the case file (the `material` block of io::Case).
 #pragma once
 
-#include <io/Case.h>
-#include <materials/MaterialModel.h>
+#include "case/MaterialParameters.h"
+#include "materials/MaterialModel.h"
 
 #include <memory>
 
 namespace indentsim::materials
 {
-  // model "neo_hookean" -> NeoHookean(E, nu);
-  // model "j2"          -> J2Plasticity(E, nu, sigma_y0, H, yield_stress_measure), with
-  //                        yield_stress_measure "cauchy" (the paper's eq. 4) or "kirchhoff".
-  // model "crystal"     -> CrystalPlasticity (lattice, C11, C12, C44, tau0, tau1, theta0, theta1,
-  //                        q, yield_exponent_n); the orientation enters each point's state.
+  // model neo_hookean -> NeoHookean(E, nu);
+  // model j2          -> J2Plasticity(E, nu, sigma_y0, H, yield_stress_measure), with
+  //                      yield_stress_measure cauchy (the paper's eq. 4) or kirchhoff.
+  // model crystal     -> CrystalPlasticity (lattice, C11, C12, C44, tau0, tau1, theta0, theta1,
+  //                      q, yield_exponent_n); the orientation enters each point's state.
   // Throws std::invalid_argument naming the key, the value and what is allowed.
   std::unique_ptr<MaterialModel> create_material(const io::MaterialParameters &parameters);
 

@@ -1,4 +1,4 @@
-#include <materials/MaterialModel.h>
+#include "materials/MaterialModel.h"
 
 namespace indentsim::materials
 {

@@ -1,5 +1,5 @@
-#include <materials/NeoHookean.h>
-#include <materials/TensorFunctions.h>
+#include "materials/NeoHookean.h"
+#include "materials/TensorFunctions.h"
 
 #include <cmath>
 #include <limits>

@@ -6,7 +6,7 @@
 // predictor and the elastic response of J2Plasticity, so that part is exposed here too.
 #pragma once
 
-#include <materials/MaterialModel.h>
+#include "materials/MaterialModel.h"
 
 #include <deal.II/base/symmetric_tensor.h>
 

@@ -50,7 +50,7 @@ namespace indentsim::mesh
                                   " cannot be meshed: it must be an even number >= 2");
 
     MeshInfo info;
-    info.quarter = (specimen.symmetry == "quarter");
+    info.quarter = (specimen.symmetry == io::Symmetry::quarter);
     info.refinement_levels = levels;
     info.contact_element_size = specimen.refined_region[0] / n;
     info.refined_half_x = specimen.refined_region[0] / 2;

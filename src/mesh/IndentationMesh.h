@@ -11,7 +11,7 @@
 // nodes are handled by exact AffineConstraints (DoFTools::make_hanging_node_constraints).
 #pragma once
 
-#include "io/Case.h"
+#include "case/Case.h"
 
 #include <deal.II/distributed/tria.h>
 

@@ -12,7 +12,7 @@ namespace indentsim::nonlinear
 
     bool is_force_control(const io::LoadingParameters &loading)
     {
-      return loading.control == "force";
+      return loading.control == io::Control::force;
     }
   } // namespace
 

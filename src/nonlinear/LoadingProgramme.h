@@ -3,7 +3,7 @@
 // of the whole indent. Knows nothing of meshes: the stepper (IndentationRun.cc) walks it.
 #pragma once
 
-#include "io/Case.h"
+#include "case/Case.h"
 
 #include <string>
 #include <vector>

@@ -5,7 +5,8 @@
 // the records so far and the pile-up snapshot at maximum depth. A rebuilt problem (same case,
 // same number of ranks: the mesh, the partition and the DoF numbering are deterministic)
 // continues from it as if it had never stopped.
-#include "io/CaseFile.h"
+#include "case/CaseFile.h"
+#include "case/Fingerprint.h"
 #include "output/Checkpoint.h"
 #include "problems/IndentationProblem.h"
 
@@ -61,11 +62,7 @@ namespace indentsim::problems
 
   std::uint64_t IndentationProblem::case_fingerprint() const
   {
-    io::Case neutral = case_;
-    neutral.output.directory = ".";
-    neutral.output.checkpoint_interval_s = 0;
-    neutral.source_file.clear();
-    return checkpoint::fingerprint(io::resolved_case_yaml(neutral));
+    return io::case_fingerprint(case_);
   }
 
   void IndentationProblem::write_checkpoint(const LoopState                    &loop,

@@ -2,8 +2,8 @@
 // cell-averaged Cauchy stress, von Mises stress, equivalent plastic strain and the nodal contact
 // fields (pressure, status, friction traction); the pile-up files of the top surface.
 // Units: um, GPa.
-#include "io/CaseFile.h"
 #include "analysis/PileUp.h"
+#include "case/CaseFile.h"
 #include "fem/FiniteStrainElement.h"
 #include "output/PythonScripts.h"
 #include "problems/IndentationProblem.h"

@@ -1,7 +1,7 @@
 #include "problems/IndentationProblem.h"
 
 #include "indenter/IndenterFactory.h"
-#include "io/CaseFile.h"
+#include "case/CaseFile.h"
 #include "io/Version.h"
 #include "materials/MaterialFactory.h"
 #include "output/Checkpoint.h"

@@ -17,7 +17,7 @@
 #include "fem/FiniteStrainElement.h"
 #include "fem/QuadraturePointHistory.h"
 #include "indenter/IndenterSurface.h"
-#include "io/Case.h"
+#include "case/Case.h"
 #include "linalg/LinearSolver.h"
 #include "linalg/MatrixScatter.h"
 #include "materials/MaterialModel.h"
@@ -214,8 +214,8 @@ namespace indentsim::problems
     // Collective. Reads the checkpoint into the problem; throws io::CaseFileError on every rank
     // if any rank's file is missing, of another case, rank count or format.
     void read_checkpoint(LoopState &loop, std::vector<SurfaceSnapshot> &snapshots);
-    // The fingerprint of the case as far as it determines the results (the resolved case
-    // without output.directory and output.checkpoint_interval_s).
+    // The fingerprint of the case as far as it determines the results (io::case_fingerprint,
+    // case/Fingerprint.h).
     std::uint64_t case_fingerprint() const;
     std::string   checkpoint_directory() const;
 

@@ -2,7 +2,7 @@
 // one converged step at a time, with the cut-back stepper (nonlinear/CutBackStepper.h), the
 // outputs of each step (output/RunRecorder.h, VTU, pile-up snapshots), checkpoints, stop and
 // resume. Units: um, mN, GPa, s.
-#include "io/CaseFile.h"
+#include "case/CaseFile.h"
 #include "output/Checkpoint.h"
 #include "output/RunRecorder.h"
 #include "problems/IndentationProblem.h"
@@ -345,7 +345,7 @@ namespace indentsim::problems
       return;
     output::RunDescription description;
     description.test = "indentation";
-    description.material_model = case_.material.model;
+    description.material_model = io::to_string(case_.material.model);
     description.linear_solver = linear_solver_.description();
     description.cells = n_cells();
     description.dofs = n_dofs();

@@ -1,6 +1,6 @@
 #include "problems/TensileProblem.h"
 
-#include "io/CaseFile.h"
+#include "case/CaseFile.h"
 #include "io/Version.h"
 #include "materials/MaterialFactory.h"
 #include "materials/crystal/Orientation.h"
@@ -140,7 +140,7 @@ namespace indentsim::problems
     // Orientations: one for the whole cube, or one random orientation per element numbered by
     // the element's position, so that every MPI partition sees the same polycrystal.
     const auto        &specimen = case_.specimen;
-    const bool         per_element = (specimen.grains == "per_element");
+    const bool         per_element = (specimen.grains == io::Grains::per_element);
     const unsigned int n_cells_total = n_per_side_ * n_per_side_ * n_per_side_;
     const std::vector<Tensor<2, 3>> orientations =
       per_element ?
@@ -353,7 +353,7 @@ namespace indentsim::problems
   {
     const bool    root = Utilities::MPI::this_mpi_process(communicator_) == 0;
     const auto   &loading = case_.loading;
-    const std::string model = case_.material.model;
+    const std::string model = io::to_string(case_.material.model);
     std::ofstream csv, log;
     if (root && !output_directory.empty())
       {

@@ -21,7 +21,7 @@
 // successive halvings); nothing is recorded from an unconverged state.
 #pragma once
 
-#include "io/Case.h"
+#include "case/Case.h"
 #include "materials/MaterialModel.h"
 #include "fem/CellWorkspace.h"
 #include "fem/FiniteStrainElement.h"

@@ -1,6 +1,8 @@
 // Study files: reading, validation, the merge of overrides onto base case files and the case
 // key. See StudyFile.h for the format and the rules. Units: um, mN, GPa.
-#include <study/StudyFile.h>
+#include "study/StudyFile.h"
+
+#include "case/Fingerprint.h"
 
 #include <algorithm>
 #include <cctype>
@@ -27,11 +29,6 @@ namespace indentsim::study
                                                   "paper_note"};
     const std::vector<std::string> case_keys = {"name", "base", "overrides", "group", "label"};
     const std::vector<std::string> mesh_groups = {"mesh_j2", "mesh_crystal"};
-
-    // Paths of the resolved case that do not change a result and so stay out of the key (so
-    // the keys of studies finished before output.checkpoint_interval_s existed stay valid).
-    const std::vector<std::string> paths_outside_key = {"output.directory", "solver.threads",
-                                                        "output.checkpoint_interval_s"};
 
     using io::join;
     const auto &flow_text = io::node_text;
@@ -74,40 +71,6 @@ namespace indentsim::study
           else
             target[key] = YAML::Clone(entry.second);
         }
-    }
-
-    // "path: value" lines of every scalar or list of scalars below `node`.
-    void flatten(const YAML::Node &node, const std::string &path, std::vector<std::string> &lines)
-    {
-      if (contains(paths_outside_key, path))
-        return;
-      if (node.IsMap())
-        {
-          for (const auto &entry : node)
-            flatten(entry.second,
-                    path.empty() ? entry.first.Scalar() : path + "." + entry.first.Scalar(),
-                    lines);
-        }
-      else if (node.IsSequence())
-        {
-          const bool all_scalars = std::all_of(node.begin(), node.end(), [](const YAML::Node &item) {
-            return item.IsScalar();
-          });
-          if (all_scalars)
-            {
-              std::vector<std::string> items;
-              for (const auto &item : node)
-                items.push_back(item.Scalar());
-              lines.push_back(path + ": [" + join(items) + "]");
-            }
-          else
-            for (std::size_t i = 0; i < node.size(); ++i)
-              flatten(node[i], path + "[" + std::to_string(i) + "]", lines);
-        }
-      else if (node.IsScalar())
-        lines.push_back(path + ": " + node.Scalar());
-      else
-        lines.push_back(path + ": ~");
     }
 
     // Reads a study file's YAML into a Study; every problem throws StudyFileError.
@@ -437,22 +400,24 @@ namespace indentsim::study
                                 result.overrides_text + "): " + message);
           }
 
-        const std::string &test = result.resolved.test;
-        const std::string &model = result.resolved.material.model;
+        const auto &test = result.resolved.test;
+        const auto &model = result.resolved.material.model;
         for (const auto &group : result.groups)
           {
             std::string needed;
-            if (group == "tensile" && test != "tensile")
+            if (group == "tensile" && test != io::TestKind::tensile)
               needed = "test: tensile";
-            else if (group != "tensile" && test != "indentation")
+            else if (group != "tensile" && test != io::TestKind::indentation)
               needed = "test: indentation";
-            else if (group == "mesh_j2" && model != "j2")
+            else if (group == "mesh_j2" && model != io::ModelKind::j2)
               needed = "material.model: j2";
-            else if ((group == "mesh_crystal" || group == "orientation") && model != "crystal")
+            else if ((group == "mesh_crystal" || group == "orientation") &&
+                     model != io::ModelKind::crystal)
               needed = "material.model: crystal";
             if (!needed.empty())
               fail(result.line, the_case + ": group " + group + " needs " + needed +
-                                  "; this case has test: " + test + ", material.model: " + model);
+                                  "; this case has test: " + io::to_string(test) +
+                                  ", material.model: " + io::to_string(model));
           }
 
         result.resolved.source_file =
@@ -512,30 +477,17 @@ namespace indentsim::study
 
   std::string canonical_case_text(const io::Case &resolved_case)
   {
-    io::Case neutral = resolved_case;
-    neutral.source_file.clear();
-    neutral.output.directory.clear();
-    neutral.solver.threads = 0;
-    std::vector<std::string> lines;
-    flatten(YAML::Load(io::resolved_case_yaml(neutral)), "", lines);
-    std::sort(lines.begin(), lines.end());
-    return join(lines, "\n") + "\n";
+    return io::canonical_case_text(resolved_case);
   }
 
   std::uint64_t fnv1a_64(const std::string &text)
   {
-    std::uint64_t hash = 14695981039346656037ull; // FNV offset basis
-    for (const unsigned char byte : text)
-      {
-        hash ^= byte;
-        hash *= 1099511628211ull; // FNV prime
-      }
-    return hash;
+    return io::fnv1a_64(text);
   }
 
   std::string case_key(const io::Case &resolved_case)
   {
-    const std::uint64_t hash = fnv1a_64(canonical_case_text(resolved_case));
+    const std::uint64_t hash = io::case_fingerprint(resolved_case);
     static const char  *digits = "0123456789abcdef";
     std::string         key(16, '0');
     for (int i = 15; i >= 0; --i)

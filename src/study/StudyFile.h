@@ -22,7 +22,7 @@
 // The overrides are merged onto the base YAML: maps key by key, anything else (numbers, lists,
 // words) replaced, a null value (~) removes the key (its default applies). material.orientation
 // is replaced as a whole, since its keys are alternatives. The merged text goes through the case
-// file reader and validator (io/CaseFile.h), so a case is checked exactly as `indentsim run`
+// file reader and validator (case/CaseFile.h), so a case is checked exactly as `indentsim run`
 // would check it; output.directory is set by the study: <output>/cases/<name>-<key>.
 //
 // The key of a case is the FNV-1a 64-bit hash (16 hex digits) of its resolved case in a
@@ -35,8 +35,8 @@
 // and what is allowed.
 #pragma once
 
-#include <io/Case.h>
-#include <io/CaseFile.h>
+#include "case/Case.h"
+#include "case/CaseFile.h"
 
 #include <yaml-cpp/yaml.h>
 
@@ -105,13 +105,13 @@ namespace indentsim::study
   // `overrides` merged onto a copy of `base` (see the rules above); neither is modified.
   YAML::Node merge_overrides(const YAML::Node &base, const YAML::Node &overrides);
 
-  // The canonical text that the key hashes: one "path: value" line per key of the resolved
-  // case, sorted, without output.directory, output.checkpoint_interval_s and solver.threads.
+  // The canonical text that the key hashes: io::canonical_case_text (case/Fingerprint.h), one
+  // "path: value" line per key that determines the results, sorted.
   std::string canonical_case_text(const io::Case &resolved_case);
 
   // 64-bit FNV-1a of `text`.
   std::uint64_t fnv1a_64(const std::string &text);
 
-  // The case key: fnv1a_64(canonical_case_text(...)) as 16 lower-case hex digits.
+  // The case key: io::case_fingerprint (case/Fingerprint.h) as 16 lower-case hex digits.
   std::string case_key(const io::Case &resolved_case);
 } // namespace indentsim::study

@@ -1,11 +1,11 @@
 // Runs a study's cases as child processes (posix_spawn), side by side up to --jobs, and writes
 // the study index and the report. See StudyRunner.h. Units: um, mN, GPa; times in s.
-#include <study/StudyRunner.h>
+#include "study/StudyRunner.h"
 
-#include <io/CaseFile.h>
-#include <io/JsonText.h>
-#include <io/Version.h>
-#include <output/PythonScripts.h>
+#include "case/CaseFile.h"
+#include "io/JsonText.h"
+#include "io/Version.h"
+#include "output/PythonScripts.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -611,21 +611,21 @@ namespace indentsim::study
             << ", \"ran_now\": " << (ran_now[i] ? "true" : "false") << ",\n"
             << "     \"base_file\": " << json_string(c.base_file)
             << ", \"overrides\": " << json_string(c.overrides_text) << ",\n"
-            << "     \"test\": " << json_string(resolved.test)
-            << ", \"model\": " << json_string(resolved.material.model)
+            << "     \"test\": " << json_string(io::to_string(resolved.test))
+            << ", \"model\": " << json_string(io::to_string(resolved.material.model))
             << ", \"compare_j2\": " << (resolved.compare_j2 ? "true" : "false")
             << ", \"contact_elements\": " << resolved.specimen.contact_elements
             << ", \"refined_region_um\": " << triple(resolved.specimen.refined_region)
-            << ", \"symmetry\": " << json_string(resolved.specimen.symmetry)
-            << ", \"indenter\": " << json_string(resolved.indenter.shape)
-            << ", \"control\": " << json_string(resolved.loading.control)
+            << ", \"symmetry\": " << json_string(io::to_string(resolved.specimen.symmetry))
+            << ", \"indenter\": " << json_string(io::to_string(resolved.indenter.shape))
+            << ", \"control\": " << json_string(io::to_string(resolved.loading.control))
             << ", \"max_depth_um\": " << json_number_text(resolved.loading.max_depth) << ",\n"
             << "     \"orientation\": "
-            << (orientation.kind == "surface_normal" ?
+            << (orientation.kind == io::OrientationKind::surface_normal ?
                   "{\"surface_normal\": " + triple(orientation.surface_normal) +
                     ", \"reference_direction\": " + triple(orientation.reference_direction) + "}" :
                   "{\"euler_bunge_deg\": " + triple(orientation.euler_bunge_deg) + "}")
-            << ", \"grains\": " << json_string(resolved.specimen.grains)
+            << ", \"grains\": " << json_string(io::to_string(resolved.specimen.grains))
             << ", \"seed\": " << resolved.specimen.seed
             << ", \"elements_per_side\": " << resolved.specimen.elements_per_side
             << ", \"max_strain\": " << json_number_text(resolved.loading.max_strain) << "}"

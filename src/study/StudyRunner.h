@@ -15,7 +15,7 @@
 // figures in <output>/figures/.
 #pragma once
 
-#include <study/StudyFile.h>
+#include "study/StudyFile.h"
 
 #include <ostream>
 #include <string>

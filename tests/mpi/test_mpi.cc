@@ -3,7 +3,7 @@
 // entry per test, label mpi); with one rank it still checks that two identical runs agree.
 #include "../test_cases.h"
 #include "../test_files.h"
-#include "io/Case.h"
+#include "case/Case.h"
 #include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>

@@ -5,7 +5,7 @@
 // an intended change scripts/regenerate_gold.sh rewrites it from regression/small_j2.yaml (the same
 // case as a file), and the commit explains the change.
 #include "../test_cases.h"
-#include "io/Case.h"
+#include "case/Case.h"
 #include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>

@@ -5,10 +5,10 @@
 // must agree to round-off. Units: GPa.
 #pragma once
 
-#include <materials/CrystalPlasticity.h>
-#include <materials/ImplicitLocalProblem.h>
-#include <materials/NeoHookean.h>
-#include <materials/TensorFunctions.h>
+#include "materials/CrystalPlasticity.h"
+#include "materials/ImplicitLocalProblem.h"
+#include "materials/NeoHookean.h"
+#include "materials/TensorFunctions.h"
 
 #include <Sacado.hpp>
 

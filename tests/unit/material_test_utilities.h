@@ -2,7 +2,7 @@
 // finite-difference check of a model's tangent dP/dF. Units: GPa.
 #pragma once
 
-#include <materials/MaterialModel.h>
+#include "materials/MaterialModel.h"
 
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>

@@ -1,7 +1,10 @@
 // Case files, the resolved case, output-directory protection and the command line.
-#include <io/CaseFile.h>
-#include <io/CommandLine.h>
-#include <io/Version.h>
+#include "case/CaseFile.h"
+#include "case/CaseReference.h"
+#include "case/Fingerprint.h"
+#include "case/Schema.h"
+#include "io/CommandLine.h"
+#include "io/Version.h"
 
 #include "../test_files.h"
 
@@ -1133,4 +1136,82 @@ TEST(CaseFile, ExperimentalCurveIsResolvedAndChecked)
   Case unitless = c;
   unitless.output.experimental_curve = (dir / "cases" / "data" / "unitless.csv").string();
   expect_rejected_case(unitless, {"output.experimental_curve", "depth unit '' is not known"});
+}
+
+// docs/case-file-reference.md is generated from the schema; it must be the generator's text.
+TEST(CaseFile, ReferenceDocumentIsUpToDate)
+{
+  const std::string path = std::string(INDENTSIM_SOURCE_DIR) + "/docs/case-file-reference.md";
+  std::string committed;
+  if (fs::exists(path))
+    committed = read_text_file(path);
+  EXPECT_TRUE(committed == case_file_reference_markdown())
+    << path << " is out of date with the case schema (src/case/Schema.cc); regenerate it from "
+    << "the repository root with: " << case_reference_command;
+}
+
+// Every schema key appears in the reference and in the resolved case.
+TEST(CaseFile, EveryKeyIsDocumentedAndWritten)
+{
+  const std::string reference = case_file_reference_markdown();
+  Case              by_normal;
+  by_normal.material.orientation.kind = OrientationKind::surface_normal;
+  const std::string written = resolved_case_yaml(Case()) + resolved_case_yaml(by_normal);
+  for (const auto &key : case_keys())
+    {
+      EXPECT_NE(reference.find("| `" + key.path + "` |"), std::string::npos) << key.path;
+      EXPECT_NE(written.find(key.name() + ": "), std::string::npos) << key.path;
+      EXPECT_FALSE(key.description.empty()) << key.path;
+    }
+}
+
+// One fingerprint for checkpoint and study: keys that only say where and when results are
+// written (or how many threads share the work) leave it unchanged; a physical key changes it.
+TEST(CaseFile, FingerprintIgnoresOnlyKeysThatDoNotDetermineResults)
+{
+  const Case          base = parse_case_yaml(minimal_case, "a.yaml");
+  const std::uint64_t fingerprint = case_fingerprint(base);
+
+  Case moved = base;
+  moved.source_file = "elsewhere/b.yaml";
+  moved.output.directory = "results/other";
+  moved.output.checkpoint_interval_s = 17;
+  moved.solver.threads = 3;
+  EXPECT_EQ(case_fingerprint(moved), fingerprint);
+  EXPECT_EQ(canonical_case_text(moved), canonical_case_text(base));
+
+  const auto changed = [&](const auto &change) {
+    Case c = base;
+    change(c);
+    return case_fingerprint(c) != fingerprint;
+  };
+  EXPECT_TRUE(changed([](Case &c) { c.material.young_modulus = 70; }));
+  EXPECT_TRUE(changed([](Case &c) { c.loading.max_depth = 5; }));
+  EXPECT_TRUE(changed([](Case &c) { c.indenter.shape = IndenterShape::sphere; }));
+  EXPECT_TRUE(changed([](Case &c) { c.contact.friction_coefficient = 0.1; }));
+  EXPECT_TRUE(changed([](Case &c) { c.solver.residual_tolerance = 1e-8; }));
+  EXPECT_TRUE(changed([](Case &c) { c.output.vtu_every = 2; }));
+  EXPECT_TRUE(changed([](Case &c) {
+    c.material.orientation.kind = OrientationKind::surface_normal;
+  }));
+  for (const auto &key : case_keys())
+    EXPECT_EQ(canonical_case_text(base).find(key.path + ": ") != std::string::npos,
+              key.determines_results && (key.written == nullptr || key.written(base)))
+      << key.path;
+}
+
+// A word that names no enumerator is kept (for the validator's message) and compares unequal
+// to every enumerator.
+TEST(CaseFile, ChoiceKeepsAnUnknownWord)
+{
+  Choice<Control> control = "forse";
+  EXPECT_FALSE(control.known());
+  EXPECT_EQ(to_string(control), "forse");
+  EXPECT_FALSE(control == Control::force);
+  EXPECT_FALSE(control == Control::depth);
+  control = "force";
+  EXPECT_TRUE(control.known());
+  EXPECT_TRUE(control == Control::force);
+  EXPECT_EQ(choice_words<Lattice>(true), std::vector<std::string>{"fcc"});
+  EXPECT_EQ(choice_words<Lattice>(false), (std::vector<std::string>{"fcc", "bcc", "hcp"}));
 }

@@ -2,11 +2,11 @@
 // eqs 10-15, Table 2) and of its building blocks: FCC slip systems, orientations, directional
 // Young's moduli and initial yield stresses of REFERENCES.md, objectivity, the consistent
 // tangent against finite differences, and step-size independence. Units: GPa.
-#include <io/Case.h>
-#include <materials/CrystalPlasticity.h>
-#include <materials/MaterialFactory.h>
-#include <materials/crystal/Orientation.h>
-#include <materials/crystal/SlipSystems.h>
+#include "case/Case.h"
+#include "materials/CrystalPlasticity.h"
+#include "materials/MaterialFactory.h"
+#include "materials/crystal/Orientation.h"
+#include "materials/crystal/SlipSystems.h"
 
 #include "crystal_reference_update.h"
 #include "material_test_utilities.h"

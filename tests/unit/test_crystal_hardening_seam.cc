@@ -4,10 +4,10 @@
 // so Delta tau_c^r = h (q Delta Gamma + (1 - q) |Delta gamma^r|) exactly over any increment. The
 // integrator, its Jacobian and its consistent tangent are not touched: the law supplies its
 // increment and derivatives through the interface of crystal/ExtendedVoceHardening.h.
-#include <materials/crystal/CrystalPlasticityModel.templates.h>
-#include <materials/crystal/CubicElasticity.h>
-#include <materials/crystal/RegularizedSchmidFlow.h>
-#include <materials/crystal/SlipSystems.h>
+#include "materials/crystal/CrystalPlasticityModel.templates.h"
+#include "materials/crystal/CubicElasticity.h"
+#include "materials/crystal/RegularizedSchmidFlow.h"
+#include "materials/crystal/SlipSystems.h"
 
 #include "material_test_utilities.h"
 

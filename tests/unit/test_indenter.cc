@@ -1,14 +1,14 @@
 // The rounded-cone indenter (eq. 16) against brute force, the Sneddon reference solution
 // against its Hertz and cone limits, and the indenter library (sphere, cone, Vickers and
 // Berkovich pyramids, flat punch, profile table) against brute force and area functions.
-#include <indenter/Cone.h>
-#include <indenter/FlatPunch.h>
-#include <indenter/IndenterFactory.h>
-#include <indenter/ProfileTable.h>
-#include <indenter/Pyramid.h>
-#include <indenter/RoundedCone.h>
-#include <indenter/Sphere.h>
-#include <indenter/SneddonReference.h>
+#include "indenter/Cone.h"
+#include "indenter/FlatPunch.h"
+#include "indenter/IndenterFactory.h"
+#include "indenter/ProfileTable.h"
+#include "indenter/Pyramid.h"
+#include "indenter/RoundedCone.h"
+#include "indenter/Sphere.h"
+#include "indenter/SneddonReference.h"
 
 #include "../test_files.h"
 

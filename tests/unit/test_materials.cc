@@ -4,12 +4,12 @@
 // eqs 1-9): tangent against finite differences, consistency of the return mapping, and
 // homogeneous uniaxial tension against the independent reference of
 // python/reference_j2_uniaxial.py. Units: GPa, dimensionless strains.
-#include <io/Case.h>
-#include <materials/J2Plasticity.h>
-#include <materials/MaterialFactory.h>
-#include <materials/MaterialModel.h>
-#include <materials/NeoHookean.h>
-#include <materials/TensorFunctions.h>
+#include "case/Case.h"
+#include "materials/J2Plasticity.h"
+#include "materials/MaterialFactory.h"
+#include "materials/MaterialModel.h"
+#include "materials/NeoHookean.h"
+#include "materials/TensorFunctions.h"
 
 #include "material_test_utilities.h"
 

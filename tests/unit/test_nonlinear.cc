@@ -1,7 +1,7 @@
 // The mesh-free parts of the nonlinear solver: the loading programme, the cut-back stepper and
 // the scalar rules of the Newton iteration, each against hand-computed values.
 // Units: um, mN.
-#include "io/Case.h"
+#include "case/Case.h"
 #include "nonlinear/CutBackStepper.h"
 #include "nonlinear/LoadingProgramme.h"
 #include "nonlinear/NewtonSteps.h"

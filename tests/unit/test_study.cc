@@ -1,10 +1,10 @@
 // Study files (study/StudyFile.h), the case key, the study command line, and the runner's
 // bookkeeping (study/StudyRunner.h) with a stand-in executable instead of the solver.
 // Units: um, mN, GPa.
-#include <io/CaseFile.h>
-#include <io/CommandLine.h>
-#include <study/StudyFile.h>
-#include <study/StudyRunner.h>
+#include "case/CaseFile.h"
+#include "io/CommandLine.h"
+#include "study/StudyFile.h"
+#include "study/StudyRunner.h"
 
 #include "../test_files.h"
 

@@ -1,7 +1,7 @@
 // Verification of single-crystal indentation (paper section 4): the quarter model against the
 // full model where the crystal has the mirror planes x = 0 and y = 0, the cubic symmetry of the
 // load-penetration curve, and global equilibrium. Units: um, mN, GPa.
-#include "io/Case.h"
+#include "case/Case.h"
 #include "problems/IndentationProblem.h"
 #include "../test_cases.h"
 

@@ -1,7 +1,7 @@
 // Verification of the finite-strain hexahedron: element tangent against finite differences of
 // the element residual (with and without F-bar, elastic and plastic), and patch tests on a mesh
 // with hanging nodes. Units: um, mN, GPa.
-#include "io/Case.h"
+#include "case/Case.h"
 #include "materials/MaterialFactory.h"
 #include "fem/CellWorkspace.h"
 #include "fem/FiniteStrainElement.h"

@@ -3,7 +3,7 @@
 // reaction, and the exactness of the augmented-Lagrangian contact. Units: um, mN, GPa.
 #include "indenter/SneddonReference.h"
 #include "../test_cases.h"
-#include "io/Case.h"
+#include "case/Case.h"
 #include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>

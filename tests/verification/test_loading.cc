@@ -1,7 +1,7 @@
 // Loading programmes: force control (the depth an unknown of the bordered Newton system)
 // against depth control, hold segments and load-unload cycles. Units: um, mN, GPa.
 #include "../test_cases.h"
-#include "io/Case.h"
+#include "case/Case.h"
 #include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
 // piles up with the symmetry of the square mesh. Units: um, mN, GPa.
 #include "../test_cases.h"
 #include "../test_files.h"
-#include "io/Case.h"
+#include "case/Case.h"
 #include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>

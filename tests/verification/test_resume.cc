@@ -5,8 +5,8 @@
 // message.
 #include "../test_cases.h"
 #include "../test_files.h"
-#include "io/Case.h"
-#include "io/CaseFile.h"
+#include "case/Case.h"
+#include "case/CaseFile.h"
 #include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
 // Units: um, mN, GPa.
 #include "../test_cases.h"
 #include "../test_files.h"
-#include "io/Case.h"
+#include "case/Case.h"
 #include "problems/IndentationProblem.h"
 #include "problems/TensileProblem.h"
 

@@ -3,7 +3,7 @@
 // the closed form, the crystal polycrystal's reproducibility and orientation handling, the
 // cut-back, and 1 versus 2 MPI ranks (MpiTensile, run under mpirun -np 2 by CTest).
 // Units: um, mN, GPa.
-#include "io/Case.h"
+#include "case/Case.h"
 #include "materials/MaterialFactory.h"
 #include "problems/TensileProblem.h"
 

@@ -20,10 +20,10 @@
 // depends on the total slip and the system's own, so dR_tc/dtau_c is diagonal plus rank two.
 #pragma once
 
-#include <materials/ImplicitLocalProblem.h>
-#include <materials/crystal/ExtendedVoceHardening.h>
-#include <materials/crystal/MatrixExponential.h>
-#include <materials/crystal/SmallMatrix.h>
+#include "materials/ImplicitLocalProblem.h"
+#include "materials/crystal/ExtendedVoceHardening.h"
+#include "materials/crystal/MatrixExponential.h"
+#include "materials/crystal/SmallMatrix.h"
 
 #include <array>
 #include <cmath>

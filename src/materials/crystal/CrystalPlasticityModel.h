@@ -35,9 +35,9 @@
 // Units: GPa for moduli and stresses.
 #pragma once
 
-#include <materials/MaterialModel.h>
-#include <materials/crystal/SlipSystems.h>
-#include <materials/crystal/SmallMatrix.h>
+#include "materials/MaterialModel.h"
+#include "materials/crystal/SlipSystems.h"
+#include "materials/crystal/SmallMatrix.h"
 
 #include <array>
 #include <utility>

@@ -2,12 +2,12 @@
 // units that instantiate it.
 #pragma once
 
-#include <materials/ImplicitLocalProblem.h>
-#include <materials/NeoHookean.h>
-#include <materials/TensorFunctions.h>
-#include <materials/crystal/CrystalLocalProblem.h>
-#include <materials/crystal/CrystalPlasticityModel.h>
-#include <materials/crystal/MatrixExponential.h>
+#include "materials/ImplicitLocalProblem.h"
+#include "materials/NeoHookean.h"
+#include "materials/TensorFunctions.h"
+#include "materials/crystal/CrystalLocalProblem.h"
+#include "materials/crystal/CrystalPlasticityModel.h"
+#include "materials/crystal/MatrixExponential.h"
 
 #include <algorithm>
 #include <cmath>

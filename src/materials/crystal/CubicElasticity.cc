@@ -1,4 +1,4 @@
-#include <materials/crystal/CubicElasticity.h>
+#include "materials/crystal/CubicElasticity.h"
 
 #include <array>
 

@@ -12,7 +12,7 @@
 // A hexagonal lattice adds a struct with the same members (C11, C12, C13, C33, C44).
 #pragma once
 
-#include <materials/crystal/SmallMatrix.h>
+#include "materials/crystal/SmallMatrix.h"
 
 #include <deal.II/base/tensor.h>
 

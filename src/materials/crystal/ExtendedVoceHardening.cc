@@ -1,4 +1,4 @@
-#include <materials/crystal/ExtendedVoceHardening.h>
+#include "materials/crystal/ExtendedVoceHardening.h"
 
 #include <cmath>
 

@@ -18,7 +18,7 @@
 //   parameter_error()            nullptr, or what is wrong with the parameters.
 #pragma once
 
-#include <materials/TensorFunctions.h>
+#include "materials/TensorFunctions.h"
 
 #include <Sacado.hpp>
 

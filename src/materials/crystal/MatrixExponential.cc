@@ -1,4 +1,4 @@
-#include <materials/crystal/MatrixExponential.h>
+#include "materials/crystal/MatrixExponential.h"
 
 #include <cmath>
 

@@ -2,7 +2,7 @@
 // F_p(t + dt) = exp(dt L_p) F_p(t) (eq. 12).
 #pragma once
 
-#include <materials/crystal/SmallMatrix.h>
+#include "materials/crystal/SmallMatrix.h"
 
 #include <array>
 

@@ -1,4 +1,4 @@
-#include <materials/crystal/Orientation.h>
+#include "materials/crystal/Orientation.h"
 
 #include <algorithm>
 #include <cmath>

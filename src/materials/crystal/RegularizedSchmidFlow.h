@@ -23,7 +23,7 @@
 //   parameter_error()                nullptr, or what is wrong with the parameters.
 #pragma once
 
-#include <materials/crystal/SmallMatrix.h>
+#include "materials/crystal/SmallMatrix.h"
 
 #include <algorithm>
 #include <array>

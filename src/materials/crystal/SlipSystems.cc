@@ -1,4 +1,4 @@
-#include <materials/crystal/SlipSystems.h>
+#include "materials/crystal/SlipSystems.h"
 
 #include <cmath>
 #include <stdexcept>

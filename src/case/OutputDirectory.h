@@ -1,71 +1,12 @@
-// Reading, validating and writing YAML case files, and protecting an output directory.
-//
-// A case file is YAML in um, mN, GPa. Only two keys are required: `test` and `material.model`;
-// every other key has the default listed in Case.h (and in the README). `specimen.f_bar`, when
-// absent, defaults to true for `j2` and `crystal` and false for `neo_hookean`. A relative
-// `output.directory` is relative to the current working directory (not to the case file).
-// The crystal keys (material.lattice, .elastic, .hardening, .yield_exponent_n, .orientation)
-// are read and checked for every model but used only by `crystal`; `material.orientation` is
-// either `euler_bunge_deg` or `surface_normal` + `reference_direction`, and the resolved case
-// writes the form that was given. The indenter keys likewise are read and checked for every
-// shape but used only by their shapes; `indenter.file` is relative to the case file's directory
-// (stored as an absolute path) and read only for `shape: profile_table`. `specimen.symmetry:
-// quarter` needs an indenter with the mirror planes x = 0 and y = 0 (not berkovich, vickers only
-// at multiples of 45 deg).
-//
-// Bad input never reaches the solver: every problem raises one CaseFileError whose message names
-// the file, the key path (e.g. `material.poisson_ratio`), the offending value and what is allowed.
+// The output directory of a run: the names of the files a run writes, and the protection of
+// an earlier run's results.
 #pragma once
 
-#include <io/Case.h>
-
 #include <array>
-#include <stdexcept>
 #include <string>
-#include <vector>
-
-namespace YAML
-{
-  class Node;
-}
 
 namespace indentsim::io
 {
-  // Bad input or I/O concerning a case file or an output directory.
-  class CaseFileError : public std::runtime_error
-  {
-  public:
-    using std::runtime_error::runtime_error;
-  };
-
-  // Parses, fills defaults and validates. Throws CaseFileError.
-  Case read_case_file(const std::string &path);
-
-  // The same from YAML text; `source_name` stands for the file name in messages and in
-  // Case::source_file.
-  Case parse_case_yaml(const std::string &yaml_text, const std::string &source_name);
-
-  // The value checks applied by read_case_file, for a case assembled or modified in code (for
-  // example after `--output` replaced output.directory). Throws CaseFileError.
-  void validate_case(const Case &resolved_case);
-
-  // Every key (defaults filled in) as YAML with unit comments; read_case_file() of this text
-  // gives back an identical Case (numbers are written in shortest round-trip form).
-  std::string resolved_case_yaml(const Case &resolved_case);
-
-  // The candidate closest to `word` if it is plausibly a typo of it, else "" (the "did you
-  // mean" of the messages; also used by the study file reader).
-  // The words separated by `separator`.
-  std::string join(const std::vector<std::string> &words, const std::string &separator = ", ");
-  // A YAML node as it was written, in one line (flow style for lists and maps); "(no value)"
-  // for a missing or null node. For error messages.
-  std::string node_text(const YAML::Node &node);
-
-  std::string closest_name(const std::string &word, const std::vector<std::string> &candidates);
-
-  // Writes resolved_case_yaml() to `path`. Throws CaseFileError if it cannot be written.
-  void write_resolved_case(const Case &resolved_case, const std::string &path);
-
   // File names every run writes into its output directory; the writers use these names so that
   // the directory protection below recognizes an earlier run.
   namespace output_files

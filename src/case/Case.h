@@ -1,71 +1,83 @@
-// The resolved case: every key of the YAML case file with its default filled in.
-// Units: lengths in um, forces in mN, stresses and moduli in GPa.
+// The resolved case: every key of the YAML case file with its default filled in (the keys,
+// their defaults and ranges are declared once, in Schema.cc). Units: lengths in um, forces in
+// mN, stresses and moduli in GPa. The material and the indenter have their own headers, so
+// that their factories depend on their parameters only.
 #pragma once
+
+#include "case/Choice.h"
+#include "case/IndenterParameters.h"
+#include "case/MaterialParameters.h"
 
 #include <array>
 #include <string>
 
 namespace indentsim::io
 {
-  // Crystal orientation (material.orientation). Bunge convention, passive: the rotation matrix
-  // g = R_z(phi2) R_x(Phi) R_z(phi1) maps sample components to crystal components,
-  // v_crystal = g v_sample. Alternatively the crystal direction [hkl] along the sample z axis
-  // (the indented plane's normal) and the crystal direction [uvw] along the sample x axis.
-  struct OrientationParameters
+  enum class TestKind
   {
-    std::string           kind = "euler_bunge_deg";       // euler_bunge_deg | surface_normal
-    std::array<double, 3> euler_bunge_deg = {{0., 0., 0.}}; // (phi1, Phi, phi2) [deg]
-    std::array<double, 3> surface_normal = {{0., 0., 1.}};  // Miller indices [hkl] of the plane
-    std::array<double, 3> reference_direction = {{1., 0., 0.}}; // [uvw] along sample x
-
-    bool operator==(const OrientationParameters &) const = default;
+    indentation,
+    tensile
+  };
+  template <>
+  struct ChoiceWords<TestKind>
+  {
+    static constexpr std::array<ChoiceWord<TestKind>, 2> words = {
+      {{TestKind::indentation, "indentation"}, {TestKind::tensile, "tensile"}}};
   };
 
-  struct MaterialParameters
+  // specimen.symmetry: the full block, or the quarter x >= 0, y >= 0 with mirror planes.
+  enum class Symmetry
   {
-    std::string model = "j2";            // neo_hookean | j2 | crystal
-    double      young_modulus = 69.0;    // E [GPa]
-    double      poisson_ratio = 0.26;    // nu [-], -1 < nu < 0.5
-    double      yield_stress = 0.305;    // sigma_y0 [GPa]
-    double      hardening_modulus = 0.5; // H [GPa], linear isotropic hardening
-    std::string yield_stress_measure = "cauchy"; // cauchy | kirchhoff: which stress enters eq. 4
-
-    // Crystal plasticity (model: crystal), the paper's section 2.2 and Table 2.
-    std::string lattice = "fcc";             // fcc: {111}<110>, 12 slip systems
-    double      C11 = 106.7, C12 = 60.4, C44 = 28.3; // cubic elastic constants [GPa]
-    double      tau0 = 0.12;   // initial critical resolved shear stress [GPa]
-    double      tau1 = 0.02;   // Voce back-extrapolated increment [GPa]
-    double      theta0 = 0.1;  // initial hardening rate [GPa]
-    double      theta1 = 0.006; // asymptotic hardening rate [GPa]
-    double      q = 1.4;       // latent hardening ratio [-]
-    double      yield_exponent_n = 10; // n of the regularized Schmid law (exponent 2n), eq. 14
-    OrientationParameters orientation;
-
-    bool operator==(const MaterialParameters &) const = default;
+    full,
+    quarter
+  };
+  template <>
+  struct ChoiceWords<Symmetry>
+  {
+    static constexpr std::array<ChoiceWord<Symmetry>, 2> words = {
+      {{Symmetry::full, "full"}, {Symmetry::quarter, "quarter"}}};
   };
 
-  // The rigid indenter (indenter/). Every key is read and range-checked for every shape, but
-  // each shape uses only its own keys (listed after each member).
-  struct IndenterParameters
+  // specimen.grains: one orientation, or a random orientation per element (tensile).
+  enum class Grains
   {
-    // rounded_cone | sphere | cone | vickers | berkovich | flat_punch | profile_table
-    std::string shape = "rounded_cone";
-    double      a = 2.48;      // rounded_cone: slope parameter [-] (eq. 16), half-angle atan(a)
-    double      delta = 0.005; // rounded_cone: tip rounding [um], tip radius a^2 delta
-    double      radius = 10.0; // sphere, flat_punch: radius [um]
-    double      half_angle_deg = 70.3; // cone: half-angle [deg] (70.3: the area function 24.5 h^2
-                                       // of the Vickers and Berkovich pyramids)
-    double      tip_radius = 0.0;   // cone, vickers, berkovich: tip (and edge) radius [um], 0: sharp
-    double      rotation_deg = 0.0; // vickers, berkovich: about +z, counterclockwise from above;
-                                    // 0: face 0's normal along +x (Pyramid.h)
-    double      edge_radius = 0.0;  // flat_punch: rounding of the rim [um], 0: sharp
-    // profile_table: the CSV table (ProfileTable.h). A relative path in a case file is relative
-    // to the case file's directory; the reader stores the absolute path, so that the resolved
-    // case works from any directory. In a Case built in code it is relative to the working
-    // directory.
-    std::string file = "";
+    single,
+    per_element
+  };
+  template <>
+  struct ChoiceWords<Grains>
+  {
+    static constexpr std::array<ChoiceWord<Grains>, 2> words = {
+      {{Grains::single, "single"}, {Grains::per_element, "per_element"}}};
+  };
 
-    bool operator==(const IndenterParameters &) const = default;
+  // loading.control: the indenter depth is prescribed, or the force (the depth an unknown).
+  enum class Control
+  {
+    depth,
+    force
+  };
+  template <>
+  struct ChoiceWords<Control>
+  {
+    static constexpr std::array<ChoiceWord<Control>, 2> words = {
+      {{Control::depth, "depth"}, {Control::force, "force"}}};
+  };
+
+  // solver.linear_solver (solver/LinearSolver.h).
+  enum class LinearSolverChoice
+  {
+    automatic,
+    direct,
+    iterative
+  };
+  template <>
+  struct ChoiceWords<LinearSolverChoice>
+  {
+    static constexpr std::array<ChoiceWord<LinearSolverChoice>, 3> words = {
+      {{LinearSolverChoice::automatic, "auto"},
+       {LinearSolverChoice::direct, "direct"},
+       {LinearSolverChoice::iterative, "iterative"}}};
   };
 
   struct SpecimenParameters
@@ -73,11 +85,11 @@ namespace indentsim::io
     std::array<double, 3> size = {{360., 360., 180.}};       // block edge lengths [um]
     std::array<double, 3> refined_region = {{120., 120., 30.}}; // refined block under the tip [um]
     unsigned int          contact_elements = 12; // N: N x N faces across the refined top face
-    std::string           symmetry = "full";     // full | quarter
+    Choice<Symmetry>      symmetry = Symmetry::full;
     bool                  f_bar = true;          // F-bar element (default on for plasticity)
     // Tensile test (test: tensile): a cube of elements_per_side^3 elements of 1 um edge.
     unsigned int          elements_per_side = 3;
-    std::string           grains = "single"; // single | per_element (random orientation each)
+    Choice<Grains>        grains = Grains::single; // per_element: random orientation each
     unsigned int          seed = 1;          // seed of the random orientations (per_element)
 
     bool operator==(const SpecimenParameters &) const = default;
@@ -87,7 +99,7 @@ namespace indentsim::io
   // for `hold_steps` increments, unload), under depth or force control.
   struct LoadingParameters
   {
-    std::string  control = "depth"; // depth | force (the indenter depth becomes an unknown)
+    Choice<Control> control = Control::depth; // force: the indenter depth becomes an unknown
     double       max_depth = 6.0;  // depth control: the maximum depth; force control: the
                                    // largest admissible depth (the refined region's design) [um]
     double       max_force = 0.0;  // force control: the maximum indenter force [mN]
@@ -125,7 +137,7 @@ namespace indentsim::io
     // Linear solver of the Newton iterations (linalg/LinearSolver.h): auto (direct below
     // LinearSolver::iterative_threshold_dofs unknowns, else iterative) | direct (MUMPS LU) |
     // iterative (CG/GMRES with ML smoothed-aggregation AMG, rigid-body modes).
-    std::string  linear_solver = "auto";
+    Choice<LinearSolverChoice> linear_solver = LinearSolverChoice::automatic;
     unsigned int threads = 0; // assembly threads per MPI rank; 0: the cores divided by the ranks
 
     bool operator==(const SolverParameters &) const = default;
@@ -149,7 +161,7 @@ namespace indentsim::io
   struct Case
   {
     std::string        source_file; // the YAML file this case was read from
-    std::string        test = "indentation"; // indentation | tensile
+    Choice<TestKind>   test = TestKind::indentation;
     bool               compare_j2 = false;  // tensile: also run the J2 model (material.young_modulus...)
     MaterialParameters material;
     IndenterParameters indenter;

@@ -1,0 +1,381 @@
+// Reads a YAML tree into a Case, key by key from the schema: unknown and duplicate keys (with
+// "did you mean"), required keys and the type of every value. The value checks follow in
+// CaseValidator.cc. Every message names the file, the line, the key path and the value.
+#include "case/CaseReading.h"
+#include "case/Schema.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <system_error>
+
+namespace indentsim::io
+{
+  namespace
+  {
+    namespace fs = std::filesystem;
+
+    const std::string orientation_path = "material.orientation";
+
+    class CaseReader
+    {
+    public:
+      CaseReader(std::string source_name, OriginMap &origins)
+        : source(std::move(source_name))
+        , value_origins(origins)
+      {}
+
+      Case read(const YAML::Node &root)
+      {
+        Case result;
+        result.source_file = source;
+
+        if (root.IsDefined() && !root.IsNull() && !root.IsMap())
+          fail(line_of(root),
+               "the case file must be a mapping of keys (test, material, indenter, ...), got '" +
+                 node_text(root) + "'");
+        check_keys(root, "", allowed_names(""));
+        maps.emplace("", root);
+
+        for (const auto &key : case_keys())
+          {
+            if (key.parent() == orientation_path)
+              {
+                if (key.name() == allowed_names(orientation_path).front())
+                  read_orientation(map_at("material"), result.material.orientation);
+                continue;
+              }
+            const YAML::Node &map = map_at(key.parent());
+            if (!read_value(map, key, result) && key.required)
+              fail(key.parent().empty() ? -1 : line_of(map),
+                   "missing required key '" + key.path +
+                     "' (allowed: " + join(key.choice.words(true)) + ")");
+          }
+
+        // F-bar by default for plasticity (isochoric flow locks plain hexahedra), plain
+        // displacement element by default for hyperelasticity.
+        if (value_origins.count("specimen.f_bar") == 0)
+          result.specimen.f_bar = (result.material.model == ModelKind::j2 ||
+                                   result.material.model == ModelKind::crystal);
+        return result;
+      }
+
+    private:
+      std::string                       source;
+      OriginMap                        &value_origins;
+      std::map<std::string, YAML::Node> maps; // the maps read so far, by path
+
+      static int line_of(const YAML::Node &node)
+      {
+        if (!node.IsDefined())
+          return -1;
+        const YAML::Mark mark = node.Mark();
+        return mark.is_null() ? -1 : mark.line;
+      }
+
+      [[noreturn]] void fail(const int line, const std::string &message) const
+      {
+        io::fail(source, line, message);
+      }
+
+      // The map at `path`, read (and its keys checked) when first needed: a section of the top
+      // level, or a map nested in one.
+      const YAML::Node &map_at(const std::string &path)
+      {
+        if (const auto found = maps.find(path); found != maps.end())
+          return found->second;
+        const std::size_t dot = path.rfind('.');
+        YAML::Node        node = dot == std::string::npos ?
+                                   section(maps.at(""), path) :
+                                   subsection(map_at(path.substr(0, dot)), path.substr(0, dot),
+                                              path.substr(dot + 1));
+        return maps.emplace(path, node).first->second;
+      }
+
+      // Unknown and duplicate keys at one level; `section_name` is "" for the top level.
+      void check_keys(const YAML::Node               &map,
+                      const std::string              &section_name,
+                      const std::vector<std::string> &allowed) const
+      {
+        if (!map.IsDefined() || !map.IsMap())
+          return;
+        std::map<std::string, int> seen;
+        for (const auto &entry : map)
+          {
+            const int line = line_of(entry.first);
+            if (!entry.first.IsScalar())
+              fail(line,
+                   "key '" + node_text(entry.first) + "'" +
+                     (section_name.empty() ? "" : " in '" + section_name + "'") +
+                     " is not a plain name; allowed keys: " + join(allowed));
+            const std::string key = entry.first.Scalar();
+            const std::string path = key_path(section_name, key);
+            if (const auto previous = seen.find(key); previous != seen.end())
+              fail(line,
+                   "duplicate key '" + path + "' (first given on line " +
+                     std::to_string(previous->second + 1) + "); give each key once");
+            seen.emplace(key, line);
+
+            if (std::find(allowed.begin(), allowed.end(), key) != allowed.end())
+              continue;
+            fail(line,
+                 "unknown key '" + path + "'" + unknown_key_hint(section_name, key) +
+                   " Allowed keys " +
+                   (section_name.empty() ? std::string("at the top level") :
+                                           "in '" + section_name + "'") +
+                   ": " + join(allowed) + ".");
+          }
+      }
+
+      // "; did you mean ...?" for an unknown key, or ".".
+      static std::string unknown_key_hint(const std::string &section_name, const std::string &key)
+      {
+        // A known key placed in the wrong section is the likeliest mistake.
+        for (const auto &[other_section, other_keys] : maps_with_names())
+          if (other_section != section_name &&
+              std::find(other_keys.begin(), other_keys.end(), key) != other_keys.end())
+            return "; did you mean '" + other_section + "." + key + "' (under '" + other_section +
+                   ":')?";
+        if (const std::string guess = closest_name(key, allowed_names(section_name));
+            !guess.empty())
+          return "; did you mean '" + key_path(section_name, guess) + "'?";
+        return ".";
+      }
+
+      // A section map; an absent or empty (null) section gives an undefined node: all defaults.
+      YAML::Node section(const YAML::Node &root, const std::string &name) const
+      {
+        if (!root.IsDefined() || !root.IsMap())
+          return YAML::Node(YAML::NodeType::Undefined);
+        const YAML::Node node = root[name];
+        if (!node.IsDefined() || node.IsNull())
+          return YAML::Node(YAML::NodeType::Undefined);
+        if (!node.IsMap())
+          fail(line_of(node),
+               "'" + name + "' = " + node_text(node) +
+                 ": expected a mapping of keys (allowed: " + join(allowed_names(name)) + ")");
+        check_keys(node, name, allowed_names(name));
+        return node;
+      }
+
+      // A map nested in a section (e.g. material.elastic), read like a section.
+      YAML::Node subsection(const YAML::Node  &parent,
+                            const std::string &parent_name,
+                            const std::string &key)
+      {
+        const YAML::Node  node = value_node(parent, parent_name, key);
+        const std::string path = key_path(parent_name, key);
+        if (!node.IsDefined() || node.IsNull())
+          return YAML::Node(YAML::NodeType::Undefined);
+        if (!node.IsMap())
+          fail(line_of(node),
+               path + " = " + node_text(node) + ": expected a mapping of keys (allowed: " +
+                 join(allowed_names(path)) + ")");
+        check_keys(node, path, allowed_names(path));
+        return node;
+      }
+
+      // One key into its place in `result`; false if the key is absent.
+      bool read_value(const YAML::Node &map, const Key &key, Case &result)
+      {
+        const YAML::Node node = value_node(map, key.parent(), key.name());
+        if (!node.IsDefined())
+          return false;
+        switch (key.type)
+          {
+            case ValueType::number:
+              key.number(result) = parse_double(node, key.path, key.expected);
+              break;
+            case ValueType::whole_number:
+              key.whole_number(result) = parse_unsigned(node, key.path);
+              break;
+            case ValueType::boolean:
+              key.boolean(result) = parse_bool(node, key.path);
+              break;
+            case ValueType::choice:
+              key.choice.assign(result, parse_word(node, key.path, key.expected));
+              break;
+            case ValueType::text:
+              key.text(result) = parse_word(node, key.path, key.expected);
+              if (key.relative_to_case_file)
+                key.text(result) = relative_to_case_file(key.text(result));
+              break;
+            case ValueType::triple:
+              key.triple(result) = parse_triple(node, key);
+              break;
+          }
+        return true;
+      }
+
+      // material.orientation: exactly one of euler_bunge_deg or surface_normal (which needs
+      // reference_direction: the in-plane direction is never guessed). Absent: the default
+      // Euler angles (0, 0, 0).
+      void read_orientation(const YAML::Node &material_map, OrientationParameters &orientation)
+      {
+        const std::string &path = orientation_path;
+        const YAML::Node   node = subsection(material_map, "material", "orientation");
+        if (!node.IsDefined())
+          return;
+        const bool has_euler = node["euler_bunge_deg"].IsDefined();
+        const bool has_normal = node["surface_normal"].IsDefined();
+        const bool has_reference = node["reference_direction"].IsDefined();
+        const std::string shown = path + " = " + node_text(node) + ": ";
+        const std::string either =
+          "give exactly one of euler_bunge_deg: [phi1, Phi, phi2] (degrees) or "
+          "surface_normal: [h, k, l] together with reference_direction: [u, v, w]";
+        if (has_euler && (has_normal || has_reference))
+          fail(line_of(node), shown + "both Euler angles and a surface normal given; " + either);
+        if (!has_euler && !has_normal && !has_reference)
+          fail(line_of(node), shown + "no orientation given; " + either);
+        if (has_normal && !has_reference)
+          fail(line_of(node),
+               shown + "surface_normal needs reference_direction, the crystal direction [u, v, "
+                       "w] along the sample x axis (perpendicular to the normal, e.g. [1, -1, "
+                       "0] for [1, 1, 1]); it is not guessed");
+        if (has_reference && !has_normal)
+          fail(line_of(node),
+               shown + "reference_direction is only used with surface_normal; " + either);
+
+        const auto read_form = [&](const char *name, std::array<double, 3> &values) {
+          const Key &key = find_key(path + "." + name);
+          values = parse_triple(value_node(node, path, name), key);
+        };
+        if (has_euler)
+          {
+            orientation.kind = OrientationKind::euler_bunge_deg;
+            read_form("euler_bunge_deg", orientation.euler_bunge_deg);
+          }
+        else
+          {
+            orientation.kind = OrientationKind::surface_normal;
+            read_form("surface_normal", orientation.surface_normal);
+            read_form("reference_direction", orientation.reference_direction);
+          }
+      }
+
+      // A path given relative to the case file's directory, made absolute (the resolved case
+      // is written elsewhere and must still find the file).
+      std::string relative_to_case_file(const std::string &path) const
+      {
+        if (path.empty())
+          return path;
+        fs::path resolved(path);
+        if (resolved.is_relative())
+          resolved = fs::path(source).parent_path() / resolved;
+        std::error_code error;
+        const fs::path  absolute = fs::absolute(resolved, error);
+        return (error ? resolved : absolute).lexically_normal().string();
+      }
+
+      // The value node of `key`, or an undefined node if the key is absent.
+      YAML::Node value_node(const YAML::Node  &map,
+                            const std::string &section_name,
+                            const std::string &key)
+      {
+        if (!map.IsDefined() || !map.IsMap())
+          return YAML::Node(YAML::NodeType::Undefined);
+        const YAML::Node node = map[key];
+        if (node.IsDefined())
+          value_origins[key_path(section_name, key)] = {line_of(node), node_text(node)};
+        return node;
+      }
+
+      double parse_double(const YAML::Node  &node,
+                          const std::string &path,
+                          const std::string &meaning) const
+      {
+        const std::string expected = "expected a number (" + meaning + ")";
+        if (node.IsNull())
+          fail(line_of(node), path + " has no value; " + expected);
+        if (!node.IsScalar())
+          fail(line_of(node), path + " = " + node_text(node) + ": " + expected);
+        std::string       text = node.Scalar();
+        const std::size_t start = (!text.empty() && text[0] == '+') ? 1 : 0;
+        double            value = 0.;
+        const auto        result =
+          std::from_chars(text.data() + start, text.data() + text.size(), value);
+        if (result.ec != std::errc() || result.ptr != text.data() + text.size() ||
+            !std::isfinite(value))
+          fail(line_of(node), path + " = \"" + text + "\": " + expected);
+        return value;
+      }
+
+      unsigned int parse_unsigned(const YAML::Node &node, const std::string &path) const
+      {
+        const std::string expected = "expected a non-negative whole number";
+        if (node.IsNull())
+          fail(line_of(node), path + " has no value; " + expected);
+        if (!node.IsScalar())
+          fail(line_of(node), path + " = " + node_text(node) + ": " + expected);
+        const std::string text = node.Scalar();
+        if (!text.empty() && text[0] == '-')
+          fail(line_of(node), path + " = " + text + ": negative; " + expected);
+        const std::size_t  start = (!text.empty() && text[0] == '+') ? 1 : 0;
+        unsigned long long parsed = 0;
+        const auto         result =
+          std::from_chars(text.data() + start, text.data() + text.size(), parsed);
+        if (result.ec == std::errc::result_out_of_range ||
+            (result.ec == std::errc() && parsed > std::numeric_limits<unsigned int>::max()))
+          fail(line_of(node), path + " = " + text + ": too large; " + expected);
+        if (result.ec != std::errc() || result.ptr != text.data() + text.size() ||
+            start == text.size())
+          fail(line_of(node), path + " = \"" + text + "\": " + expected);
+        return static_cast<unsigned int>(parsed);
+      }
+
+      bool parse_bool(const YAML::Node &node, const std::string &path) const
+      {
+        const std::string expected = "expected true or false";
+        if (node.IsNull())
+          fail(line_of(node), path + " has no value; " + expected);
+        if (!node.IsScalar())
+          fail(line_of(node), path + " = " + node_text(node) + ": " + expected);
+        try
+          {
+            return node.as<bool>();
+          }
+        catch (const YAML::Exception &)
+          {
+            fail(line_of(node), path + " = \"" + node.Scalar() + "\": " + expected);
+          }
+      }
+
+      std::string parse_word(const YAML::Node  &node,
+                             const std::string &path,
+                             const std::string &meaning) const
+      {
+        if (node.IsNull())
+          fail(line_of(node), path + " has no value; expected " + meaning);
+        if (!node.IsScalar())
+          fail(line_of(node),
+               path + " = " + node_text(node) + ": expected " + meaning + " (a single word)");
+        return node.Scalar();
+      }
+
+      std::array<double, 3> parse_triple(const YAML::Node &node, const Key &key) const
+      {
+        const std::string &path = key.path;
+        const std::string  expected = "expected a list of 3 numbers " + key.expected;
+        if (!node.IsSequence())
+          fail(line_of(node), path + " = " + node_text(node) + ": " + expected);
+        if (node.size() != 3)
+          fail(line_of(node),
+               path + " = " + node_text(node) + ": " + expected + ", got " +
+                 std::to_string(node.size()) + " entries");
+        std::array<double, 3> values{};
+        for (std::size_t i = 0; i < 3; ++i)
+          values[i] = parse_double(node[i], path + "[" + std::to_string(i) + "]", key.entry_unit);
+        return values;
+      }
+    };
+  } // namespace
+
+  Case read_case_tree(const YAML::Node &root, const std::string &source, OriginMap &origins)
+  {
+    return CaseReader(source, origins).read(root);
+  }
+} // namespace indentsim::io

@@ -1,0 +1,360 @@
+// The value checks of a case: first, section by section, the single-key checks declared in
+// the schema (ranges, words), then the section's checks that involve several keys, written by
+// hand below. Every message names the key path, the value and what is allowed, and, for a
+// case read from a file, the file and the line.
+#include "case/CaseReading.h"
+#include "case/Schema.h"
+#include "indenter/IndenterFactory.h"
+#include "indenter/ProfileTable.h"
+#include "io/LoadCurveCsv.h"
+#include "materials/MaterialFactory.h"
+#include "materials/crystal/Orientation.h"
+
+#include <cmath>
+#include <initializer_list>
+#include <memory>
+#include <stdexcept>
+
+namespace indentsim::io
+{
+  namespace
+  {
+    const std::array<const char *, 3> axis_names = {{"x", "y", "z"}};
+
+    class CaseValidator
+    {
+    public:
+      CaseValidator(const Case &checked_case, const OriginMap *origins)
+        : checked(checked_case)
+        , value_origins(origins)
+      {}
+
+      void validate() const
+      {
+        check_section("");
+        check_top_level();
+        check_section("material");
+        check_crystal_parameters();
+        check_section("indenter");
+        const std::unique_ptr<indenter::IndenterSurface> surface = check_indenter();
+        check_section("specimen");
+        check_specimen(*surface);
+        check_section("loading");
+        check_loading();
+        check_section("contact");
+        check_section("solver");
+        check_section("output");
+        check_output();
+      }
+
+    private:
+      const Case      &checked;
+      const OriginMap *value_origins;
+
+      bool tensile() const { return checked.test == TestKind::tensile; }
+
+      // The single-key checks of the schema for every key of one top-level section.
+      void check_section(const std::string &section) const
+      {
+        for (const auto &key : case_keys())
+          {
+            const std::string first = key.path.substr(0, key.path.find('.'));
+            if ((section.empty() && key.parent().empty()) ||
+                (!section.empty() && !key.parent().empty() && first == section))
+              check_key(key);
+          }
+      }
+
+      void check_key(const Key &key) const
+      {
+        Case &c = const_cast<Case &>(checked); // the accessors only read here
+        switch (key.type)
+          {
+            case ValueType::number:
+              if (key.has_range && !key.range.contains(key.number(c)))
+                reject(key.path, format_number(key.number(c)), key.range_message);
+              break;
+            case ValueType::whole_number:
+              if (key.has_range && !key.range.contains(key.whole_number(c)))
+                reject(key.path, std::to_string(key.whole_number(c)), key.range_message);
+              break;
+            case ValueType::triple:
+              for (unsigned int d = 0; d < 3; ++d)
+                if (key.has_range && !key.range.contains(key.triple(c)[d]))
+                  reject(key.path, format_triple(key.triple(c)),
+                         key.range_message + "; the " + axis_names[d] + " entry is not");
+              break;
+            case ValueType::choice:
+              if (!key.choice.known(c))
+                reject_unknown_word(key.path, key.choice.word(c), key.choice.words(true));
+              if (!key.choice.implemented(c))
+                reject(key.path, "'" + key.choice.word(c) + "'", key.not_implemented_message);
+              break;
+            case ValueType::text:
+              if (key.non_empty && key.text(c).empty())
+                reject(key.path, "\"\"", key.range_message);
+              break;
+            case ValueType::boolean:
+              break;
+          }
+      }
+
+      void check_top_level() const
+      {
+        if (checked.compare_j2 && !tensile())
+          reject("compare_j2", format_bool(checked.compare_j2),
+                 "only the tensile test can repeat the run with J2 (test: tensile); the "
+                 "indentation test compares models through separate case files");
+      }
+
+      // Keys of the crystal model. They are checked for every model (the resolved case always
+      // holds them), but only model: crystal uses them.
+      void check_crystal_parameters() const
+      {
+        const auto &m = checked.material;
+
+        // Cubic stiffness positive definite: eigenvalues C11 + 2 C12 (dilatation), C11 - C12
+        // (tetragonal shear) and C44 (shear).
+        const std::string constants = "(C11 = " + format_number(m.C11) +
+                                      ", C12 = " + format_number(m.C12) +
+                                      ", C44 = " + format_number(m.C44) + " GPa)";
+        if (!(m.C44 > 0.))
+          reject("material.elastic.C44", format_number(m.C44),
+                 "the cubic stiffness must be positive definite: C44 > 0 GPa " + constants);
+        if (!(m.C11 - m.C12 > 0.))
+          {
+            const std::string path =
+              given_or_first({"material.elastic.C12", "material.elastic.C11"});
+            reject(path, format_number(path == "material.elastic.C11" ? m.C11 : m.C12),
+                   "the cubic stiffness must be positive definite: C11 - C12 > 0 " + constants);
+          }
+        if (!(m.C11 + 2. * m.C12 > 0.))
+          {
+            const std::string path =
+              given_or_first({"material.elastic.C12", "material.elastic.C11"});
+            reject(path, format_number(path == "material.elastic.C11" ? m.C11 : m.C12),
+                   "the cubic stiffness must be positive definite: C11 + 2 C12 > 0 (a positive "
+                   "bulk modulus) " + constants);
+          }
+        if (m.theta0 > 0. && !(m.tau1 > 0.))
+          reject(given_or_first({"material.hardening.tau1", "material.hardening.theta0"}),
+                 "tau1 = " + format_number(m.tau1) + ", theta0 = " + format_number(m.theta0),
+                 "tau1 must be > 0 when theta0 > 0: the Voce law tau_c = tau0 + (tau1 + theta1 "
+                 "Gamma)(1 - exp(-theta0 Gamma / tau1)) divides by tau1 (for linear hardening "
+                 "set theta0 = 0 and use theta1)");
+
+        const auto &o = m.orientation;
+        if (!o.kind.known())
+          reject_unknown_word("material.orientation.kind", o.kind.word(),
+                              choice_words<OrientationKind>(true));
+        try
+          {
+            materials::create_orientation(o);
+          }
+        catch (const std::invalid_argument &error)
+          {
+            const std::string what = error.what();
+            if (o.kind == OrientationKind::euler_bunge_deg)
+              reject("material.orientation.euler_bunge_deg", format_triple(o.euler_bunge_deg),
+                     what);
+            else if (what.rfind("reference_direction", 0) == 0)
+              reject("material.orientation.reference_direction",
+                     format_triple(o.reference_direction), what);
+            else
+              reject("material.orientation.surface_normal", format_triple(o.surface_normal),
+                     what);
+          }
+      }
+
+      // Every indenter key is checked for every shape (the resolved case always holds them) but
+      // used only by its shapes; the profile table file is read only for shape: profile_table.
+      // Returns the indenter, built as the run will build it.
+      std::unique_ptr<indenter::IndenterSurface> check_indenter() const
+      {
+        const auto &ind = checked.indenter;
+        if (!(ind.edge_radius >= 0. && ind.edge_radius <= ind.radius))
+          reject(given_or_first({"indenter.edge_radius", "indenter.radius"}),
+                 "edge_radius = " + format_number(ind.edge_radius) +
+                   ", radius = " + format_number(ind.radius),
+                 "the rim rounding of the flat punch must satisfy 0 <= edge_radius <= radius "
+                 "(um; 0: a sharp rim)");
+        if (ind.shape == IndenterShape::profile_table && ind.file.empty())
+          reject("indenter.file", "\"\"",
+                 "shape: profile_table needs the table: file: a CSV path (relative to the case "
+                 "file's directory) with the header r_um,z_um (profile) or depth_um,area_um2 "
+                 "(area function)");
+        try
+          {
+            return indenter::create_indenter(ind);
+          }
+        catch (const indenter::ProfileTableError &error)
+          {
+            reject("indenter.file", "\"" + ind.file + "\"", error.what());
+          }
+        catch (const std::invalid_argument &error)
+          {
+            reject("indenter.shape", to_string(ind.shape), error.what());
+          }
+      }
+
+      void check_specimen(const indenter::IndenterSurface &surface) const
+      {
+        const auto &s = checked.specimen;
+        for (unsigned int d = 0; d < 3; ++d)
+          if (s.refined_region[d] > s.size[d])
+            reject("specimen.refined_region", format_triple(s.refined_region),
+                   std::string("the refined region must fit inside the specimen: its ") +
+                     axis_names[d] + " extent " + format_number(s.refined_region[d]) +
+                     " um exceeds specimen.size = " + format_triple(s.size));
+        const bool quarter = s.symmetry == Symmetry::quarter;
+        if (!tensile() && quarter && !surface.mirror_symmetric_about_xz_and_yz())
+          reject_quarter_symmetry_of_the_indenter();
+        if (checked.material.model == ModelKind::crystal && !tensile() && quarter)
+          check_quarter_symmetry_of_the_lattice();
+        if (s.grains == Grains::per_element && !tensile())
+          reject("specimen.grains", to_string(s.grains),
+                 "a random orientation per element is only implemented for test: tensile; the "
+                 "indentation test models a single crystal (use grains: single)");
+      }
+
+      void check_loading() const
+      {
+        const auto &l = checked.loading;
+        const auto &s = checked.specimen;
+        if (!(l.max_depth < s.refined_region[2]))
+          reject("loading.max_depth", format_number(l.max_depth),
+                 "must be smaller than the depth of the refined region, specimen.refined_region"
+                 "[2] = " +
+                   format_number(s.refined_region[2]) + " um");
+        if (l.control == Control::force)
+          {
+            if (tensile())
+              reject("loading.control", to_string(l.control),
+                     "force control is implemented for the indentation test only");
+            if (!(l.max_force > 0.))
+              reject("loading.max_force", format_number(l.max_force),
+                     "force control needs the maximum indenter force, > 0 mN");
+          }
+        else if (l.max_force != 0.)
+          reject("loading.max_force", format_number(l.max_force),
+                 "is the target of force control; with loading.control: depth the maximum is "
+                 "loading.max_depth (remove max_force or set control: force)");
+        if (l.cycles > 1 && !l.unload)
+          reject("loading.cycles", std::to_string(l.cycles),
+                 "several load-unload cycles need loading.unload: true");
+      }
+
+      void check_output() const
+      {
+        const auto &o = checked.output;
+        if (o.experimental_curve.empty())
+          return;
+        if (checked.test != TestKind::indentation)
+          reject("output.experimental_curve", "\"" + o.experimental_curve + "\"",
+                 "a measured load-penetration curve belongs to test: indentation");
+        try
+          {
+            const LoadCurve curve = read_load_curve_csv(o.experimental_curve);
+            if (curve.depth.size() < 2)
+              throw std::invalid_argument("it has fewer than 2 data rows");
+          }
+        catch (const std::invalid_argument &error)
+          {
+            reject("output.experimental_curve", "\"" + o.experimental_curve + "\"",
+                   std::string(error.what()) +
+                     " (a CSV with a header; depth and force columns with their units in "
+                     "the names, e.g. depth_nm,load_uN)");
+          }
+      }
+
+      // The first of `paths` that the case file gave explicitly, else the first: a check on a
+      // pair of values then points at the line the user wrote.
+      std::string given_or_first(std::initializer_list<std::string> paths) const
+      {
+        if (value_origins != nullptr)
+          for (const auto &path : paths)
+            if (value_origins->count(path) > 0)
+              return path;
+        return *paths.begin();
+      }
+
+      // The quarter model imposes u_x = 0 on x = 0 and u_y = 0 on y = 0, exact only if both are
+      // mirror planes of the indenter (IndenterSurface::mirror_symmetric_about_xz_and_yz).
+      [[noreturn]] void reject_quarter_symmetry_of_the_indenter() const
+      {
+        const auto &ind = checked.indenter;
+        std::string shape = "indenter.shape = " + to_string(ind.shape);
+        std::string advice = "use symmetry: full";
+        if (ind.shape == IndenterShape::vickers)
+          {
+            shape += " with rotation_deg = " + format_number(ind.rotation_deg);
+            advice = "a Vickers pyramid has them when rotation_deg is a multiple of 45; use "
+                     "rotation_deg: 0 (faces towards +-x, +-y) or 45 (edges along x and y), or "
+                     "symmetry: full";
+          }
+        else if (ind.shape == IndenterShape::berkovich)
+          advice = "a three-sided pyramid never has two perpendicular mirror planes; use "
+                   "symmetry: full";
+        reject("specimen.symmetry", to_string(checked.specimen.symmetry),
+               "the quarter model (u_x = 0 on x = 0, u_y = 0 on y = 0) needs the planes x = 0 "
+               "and y = 0 to be mirror planes of the indenter, and " + shape +
+                 " is not mirror-symmetric about both; " + advice);
+      }
+
+      // The quarter model imposes u_x = 0 on x = 0 and u_y = 0 on y = 0; for a crystal that is
+      // exact only if both planes are mirror planes of the lattice (m-3m point group).
+      void check_quarter_symmetry_of_the_lattice() const
+      {
+        const auto &o = checked.material.orientation;
+        const dealii::Tensor<2, 3> g = materials::create_orientation(o);
+        const dealii::Tensor<1, 3> e_x({1., 0., 0.}), e_y({0., 1., 0.});
+        const bool x_mirror = materials::is_cubic_mirror_plane(g, e_x);
+        const bool y_mirror = materials::is_cubic_mirror_plane(g, e_y);
+        if (x_mirror && y_mirror)
+          return;
+        const std::string orientation =
+          o.kind == OrientationKind::surface_normal ?
+            "material.orientation: surface_normal " + format_triple(o.surface_normal) +
+              ", reference_direction " + format_triple(o.reference_direction) :
+            "material.orientation: euler_bunge_deg " + format_triple(o.euler_bunge_deg);
+        reject("specimen.symmetry", to_string(checked.specimen.symmetry),
+               "the quarter model needs the sample planes x = 0 and y = 0 to be mirror planes "
+               "of the cubic lattice, but for " + orientation + " the plane " +
+                 (x_mirror ? "y = 0" : (y_mirror ? "x = 0" : "x = 0 (and y = 0)")) +
+                 " is not one (e.g. a (111) surface has no two perpendicular mirror planes); "
+                 "use symmetry: full");
+      }
+
+      [[noreturn]] void reject(const std::string &path,
+                               const std::string &value,
+                               const std::string &what) const
+      {
+        int         line = -1;
+        std::string shown = value;
+        if (value_origins != nullptr)
+          {
+            if (const auto origin = value_origins->find(path); origin != value_origins->end())
+              line = origin->second.line;
+            else
+              shown += " (default)";
+          }
+        fail(checked.source_file, line, path + " = " + shown + ": " + what);
+      }
+
+      [[noreturn]] void reject_unknown_word(const std::string              &path,
+                                            const std::string              &word,
+                                            const std::vector<std::string> &allowed) const
+      {
+        std::string message = "unknown value; allowed: " + join(allowed, " | ");
+        if (const std::string guess = closest_name(word, allowed); !guess.empty())
+          message += " (did you mean '" + guess + "'?)";
+        reject(path, "'" + word + "'", message);
+      }
+    };
+  } // namespace
+
+  void validate_values(const Case &checked, const OriginMap *origins)
+  {
+    CaseValidator(checked, origins).validate();
+  }
+} // namespace indentsim::io

@@ -1,0 +1,88 @@
+// The resolved case (resolved_case.yaml): every key of the schema with its value, in the
+// order of the schema, with the schema's comment; read_case_file() of the text gives back an
+// identical Case.
+#include "case/CaseFile.h"
+#include "case/Schema.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <sstream>
+
+namespace indentsim::io
+{
+  namespace
+  {
+    // Strings that the user chose freely are quoted by yaml-cpp; words of a choice are plain.
+    std::string quoted(const std::string &text)
+    {
+      YAML::Emitter emitter;
+      emitter << YAML::DoubleQuoted << text;
+      return std::string(emitter.c_str());
+    }
+
+    // One "key: value   # comment" line, comments aligned.
+    void write_line(std::ostream &out, const std::string &indent_key_value,
+                    const std::string &comment)
+    {
+      constexpr std::size_t comment_column = 36;
+      out << indent_key_value;
+      if (!comment.empty())
+        {
+          const std::size_t width = indent_key_value.size();
+          out << std::string(width < comment_column ? comment_column - width : 1, ' ') << "# "
+              << comment;
+        }
+      out << '\n';
+    }
+
+    std::string indentation(const std::string &path)
+    {
+      return std::string(2 * static_cast<std::size_t>(std::count(path.begin(), path.end(), '.')),
+                         ' ');
+    }
+
+    const Group *group_at(const std::string &path)
+    {
+      for (const auto &group : case_groups())
+        if (group.path == path)
+          return &group;
+      return nullptr;
+    }
+  } // namespace
+
+  std::string resolved_case_yaml(const Case &resolved_case)
+  {
+    const Case        &c = resolved_case;
+    std::ostringstream out;
+    out << "# indentsim resolved case: every key with its default filled in.\n"
+        << "# Units: lengths um, forces mN, stresses and moduli GPa (1 GPa*um^2 = 1 mN).\n";
+    if (!c.source_file.empty())
+      out << "# Read from: " << c.source_file << '\n';
+
+    std::string open_section, open_group; // the maps whose header line is written
+    for (const auto &key : case_keys())
+      {
+        if (key.written != nullptr && !key.written(c))
+          continue;
+        const std::string parent = key.parent();
+        const std::string section = parent.substr(0, parent.find('.'));
+        if (!section.empty() && section != open_section)
+          {
+            out << section << ":\n";
+            open_section = section;
+          }
+        if (parent != section && parent != open_group)
+          {
+            const Group *group = group_at(parent);
+            write_line(out, indentation(parent) + parent.substr(parent.rfind('.') + 1) + ":",
+                       group != nullptr ? group->comment : "");
+            open_group = parent;
+          }
+        const std::string value =
+          key.type == ValueType::text ? quoted(key.value_text(c)) : key.value_text(c);
+        write_line(out, indentation(key.path) + key.name() + ": " + value, key.comment);
+      }
+    return out.str();
+  }
+} // namespace indentsim::io

@@ -1,0 +1,31 @@
+// A load-penetration curve and its CSV reader (measured curves and the runs' own
+// load_penetration.csv). Units: depth um, force mN, area um^2.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace indentsim::io
+{
+  // A load-penetration curve in the order it was recorded. contact_area (um^2, the simulation's
+  // true projected contact area) is empty for measured curves.
+  struct LoadCurve
+  {
+    std::vector<double> depth;        // [um]
+    std::vector<double> force;        // [mN]
+    std::vector<double> contact_area; // [um^2], empty or one per point
+    std::string         source;       // file it came from (for messages)
+  };
+
+  // Reads a CSV with a header line (lines starting with '#' are comments). The depth and force
+  // columns are the named ones, or else the first header starting with depth/h/displacement/
+  // penetration and force/load/p. Units come from the column name (depth_um, depth_nm,
+  // "depth (nm)", force_mN, load_uN, force_N, ...) unless given ("um", "nm", "mm"; "mN", "uN",
+  // "N"). A column contact_area_um2, if present, is read as well. Throws std::invalid_argument
+  // naming the file, the column and the value on bad input.
+  LoadCurve read_load_curve_csv(const std::string &path, const std::string &depth_column = "",
+                                const std::string &force_column = "",
+                                const std::string &depth_unit = "",
+                                const std::string &force_unit = "");
+
+} // namespace indentsim::io

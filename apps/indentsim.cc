@@ -41,11 +41,11 @@ namespace
   void plot_stress_strain(const std::string &directory, const std::string &model, bool with_j2)
   {
     const std::string script = indentsim::output::python_script("plot_stress_strain.py");
-    std::string command = "python3 \"" + script + "\" \"" + directory + "/" +
+    std::string       command = "python3 \"" + script + "\" \"" + directory + "/" +
                           io::output_files::stress_strain_csv + "\" --label \"" + model + "\"";
     if (with_j2)
-      command += " \"" + directory + "/" + io::output_files::stress_strain_j2_csv +
-                 "\" --label \"j2\"";
+      command +=
+          " \"" + directory + "/" + io::output_files::stress_strain_j2_csv + "\" --label \"j2\"";
     command += " -o \"" + directory + "/" + io::output_files::stress_strain_png + "\"";
     if (std::system(command.c_str()) != 0)
       std::cerr << "warning: the plot " << directory << "/" << io::output_files::stress_strain_png
@@ -64,7 +64,7 @@ namespace
     if (root)
       {
         // The run's curve as Oliver-Pharr and the comparison read it, straight from memory.
-        const std::string &directory = the_case.output.directory;
+        const std::string  &directory = the_case.output.directory;
         analysis::LoadCurve curve;
         curve.source = directory + "/" + io::output_files::load_penetration_csv;
         for (const problems::StepRecord &record : problem.records())
@@ -74,15 +74,14 @@ namespace
             curve.contact_area.push_back(record.contact_area);
           }
         const bool compared =
-          !the_case.output.experimental_curve.empty() &&
-          analysis::compare_with_experiment(curve, directory, the_case.output.experimental_curve,
-                                            std::cout, std::cerr);
-        plot_load_penetration(directory, compared ? directory + "/" +
-                                                      io::output_files::experimental_curve_csv :
-                                                    "");
+            !the_case.output.experimental_curve.empty() &&
+            analysis::compare_with_experiment(curve, directory, the_case.output.experimental_curve,
+                                              std::cout, std::cerr);
+        plot_load_penetration(
+            directory, compared ? directory + "/" + io::output_files::experimental_curve_csv : "");
         const bool oliver_pharr =
-          the_case.loading.unload &&
-          analysis::analyze_run(curve, the_case, problem.indenter(), std::cout, std::cerr);
+            the_case.loading.unload &&
+            analysis::analyze_run(curve, the_case, problem.indenter(), std::cout, std::cerr);
         std::cout << "Results in " << directory
                   << ": load_penetration.csv (um, mN), load_penetration.png, specimen.pvd "
                      "(ParaView), pileup.json, pileup_*.csv/png (heights in um), "
@@ -188,7 +187,7 @@ namespace
       throw io::CaseFileError("indentsim study starts each case itself and runs in one "
                               "process; use --ranks N to run every case on N MPI ranks");
     const study::Study the_study =
-      study::read_study_file(options.study_file, options.output_directory.value_or(""));
+        study::read_study_file(options.study_file, options.output_directory.value_or(""));
     study::StudyRunSettings settings;
     settings.ranks = options.study_ranks;
     settings.jobs = options.study_jobs;
@@ -210,31 +209,31 @@ int main(int argc, char **argv)
       const io::CommandLineOptions options = io::parse_command_line(argc, argv);
       switch (options.command)
         {
-          case io::Command::help:
-            if (root)
-              std::cout << io::help_text();
-            return 0;
-          case io::Command::version:
-            if (root)
-              std::cout << io::version_text();
-            return 0;
-          case io::Command::analyze:
-            // Serial post-processing: rank 0 only.
-            if (root)
-              try
-                {
-                  analysis::analyze_command(options.analyze, options.output_directory);
-                }
-              catch (const std::invalid_argument &e) // bad input: named in the message
-                {
-                  std::cerr << "indentsim: error: " << e.what() << '\n';
-                  return 1;
-                }
-            return 0;
-          case io::Command::study:
-            return run_study(options, communicator);
-          default:
-            return run(options, communicator);
+        case io::Command::help:
+          if (root)
+            std::cout << io::help_text();
+          return 0;
+        case io::Command::version:
+          if (root)
+            std::cout << io::version_text();
+          return 0;
+        case io::Command::analyze:
+          // Serial post-processing: rank 0 only.
+          if (root)
+            try
+              {
+                analysis::analyze_command(options.analyze, options.output_directory);
+              }
+            catch (const std::invalid_argument &e) // bad input: named in the message
+              {
+                std::cerr << "indentsim: error: " << e.what() << '\n';
+                return 1;
+              }
+          return 0;
+        case io::Command::study:
+          return run_study(options, communicator);
+        default:
+          return run(options, communicator);
         }
     }
   catch (const io::CommandLineError &e)

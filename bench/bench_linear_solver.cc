@@ -58,20 +58,22 @@ int main(int argc, char **argv)
         {
           petsc_arguments.push_back(argv[i]);
           const bool next_is_option =
-            i + 1 < argc && argv[i + 1][0] == '-' && std::isalpha(argv[i + 1][1]);
+              i + 1 < argc && argv[i + 1][0] == '-' && std::isalpha(argv[i + 1][1]);
           if (i + 1 < argc && !next_is_option && std::strstr(argv[i + 1], ".bin") == nullptr)
             petsc_arguments.push_back(argv[++i]);
         }
       else
         files.emplace_back(argv[i]);
     }
-  int    petsc_argc = static_cast<int>(petsc_arguments.size());
+  int petsc_argc = static_cast<int>(petsc_arguments.size());
   petsc_arguments.push_back(nullptr); // argv[argc] = NULL, as MPI_Init expects
   char **petsc_argv = petsc_arguments.data();
   PetscInitialize(&petsc_argc, &petsc_argv, nullptr, nullptr);
   if (files.empty())
     {
-      PetscPrintf(PETSC_COMM_WORLD, "usage: bench_linear_solver [-rtol R] [-reuse | -keep] FILE... [PETSc options]\n");
+      PetscPrintf(
+          PETSC_COMM_WORLD,
+          "usage: bench_linear_solver [-rtol R] [-reuse | -keep] FILE... [PETSc options]\n");
       PetscFinalize();
       return 2;
     }
@@ -133,8 +135,8 @@ int main(int argc, char **argv)
         }
       // -operator_type baij: the Krylov method and the smoothers apply a copy of the matrix
       // in that storage format (the hierarchy is still built from the AIJ matrix).
-      Mat  op = A;
-      char operator_type[64] = "";
+      Mat       op = A;
+      char      operator_type[64] = "";
       PetscBool has_operator_type = PETSC_FALSE;
       PetscOptionsGetString(nullptr, nullptr, "-operator_type", operator_type,
                             sizeof(operator_type), &has_operator_type);
@@ -158,7 +160,7 @@ int main(int argc, char **argv)
       start = std::chrono::steady_clock::now();
       KSPSolve(ksp, b, x);
       const double solve = seconds_since(start);
-      PetscInt iterations;
+      PetscInt     iterations;
       KSPGetIterationNumber(ksp, &iterations);
       Vec r;
       VecDuplicate(b, &r);

@@ -20,12 +20,9 @@ using namespace indentsim::materials;
 
 namespace
 {
-  double time_update(const MaterialModel       &model,
-                     const dealii::Tensor<2, 3> &F,
-                     const std::vector<double>  &state,
-                     const bool                  tangent,
-                     const unsigned int          n,
-                     double                     &plastic_strain)
+  double time_update(const MaterialModel &model, const dealii::Tensor<2, 3> &F,
+                     const std::vector<double> &state, const bool tangent, const unsigned int n,
+                     double &plastic_strain)
   {
     MaterialPointResponse response;
     std::vector<double>   state_new(state.size());
@@ -45,12 +42,13 @@ int main(int argc, char **argv)
     return argc < 4 || (std::string(argv[1]) == model && std::string(argv[2]) == regime &&
                         std::string(argv[3]) == tangent);
   };
-  const unsigned int n_repetitions = argc >= 5 ? std::stoul(argv[4]) : 2000;
+  const unsigned int      n_repetitions = argc >= 5 ? std::stoul(argv[4]) : 2000;
   const J2Plasticity      j2(69.0, 0.26, 0.305, 0.5);
-  const CrystalPlasticity crystal(fcc_slip_systems(), CubicElasticity(), ExtendedVoceHardening(), 10.0);
+  const CrystalPlasticity crystal(fcc_slip_systems(), CubicElasticity(), ExtendedVoceHardening(),
+                                  10.0);
   std::printf("model    regime   tangent  time_us  plastic_strain\n");
-  for (const MaterialModel *model : {static_cast<const MaterialModel *>(&j2),
-                                     static_cast<const MaterialModel *>(&crystal)})
+  for (const MaterialModel *model :
+       {static_cast<const MaterialModel *>(&j2), static_cast<const MaterialModel *>(&crystal)})
     {
       std::vector<double> state(model->n_state_variables());
       model->oriented_initial_state(state, bunge_rotation({{20., 35., 10.}}));
@@ -67,13 +65,10 @@ int main(int argc, char **argv)
               if (!selected(model_name, regime, tangent ? "yes" : "no"))
                 continue;
               double     plastic_strain = 0;
-              const auto time = time_update(*model, F, state, tangent, n_repetitions, plastic_strain);
-              std::printf("%-8s %-8s %-8s %8.2f  %.3g\n",
-                          model_name,
-                          regime,
-                          tangent ? "yes" : "no",
-                          time,
-                          plastic_strain);
+              const auto time =
+                  time_update(*model, F, state, tangent, n_repetitions, plastic_strain);
+              std::printf("%-8s %-8s %-8s %8.2f  %.3g\n", model_name, regime,
+                          tangent ? "yes" : "no", time, plastic_strain);
             }
         }
     }

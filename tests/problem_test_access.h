@@ -44,8 +44,9 @@ namespace indentsim::problems
     {
       p.contact_->evaluate(p.solution_, -1e30); // indenter far away: no contact
       p.assemble(false);
-      const dealii::IndexSet boundary_dofs = dealii::DoFTools::extract_boundary_dofs(p.dof_handler_);
-      double                 local = 0;
+      const dealii::IndexSet boundary_dofs =
+          dealii::DoFTools::extract_boundary_dofs(p.dof_handler_);
+      double local = 0;
       for (const auto dof : p.locally_owned_)
         if (!boundary_dofs.is_element(dof))
           local += p.residual_(dof) * p.residual_(dof);
@@ -57,10 +58,10 @@ namespace indentsim::problems
     {
       double error = 0;
       p.for_each_cell_stress(
-        [&](const auto &, const std::vector<dealii::Tensor<2, 3>> &cauchy, const auto) {
-          for (const auto &sigma : cauchy)
-            error = std::max(error, (sigma - expected).norm());
-        });
+          [&](const auto &, const std::vector<dealii::Tensor<2, 3>> &cauchy, const auto) {
+            for (const auto &sigma : cauchy)
+              error = std::max(error, (sigma - expected).norm());
+          });
       return dealii::Utilities::MPI::max(error, p.communicator_);
     }
   };

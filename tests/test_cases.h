@@ -45,7 +45,7 @@ namespace indentsim::test_cases
 
   // The same geometry with the crystal model of the paper's Table 2 (FCC, n = 10), Euler
   // angles (phi1, Phi, phi2) in degrees.
-  inline io::Case small_crystal_case(const std::string            &symmetry = "quarter",
+  inline io::Case small_crystal_case(const std::string           &symmetry = "quarter",
                                      const std::array<double, 3> &euler_bunge_deg = {{0., 0., 0.}})
   {
     io::Case c = small_j2_case(symmetry);

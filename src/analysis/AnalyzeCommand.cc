@@ -2,8 +2,8 @@
 
 #include "analysis/CurveComparison.h"
 #include "analysis/OliverPharr.h"
-#include "indenter/IndenterFactory.h"
 #include "case/CaseFile.h"
+#include "indenter/IndenterFactory.h"
 #include "output/PythonScripts.h"
 
 #include <cstdlib>
@@ -30,8 +30,7 @@ namespace indentsim::analysis
       else if (p.shape == Shape::sphere || p.shape == Shape::flat_punch)
         out << " (radius " << p.radius << " um)";
       else if (p.shape == Shape::cone)
-        out << " (half-angle " << p.half_angle_deg << " deg, tip radius " << p.tip_radius
-            << " um)";
+        out << " (half-angle " << p.half_angle_deg << " deg, tip radius " << p.tip_radius << " um)";
       else if (p.shape == Shape::vickers || p.shape == Shape::berkovich)
         out << " (tip radius " << p.tip_radius << " um)";
       else if (p.shape == Shape::profile_table)
@@ -44,11 +43,10 @@ namespace indentsim::analysis
                                         const indenter::IndenterSurface &indenter,
                                         const io::IndenterParameters    &indenter_parameters,
                                         const OliverPharrSettings       &settings,
-                                        const std::string               &directory,
-                                        const std::string               &source)
+                                        const std::string &directory, const std::string &source)
     {
-      const OliverPharrResult result =
-        analyze(curve, [&](const double h) { return indenter.projected_area(h); }, settings);
+      const OliverPharrResult result = analyze(
+          curve, [&](const double h) { return indenter.projected_area(h); }, settings);
       fs::create_directories(directory);
       const std::string json_path = directory + "/" + io::output_files::oliver_pharr_json;
       const std::string temporary = json_path + ".tmp";
@@ -65,8 +63,7 @@ namespace indentsim::analysis
       const std::string command = "python3 \"" + script + "\" \"" + json_path + "\" -o \"" +
                                   directory + "/" + io::output_files::oliver_pharr_png + "\"";
       if (std::system(command.c_str()) != 0)
-        std::cerr << "warning: the plot " << directory
-                  << "/" << io::output_files::oliver_pharr_png
+        std::cerr << "warning: the plot " << directory << "/" << io::output_files::oliver_pharr_png
                   << " could not be written (command: " << command << ")\n";
       return result;
     }
@@ -74,9 +71,9 @@ namespace indentsim::analysis
     void print_summary(std::ostream &out, const OliverPharrResult &r, const std::string &path)
     {
       out << std::setprecision(5) << "Oliver-Pharr (" << path << "):\n"
-          << "  h_max " << r.max_depth << " um, P_max " << r.max_force << " mN, fit P = "
-          << r.fit.alpha << " (h - " << r.fit.h_f << ")^" << r.fit.m << " on " << r.fit.n_points
-          << " points (rms " << r.fit.rms_error << " mN)\n"
+          << "  h_max " << r.max_depth << " um, P_max " << r.max_force
+          << " mN, fit P = " << r.fit.alpha << " (h - " << r.fit.h_f << ")^" << r.fit.m << " on "
+          << r.fit.n_points << " points (rms " << r.fit.rms_error << " mN)\n"
           << "  S " << r.stiffness << " mN/um, h_c " << r.contact_depth << " um, A "
           << r.contact_area << " um^2, H " << r.hardness << " GPa, E_r " << r.reduced_modulus
           << " GPa";
@@ -85,9 +82,9 @@ namespace indentsim::analysis
       out << "\n  h_r/h_max " << r.residual_depth / r.max_depth << ", W_p/W_t "
           << r.plastic_work_ratio;
       if (r.true_contact_area)
-        out << "\n  true contact area " << *r.true_contact_area << " um^2 (H "
-            << *r.true_hardness << " GPa): Oliver-Pharr area error " << std::showpos
-            << *r.area_error_percent << std::noshowpos << " %";
+        out << "\n  true contact area " << *r.true_contact_area << " um^2 (H " << *r.true_hardness
+            << " GPa): Oliver-Pharr area error " << std::showpos << *r.area_error_percent
+            << std::noshowpos << " %";
       out << '\n';
     }
   } // namespace
@@ -98,13 +95,13 @@ namespace indentsim::analysis
     const fs::path target(options.target);
     if (!fs::exists(target))
       throw std::invalid_argument(options.target + ": no such run directory or CSV file");
-    const bool run_directory = fs::is_directory(target);
-    const std::string csv_path =
-      run_directory ? (target / io::output_files::load_penetration_csv).string() : target.string();
+    const bool        run_directory = fs::is_directory(target);
+    const std::string csv_path = run_directory
+                                     ? (target / io::output_files::load_penetration_csv).string()
+                                     : target.string();
     if (run_directory && !fs::exists(csv_path))
       throw std::invalid_argument(options.target + ": a run directory needs " +
-                                  io::output_files::load_penetration_csv +
-                                  " (this one has none)");
+                                  io::output_files::load_penetration_csv + " (this one has none)");
 
     io::IndenterParameters indenter_parameters;
     if (!options.indenter_case.empty())
@@ -136,13 +133,14 @@ namespace indentsim::analysis
         indenter_parameters = io::read_case_file(resolved).indenter;
       }
     else
-      throw std::invalid_argument(options.target + ": a CSV needs the indenter: --indenter "
+      throw std::invalid_argument(options.target +
+                                  ": a CSV needs the indenter: --indenter "
                                   "vickers|berkovich|cone|rounded_cone|sphere|flat_punch or "
                                   "--indenter-case CASE.yaml");
 
     OliverPharrSettings settings;
     settings.epsilon =
-      options.epsilon ? *options.epsilon : default_epsilon(to_string(indenter_parameters.shape));
+        options.epsilon ? *options.epsilon : default_epsilon(to_string(indenter_parameters.shape));
     settings.beta = options.beta;
     settings.fit_lower = options.fit_lower;
     settings.fit_upper = options.fit_upper;
@@ -151,16 +149,16 @@ namespace indentsim::analysis
       settings.indenter_modulus = *options.indenter_modulus;
     settings.indenter_poisson_ratio = options.indenter_poisson_ratio;
 
-    const LoadCurve curve = read_load_curve_csv(csv_path, options.depth_column,
-                                                options.force_column, options.depth_unit,
-                                                options.force_unit);
+    const LoadCurve curve =
+        read_load_curve_csv(csv_path, options.depth_column, options.force_column,
+                            options.depth_unit, options.force_unit);
     const std::string directory =
-      output_directory ? *output_directory :
-      run_directory    ? target.string() :
-                         (target.has_parent_path() ? target.parent_path().string() : ".");
+        output_directory ? *output_directory
+        : run_directory  ? target.string()
+                         : (target.has_parent_path() ? target.parent_path().string() : ".");
     const OliverPharrResult result =
-      analyze_and_write(curve, *indenter::create_indenter(indenter_parameters), indenter_parameters,
-                        settings, directory, csv_path);
+        analyze_and_write(curve, *indenter::create_indenter(indenter_parameters),
+                          indenter_parameters, settings, directory, csv_path);
     const std::string json_path = directory + "/" + io::output_files::oliver_pharr_json;
     print_summary(std::cout, result, json_path);
     return json_path;
@@ -177,8 +175,8 @@ namespace indentsim::analysis
         settings.epsilon = default_epsilon(to_string(the_case.indenter.shape));
         if (the_case.material.model != io::ModelKind::crystal)
           settings.sample_poisson_ratio = the_case.material.poisson_ratio;
-        const OliverPharrResult result = analyze_and_write(
-          curve, indenter, the_case.indenter, settings, run_directory, curve.source);
+        const OliverPharrResult result = analyze_and_write(curve, indenter, the_case.indenter,
+                                                           settings, run_directory, curve.source);
         print_summary(summary, result, run_directory + "/" + io::output_files::oliver_pharr_json);
         return true;
       }
@@ -198,7 +196,7 @@ namespace indentsim::analysis
       {
         const LoadCurve      measured = read_load_curve_csv(measured_csv);
         const CurveDeviation deviation = compare_loading(computed, measured);
-        const auto write = [&](const std::string &name, const std::string &text) {
+        const auto           write = [&](const std::string &name, const std::string &text) {
           const std::string path = run_directory + "/" + name, temporary = path + ".tmp";
           {
             std::ofstream out(temporary);
@@ -216,9 +214,8 @@ namespace indentsim::analysis
                 << " um) over " << deviation.n_points << " measured points";
         if (deviation.deviation_at_max_depth_percent)
           summary << "; at " << deviation.max_depth << " um computed " << deviation.computed_force
-                  << " mN, measured " << *deviation.measured_force << " mN ("
-                  << std::showpos << *deviation.deviation_at_max_depth_percent << std::noshowpos
-                  << " %)";
+                  << " mN, measured " << *deviation.measured_force << " mN (" << std::showpos
+                  << *deviation.deviation_at_max_depth_percent << std::noshowpos << " %)";
         summary << '\n';
         return true;
       }

@@ -4,8 +4,8 @@
 #pragma once
 
 #include "analysis/OliverPharr.h"
-#include "indenter/IndenterSurface.h"
 #include "case/Case.h"
+#include "indenter/IndenterSurface.h"
 #include "io/CommandLine.h"
 
 #include <optional>

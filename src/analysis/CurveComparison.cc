@@ -17,7 +17,7 @@ namespace indentsim::analysis
     void loading_branch(const LoadCurve &curve, std::vector<double> &depth,
                         std::vector<double> &force)
     {
-      const auto largest = std::max_element(curve.depth.begin(), curve.depth.end());
+      const auto        largest = std::max_element(curve.depth.begin(), curve.depth.end());
       const std::size_t end = static_cast<std::size_t>(largest - curve.depth.begin()) + 1;
       for (std::size_t i = 0; i < end; ++i)
         if (depth.empty() || curve.depth[i] > depth.back())
@@ -61,13 +61,16 @@ namespace indentsim::analysis
     for (std::size_t i = 0; i < h_measured.size(); ++i)
       if (h_measured[i] >= h_computed.front() && h_measured[i] <= result.max_depth)
         {
-          const double difference = interpolate(h_computed, p_computed, h_measured[i]) - p_measured[i];
+          const double difference =
+              interpolate(h_computed, p_computed, h_measured[i]) - p_measured[i];
           sum += difference * difference;
           ++result.n_points;
         }
     if (result.n_points == 0)
-      throw std::invalid_argument(measured.source + ": no measured loading point lies within the "
-                                  "computed depths 0 ... " + number(result.max_depth) +
+      throw std::invalid_argument(measured.source +
+                                  ": no measured loading point lies within the "
+                                  "computed depths 0 ... " +
+                                  number(result.max_depth) +
                                   " um (check the depth unit of its column name)");
     result.rms_mN = std::sqrt(sum / result.n_points);
     result.rms_relative = result.computed_force > 0 ? result.rms_mN / result.computed_force : 0.0;
@@ -76,7 +79,7 @@ namespace indentsim::analysis
         result.measured_force = interpolate(h_measured, p_measured, result.max_depth);
         if (*result.measured_force != 0)
           result.deviation_at_max_depth_percent =
-            100.0 * (result.computed_force - *result.measured_force) / *result.measured_force;
+              100.0 * (result.computed_force - *result.measured_force) / *result.measured_force;
       }
     return result;
   }

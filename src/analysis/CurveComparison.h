@@ -17,12 +17,12 @@ namespace indentsim::analysis
 {
   struct CurveDeviation
   {
-    unsigned int          n_points = 0;        // measured loading points compared
-    double                rms_mN = 0;          // sqrt(mean (P_computed - P_measured)^2)
-    double                rms_relative = 0;    // rms_mN / computed force at max depth
-    double                max_depth = 0;       // largest computed depth [um]
-    double                computed_force = 0;  // [mN] at max_depth
-    std::optional<double> measured_force;      // [mN] at max_depth, if measured that deep
+    unsigned int          n_points = 0;       // measured loading points compared
+    double                rms_mN = 0;         // sqrt(mean (P_computed - P_measured)^2)
+    double                rms_relative = 0;   // rms_mN / computed force at max depth
+    double                max_depth = 0;      // largest computed depth [um]
+    double                computed_force = 0; // [mN] at max_depth
+    std::optional<double> measured_force;     // [mN] at max_depth, if measured that deep
     std::optional<double> deviation_at_max_depth_percent; // 100 (computed - measured)/measured
   };
 

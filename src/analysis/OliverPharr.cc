@@ -145,8 +145,9 @@ namespace indentsim::analysis
     for (std::size_t i = 0; i < depth.size(); ++i)
       if (!(force[i] > 0) || !std::isfinite(depth[i]))
         throw std::invalid_argument("the power-law fit needs positive forces and finite depths; "
-                                    "point " + std::to_string(i) + " has depth " +
-                                    format(depth[i]) + " um, force " + format(force[i]) + " mN");
+                                    "point " +
+                                    std::to_string(i) + " has depth " + format(depth[i]) +
+                                    " um, force " + format(force[i]) + " mN");
     const double h_min = *std::min_element(depth.begin(), depth.end());
     PowerLawFit  fit = profile_start(depth, force);
     double       sum = sum_of_squares(depth, force, fit);
@@ -158,9 +159,9 @@ namespace indentsim::analysis
         std::array<double, 3>                gradient{};
         for (std::size_t i = 0; i < depth.size(); ++i)
           {
-            const double x = depth[i] - fit.h_f, xm = std::pow(x, fit.m);
+            const double                x = depth[i] - fit.h_f, xm = std::pow(x, fit.m);
             const std::array<double, 3> row = {
-              {xm, -fit.alpha * fit.m * xm / x, fit.alpha * xm * std::log(x)}};
+                {xm, -fit.alpha * fit.m * xm / x, fit.alpha * xm * std::log(x)}};
             const double residual = force[i] - fit.alpha * xm;
             for (int a = 0; a < 3; ++a)
               {
@@ -187,9 +188,8 @@ namespace indentsim::analysis
             trial.m += step[2];
             const bool admissible = trial.alpha > 0 && trial.h_f < h_min &&
                                     trial.m >= min_exponent && trial.m <= max_exponent;
-            const double trial_sum =
-              admissible ? sum_of_squares(depth, force, trial) :
-                           std::numeric_limits<double>::infinity();
+            const double trial_sum = admissible ? sum_of_squares(depth, force, trial)
+                                                : std::numeric_limits<double>::infinity();
             if (trial_sum < sum)
               {
                 const double relative_change = (sum - trial_sum) / sum;
@@ -229,8 +229,10 @@ namespace indentsim::analysis
     const std::string where = curve.source.empty() ? "the curve" : curve.source;
     const std::size_t n = curve.depth.size();
     if (curve.force.size() != n || n < 4)
-      throw std::invalid_argument(where + ": a load-penetration curve with unloading needs at "
-                                          "least 4 points (it has " + std::to_string(n) + ")");
+      throw std::invalid_argument(where +
+                                  ": a load-penetration curve with unloading needs at "
+                                  "least 4 points (it has " +
+                                  std::to_string(n) + ")");
     if (!(settings.fit_lower >= 0 && settings.fit_lower < settings.fit_upper &&
           settings.fit_upper <= 1.0))
       throw std::invalid_argument("the fit range [" + format(settings.fit_lower) + ", " +
@@ -251,8 +253,8 @@ namespace indentsim::analysis
     result.max_depth = curve.depth[begin];
     result.max_force = curve.force[begin];
     if (!(result.max_force > 0))
-      throw std::invalid_argument(where + ": the force at the largest depth " +
-                                  format(h_max) + " um is " + format(result.max_force) +
+      throw std::invalid_argument(where + ": the force at the largest depth " + format(h_max) +
+                                  " um is " + format(result.max_force) +
                                   " mN; an indentation curve needs a positive maximum force");
 
     std::vector<double> fit_depth, fit_force;
@@ -265,45 +267,45 @@ namespace indentsim::analysis
         }
     if (fit_depth.size() < 3)
       throw std::invalid_argument(
-        where + ": the unloading branch (" + std::to_string(end - begin) + " points from " +
-        format(h_max) + " um) has " + std::to_string(fit_depth.size()) + " points between " +
-        format(100 * settings.fit_lower) + " % and " + format(100 * settings.fit_upper) +
-        " % of P_max = " + format(result.max_force) +
-        " mN; the power-law fit needs at least 3: record more unloading points "
-        "(loading.unload_points) or widen the fit range");
+          where + ": the unloading branch (" + std::to_string(end - begin) + " points from " +
+          format(h_max) + " um) has " + std::to_string(fit_depth.size()) + " points between " +
+          format(100 * settings.fit_lower) + " % and " + format(100 * settings.fit_upper) +
+          " % of P_max = " + format(result.max_force) +
+          " mN; the power-law fit needs at least 3: record more unloading points "
+          "(loading.unload_points) or widen the fit range");
     result.fit = fit_power_law(fit_depth, fit_force);
     result.stiffness = result.fit.stiffness(result.max_depth);
     if (!(result.stiffness > 0))
       throw std::invalid_argument(where + ": the fitted unloading stiffness at h_max is " +
                                   format(result.stiffness) + " mN/um; it must be positive");
     result.contact_depth =
-      result.max_depth - settings.epsilon * result.max_force / result.stiffness;
+        result.max_depth - settings.epsilon * result.max_force / result.stiffness;
     result.contact_area = result.contact_depth > 0 ? area_function(result.contact_depth) : 0.0;
     if (!(result.contact_area > 0))
-      throw std::invalid_argument(where + ": the contact depth h_c = " +
-                                  format(result.contact_depth) +
+      throw std::invalid_argument(where +
+                                  ": the contact depth h_c = " + format(result.contact_depth) +
                                   " um gives no contact area; the unloading is too soft for "
                                   "this indenter (check the units and --epsilon)");
     result.hardness = result.max_force / result.contact_area;
     result.reduced_modulus =
-      std::sqrt(M_PI) / (2.0 * settings.beta) * result.stiffness / std::sqrt(result.contact_area);
+        std::sqrt(M_PI) / (2.0 * settings.beta) * result.stiffness / std::sqrt(result.contact_area);
     if (settings.sample_poisson_ratio)
       {
         const double nu = *settings.sample_poisson_ratio;
         const double indenter_compliance =
-          std::isfinite(settings.indenter_modulus) ?
-            (1.0 - settings.indenter_poisson_ratio * settings.indenter_poisson_ratio) /
-              settings.indenter_modulus :
-            0.0;
+            std::isfinite(settings.indenter_modulus)
+                ? (1.0 - settings.indenter_poisson_ratio * settings.indenter_poisson_ratio) /
+                      settings.indenter_modulus
+                : 0.0;
         result.sample_modulus =
-          (1.0 - nu * nu) / (1.0 / result.reduced_modulus - indenter_compliance);
+            (1.0 - nu * nu) / (1.0 / result.reduced_modulus - indenter_compliance);
       }
 
     // Work: the loading path up to h_max (previous cycles included) and the unloading branch
     // down to zero force; if the data stop above zero force, the fitted power law closes it.
     for (std::size_t i = 0; i < begin; ++i)
       result.total_work +=
-        0.5 * (curve.force[i] + curve.force[i + 1]) * (curve.depth[i + 1] - curve.depth[i]);
+          0.5 * (curve.force[i] + curve.force[i + 1]) * (curve.depth[i + 1] - curve.depth[i]);
     result.residual_depth_source = "fit h_f";
     result.residual_depth = result.fit.h_f;
     bool reached_zero = false;
@@ -332,18 +334,19 @@ namespace indentsim::analysis
             result.residual_depth_source = "curve";
           }
         else if (h_last > result.fit.h_f)
-          result.elastic_work +=
-            result.fit.alpha * std::pow(h_last - result.fit.h_f, result.fit.m + 1) / (result.fit.m + 1);
+          result.elastic_work += result.fit.alpha *
+                                 std::pow(h_last - result.fit.h_f, result.fit.m + 1) /
+                                 (result.fit.m + 1);
       }
     result.plastic_work_ratio =
-      result.total_work > 0 ? (result.total_work - result.elastic_work) / result.total_work : 0.0;
+        result.total_work > 0 ? (result.total_work - result.elastic_work) / result.total_work : 0.0;
 
     if (!curve.contact_area.empty() && curve.contact_area[begin] > 0)
       {
         result.true_contact_area = curve.contact_area[begin];
         result.true_hardness = result.max_force / *result.true_contact_area;
         result.area_error_percent =
-          100.0 * (result.contact_area - *result.true_contact_area) / *result.true_contact_area;
+            100.0 * (result.contact_area - *result.true_contact_area) / *result.true_contact_area;
       }
     return result;
   }
@@ -353,7 +356,7 @@ namespace indentsim::analysis
                       const LoadCurve *curve)
   {
     std::ostringstream out;
-    const auto optional = [](const std::optional<double> &value) {
+    const auto         optional = [](const std::optional<double> &value) {
       return value ? format(*value) : std::string("null");
     };
     out << "{\n"
@@ -373,8 +376,8 @@ namespace indentsim::analysis
         << "  \"max_force_mN\": " << format(r.max_force) << ",\n"
         << "  \"fit\": {\"alpha_mN_per_um_m\": " << format(r.fit.alpha)
         << ", \"h_f_um\": " << format(r.fit.h_f) << ", \"m\": " << format(r.fit.m)
-        << ", \"rms_error_mN\": " << format(r.fit.rms_error)
-        << ", \"n_points\": " << r.fit.n_points << "},\n"
+        << ", \"rms_error_mN\": " << format(r.fit.rms_error) << ", \"n_points\": " << r.fit.n_points
+        << "},\n"
         << "  \"stiffness_mN_per_um\": " << format(r.stiffness) << ",\n"
         << "  \"contact_depth_um\": " << format(r.contact_depth) << ",\n"
         << "  \"contact_area_um2\": " << format(r.contact_area) << ",\n"

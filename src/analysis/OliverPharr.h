@@ -53,47 +53,47 @@ namespace indentsim::analysis
 
   struct OliverPharrSettings
   {
-    double epsilon = 0.75;     // geometry factor of the contact depth [-]
-    double beta = 1.0;         // correction factor of the modulus formula [-]
-    double fit_lower = 0.5;    // fit the unloading points with P >= fit_lower P_max ...
-    double fit_upper = 1.0;    // ... and P <= fit_upper P_max [-]
+    double                epsilon = 0.75;  // geometry factor of the contact depth [-]
+    double                beta = 1.0;      // correction factor of the modulus formula [-]
+    double                fit_lower = 0.5; // fit the unloading points with P >= fit_lower P_max ...
+    double                fit_upper = 1.0; // ... and P <= fit_upper P_max [-]
     std::optional<double> sample_poisson_ratio; // nu: gives the sample's Young modulus
-    double indenter_modulus = std::numeric_limits<double>::infinity(); // E_i [GPa]
-    double indenter_poisson_ratio = 0.07;                              // nu_i [-]
+    double                indenter_modulus = std::numeric_limits<double>::infinity(); // E_i [GPa]
+    double                indenter_poisson_ratio = 0.07;                              // nu_i [-]
   };
 
   struct OliverPharrResult
   {
-    double      max_depth = 0;           // h_max [um]
-    double      max_force = 0;           // P_max [mN] (the force at h_max)
-    PowerLawFit fit;
-    double      stiffness = 0;           // S [mN/um]
-    double      contact_depth = 0;       // h_c [um]
-    double      contact_area = 0;        // A(h_c) [um^2]
-    double      hardness = 0;            // H [GPa]
-    double      reduced_modulus = 0;     // E_r [GPa]
-    std::optional<double> sample_modulus; // E [GPa], if the sample's nu is given
-    double      residual_depth = 0;      // h_r [um]: zero force after unloading
-    std::string residual_depth_source;   // "curve" (reached zero force) or "fit h_f"
-    double      total_work = 0;          // W_t [mN um]
-    double      elastic_work = 0;        // W_e [mN um]
-    double      plastic_work_ratio = 0;  // W_p / W_t [-]
+    double                max_depth = 0; // h_max [um]
+    double                max_force = 0; // P_max [mN] (the force at h_max)
+    PowerLawFit           fit;
+    double                stiffness = 0;          // S [mN/um]
+    double                contact_depth = 0;      // h_c [um]
+    double                contact_area = 0;       // A(h_c) [um^2]
+    double                hardness = 0;           // H [GPa]
+    double                reduced_modulus = 0;    // E_r [GPa]
+    std::optional<double> sample_modulus;         // E [GPa], if the sample's nu is given
+    double                residual_depth = 0;     // h_r [um]: zero force after unloading
+    std::string           residual_depth_source;  // "curve" (reached zero force) or "fit h_f"
+    double                total_work = 0;         // W_t [mN um]
+    double                elastic_work = 0;       // W_e [mN um]
+    double                plastic_work_ratio = 0; // W_p / W_t [-]
     // From the simulation only: the true projected contact area at h_max, its hardness and the
     // Oliver-Pharr area's error against it (> 0: the method overestimates the area).
-    std::optional<double> true_contact_area;  // [um^2]
-    std::optional<double> true_hardness;      // [GPa]
-    std::optional<double> area_error_percent; // 100 (A - A_true) / A_true
-    unsigned int unloading_begin = 0;        // index of h_max in the curve
-    unsigned int unloading_end = 0;          // one past the last unloading point
+    std::optional<double> true_contact_area;   // [um^2]
+    std::optional<double> true_hardness;       // [GPa]
+    std::optional<double> area_error_percent;  // 100 (A - A_true) / A_true
+    unsigned int          unloading_begin = 0; // index of h_max in the curve
+    unsigned int          unloading_end = 0;   // one past the last unloading point
   };
 
   // The unloading branch is the one that starts at the largest depth (the last cycle's
   // maximum; a hold ends there) and runs while the depth falls. `area_function` maps a contact
   // depth [um] to a projected area [um^2]. Throws std::invalid_argument naming curve.source if
   // the curve has no unloading branch with at least three points in the fit range.
-  OliverPharrResult analyze(const LoadCurve                              &curve,
-                            const std::function<double(double)>          &area_function,
-                            const OliverPharrSettings                    &settings);
+  OliverPharrResult analyze(const LoadCurve                     &curve,
+                            const std::function<double(double)> &area_function,
+                            const OliverPharrSettings           &settings);
 
   // The JSON document written as oliver_pharr.json (keys with units in their names), with the
   // curve itself (um, mN) for the plot if `curve` is given.

@@ -31,8 +31,8 @@ namespace indentsim::analysis::pileup
 
     // The heights on a circle of radius r around the indent axis at theta_j = 2 pi j / M, or
     // std::nullopt if one of them is not covered by the surface.
-    std::optional<std::vector<double>>
-    circle_samples(const SurfaceInterpolator &surface, const double radius, const unsigned int n)
+    std::optional<std::vector<double>> circle_samples(const SurfaceInterpolator &surface,
+                                                      const double radius, const unsigned int n)
     {
       std::vector<double> samples(n);
       for (unsigned int j = 0; j < n; ++j)
@@ -53,23 +53,22 @@ namespace indentsim::analysis::pileup
     // at the highest member, or at the mean azimuth of the members within `tie` of it (a
     // symmetric pair around a mirror plane merges onto the plane). Sorted azimuths in [0, 360).
     template <typename Peak>
-    std::vector<double>
-    merge_close_peaks(std::vector<Peak> maxima, const double separation, const double tie)
+    std::vector<double> merge_close_peaks(std::vector<Peak> maxima, const double separation,
+                                          const double tie)
     {
       std::vector<double> merged;
       if (maxima.empty())
         return merged;
-      std::sort(maxima.begin(), maxima.end(), [](const Peak &a, const Peak &b) {
-        return a.azimuth < b.azimuth;
-      });
+      std::sort(maxima.begin(), maxima.end(),
+                [](const Peak &a, const Peak &b) { return a.azimuth < b.azimuth; });
       // Start after the largest gap, so that no cluster straddles the starting point.
       const std::size_t n = maxima.size();
       std::size_t       start = 0;
       double            largest_gap = -1;
       for (std::size_t i = 0; i < n; ++i)
         {
-          const double gap = i == 0 ? maxima[0].azimuth + 360. - maxima[n - 1].azimuth :
-                                      maxima[i].azimuth - maxima[i - 1].azimuth;
+          const double gap = i == 0 ? maxima[0].azimuth + 360. - maxima[n - 1].azimuth
+                                    : maxima[i].azimuth - maxima[i - 1].azimuth;
           if (gap > largest_gap)
             {
               largest_gap = gap;
@@ -244,7 +243,7 @@ namespace indentsim::analysis::pileup
           {
             const SurfaceNode &a = q[v], &b = q[(v + 1) % 4];
             triangles_.push_back(
-              Triangle{{{a.x(), b.x(), x_c}}, {{a.y(), b.y(), y_c}}, {{a.u_z, b.u_z, h_c}}});
+                Triangle{{{a.x(), b.x(), x_c}}, {{a.y(), b.y(), y_c}}, {{a.u_z, b.u_z, h_c}}});
           }
       }
     if (triangles_.empty())
@@ -262,8 +261,7 @@ namespace indentsim::analysis::pileup
         }
     // About as many bins as triangles, at most 512 per side.
     const double width = std::max(x_max - x_min_, y_max - y_min_);
-    const double n_per_side =
-      std::clamp(std::ceil(std::sqrt(double(triangles_.size()))), 1., 512.);
+    const double n_per_side = std::clamp(std::ceil(std::sqrt(double(triangles_.size()))), 1., 512.);
     bin_size_ = width > 0 ? width / n_per_side : 1.;
     n_bins_x_ = std::max(1u, unsigned(std::ceil((x_max - x_min_) / bin_size_)) + 1);
     n_bins_y_ = std::max(1u, unsigned(std::ceil((y_max - y_min_) / bin_size_)) + 1);
@@ -271,7 +269,7 @@ namespace indentsim::analysis::pileup
     for (unsigned int index = 0; index < triangles_.size(); ++index)
       {
         const Triangle &t = triangles_[index];
-        const auto bin = [&](const double value, const double origin, const unsigned int n) {
+        const auto      bin = [&](const double value, const double origin, const unsigned int n) {
           return std::min(n - 1, unsigned(std::max(0., std::floor((value - origin) / bin_size_))));
         };
         const unsigned int i0 = bin(*std::min_element(t.x.begin(), t.x.end()), x_min_, n_bins_x_);
@@ -290,8 +288,8 @@ namespace indentsim::analysis::pileup
       return std::nullopt;
     // A point outside the bounding box is looked up in the nearest bin (and found in none of
     // its triangles); the bin index is computed as for the triangles' bounding boxes.
-    const double fi = std::floor((x - x_min_) / bin_size_);
-    const double fj = std::floor((y - y_min_) / bin_size_);
+    const double       fi = std::floor((x - x_min_) / bin_size_);
+    const double       fj = std::floor((y - y_min_) / bin_size_);
     const unsigned int i = unsigned(std::clamp(fi, 0., double(n_bins_x_ - 1)));
     const unsigned int j = unsigned(std::clamp(fj, 0., double(n_bins_y_ - 1)));
     for (const unsigned int index : bins_[i + std::size_t(n_bins_x_) * j])
@@ -299,17 +297,17 @@ namespace indentsim::analysis::pileup
         const Triangle &t = triangles_[index];
         // Barycentric coordinates (l0, l1, l2); inside if all >= -eps (eps relative: points on
         // a shared edge belong to either neighbour, whose values agree there).
-        const double det = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) -
-                           (t.x[2] - t.x[0]) * (t.y[1] - t.y[0]);
+        const double det =
+            (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.x[2] - t.x[0]) * (t.y[1] - t.y[0]);
         const double scale = std::abs(t.x[1] - t.x[0]) + std::abs(t.y[1] - t.y[0]) +
                              std::abs(t.x[2] - t.x[0]) + std::abs(t.y[2] - t.y[0]);
         if (std::abs(det) <= 1e-14 * scale * scale) // degenerate (e.g. a collapsed corner)
           continue;
         const double l1 =
-          ((x - t.x[0]) * (t.y[2] - t.y[0]) - (t.x[2] - t.x[0]) * (y - t.y[0])) / det;
+            ((x - t.x[0]) * (t.y[2] - t.y[0]) - (t.x[2] - t.x[0]) * (y - t.y[0])) / det;
         const double l2 =
-          ((t.x[1] - t.x[0]) * (y - t.y[0]) - (x - t.x[0]) * (t.y[1] - t.y[0])) / det;
-        const double l0 = 1. - l1 - l2;
+            ((t.x[1] - t.x[0]) * (y - t.y[0]) - (x - t.x[0]) * (t.y[1] - t.y[0])) / det;
+        const double     l0 = 1. - l1 - l2;
         constexpr double eps = 1e-10;
         if (l0 >= -eps && l1 >= -eps && l2 >= -eps)
           return l0 * t.h[0] + l1 * t.h[1] + l2 * t.h[2];
@@ -317,9 +315,8 @@ namespace indentsim::analysis::pileup
     return std::nullopt;
   }
 
-  HeightGrid resample_on_grid(const SurfaceInterpolator &surface,
-                              const double               half_width,
-                              const double               spacing)
+  HeightGrid resample_on_grid(const SurfaceInterpolator &surface, const double half_width,
+                              const double spacing)
   {
     assert(half_width > 0 && spacing > 0);
     HeightGrid grid;
@@ -331,14 +328,12 @@ namespace indentsim::analysis::pileup
     for (unsigned int j = 0; j < grid.n; ++j)
       for (unsigned int i = 0; i < grid.n; ++i)
         grid.height[i + std::size_t(grid.n) * j] =
-          surface.height(grid.coordinate(i), grid.coordinate(j));
+            surface.height(grid.coordinate(i), grid.coordinate(j));
     return grid;
   }
 
-  std::vector<ProfilePoint> radial_profile(const SurfaceInterpolator &surface,
-                                           const double               azimuth,
-                                           const double               r_max,
-                                           const double               dr)
+  std::vector<ProfilePoint> radial_profile(const SurfaceInterpolator &surface, const double azimuth,
+                                           const double r_max, const double dr)
   {
     assert(dr > 0);
     std::vector<ProfilePoint> profile;
@@ -400,7 +395,7 @@ namespace indentsim::analysis::pileup
     // (a 4-fold crystal such as (001), or an isotropic material seen through the mesh) and the
     // dominant fold stands.
     spectrum.symmetry_fold = spectrum.dominant_fold;
-    double largest_off_mesh = 0;
+    double       largest_off_mesh = 0;
     unsigned int off_mesh_fold = 0;
     for (unsigned int k = 2; k <= max_fold; ++k)
       if (k % 4 != 0 && spectrum.amplitudes[k] > largest_off_mesh)
@@ -447,9 +442,8 @@ namespace indentsim::analysis::pileup
     return spectrum;
   }
 
-  PileUpResult analyse(const std::vector<SurfaceQuad> &surface,
-                       const std::string              &stage,
-                       const PileUpParameters         &parameters)
+  PileUpResult analyse(const std::vector<SurfaceQuad> &surface, const std::string &stage,
+                       const PileUpParameters &parameters)
   {
     PileUpResult result;
     result.stage = stage;
@@ -463,13 +457,13 @@ namespace indentsim::analysis::pileup
     const double              a_c = parameters.contact_radius;
     const double              h_min = smallest_edge(surface);
     // Without contact (a_c = 0) the region is scaled by the smallest element instead.
-    const double half_width = parameters.half_width > 0 ? parameters.half_width :
-                              a_c > 0 ? parameters.radius_factor * a_c :
-                                        parameters.radius_factor * h_min;
+    const double half_width = parameters.half_width > 0 ? parameters.half_width
+                              : a_c > 0                 ? parameters.radius_factor * a_c
+                                                        : parameters.radius_factor * h_min;
     // Half the smallest element resolves the piecewise-linear field; at least 101 points per
     // side so that the map is readable on coarse meshes.
-    const double spacing = parameters.grid_spacing > 0 ? parameters.grid_spacing :
-                                                         std::min(0.5 * h_min, half_width / 50.);
+    const double spacing = parameters.grid_spacing > 0 ? parameters.grid_spacing
+                                                       : std::min(0.5 * h_min, half_width / 50.);
     result.grid = resample_on_grid(interpolator, half_width, spacing);
     result.axis_height = interpolator.height(0, 0);
     for (const double azimuth : parameters.profile_azimuths_deg)
@@ -502,10 +496,8 @@ namespace indentsim::analysis::pileup
           }
       }
     if (result.analysis_radius > 0)
-      result.spectrum = *azimuthal_spectrum(interpolator,
-                                            result.analysis_radius,
-                                            parameters.n_azimuths,
-                                            parameters.max_fold);
+      result.spectrum = *azimuthal_spectrum(interpolator, result.analysis_radius,
+                                            parameters.n_azimuths, parameters.max_fold);
 
     // The largest height outside the contact: a piecewise-linear surface takes its maximum at a
     // node, so the nodes with current radius > a_c are searched.
@@ -525,9 +517,8 @@ namespace indentsim::analysis::pileup
     return result;
   }
 
-  void write_json(std::ostream                    &out,
-                  const std::vector<PileUpResult> &stages,
-                  const PileUpResult              &top_level)
+  void write_json(std::ostream &out, const std::vector<PileUpResult> &stages,
+                  const PileUpResult &top_level)
   {
     out << "{\n"
         << "  \"units\": \"um, deg\",\n";

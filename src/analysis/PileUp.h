@@ -82,7 +82,7 @@ namespace indentsim::analysis::pileup
     {
       std::array<double, 3> x, y, h;
     };
-    std::vector<Triangle>                  triangles_;
+    std::vector<Triangle> triangles_;
     // Uniform bins over the bounding box of the current surface; each holds the triangles whose
     // bounding box overlaps it.
     double                                 x_min_ = 0, y_min_ = 0, bin_size_ = 1;
@@ -100,46 +100,45 @@ namespace indentsim::analysis::pileup
 
     double coordinate(const unsigned int i) const { return -half_width + i * spacing; }
   };
-  HeightGrid
-  resample_on_grid(const SurfaceInterpolator &surface, double half_width, double spacing);
+  HeightGrid resample_on_grid(const SurfaceInterpolator &surface, double half_width,
+                              double spacing);
 
   struct ProfilePoint
   {
     double                azimuth_deg = 0;
-    double                r = 0;      // [um]
-    std::optional<double> height;     // [um]
+    double                r = 0;  // [um]
+    std::optional<double> height; // [um]
   };
   // h(r) at r = 0, dr, 2 dr, ... <= r_max along the azimuth theta (degrees from the x axis).
-  std::vector<ProfilePoint>
-  radial_profile(const SurfaceInterpolator &surface, double azimuth_deg, double r_max, double dr);
+  std::vector<ProfilePoint> radial_profile(const SurfaceInterpolator &surface, double azimuth_deg,
+                                           double r_max, double dr);
 
   struct AzimuthalSpectrum
   {
-    double              radius = 0;      // [um]
-    std::vector<double> samples;         // h(theta_j), theta_j = 360 j / M deg [um]
-    std::vector<double> amplitudes;      // A_0 ... A_max_fold [um] (see the file comment)
+    double              radius = 0;        // [um]
+    std::vector<double> samples;           // h(theta_j), theta_j = 360 j / M deg [um]
+    std::vector<double> amplitudes;        // A_0 ... A_max_fold [um] (see the file comment)
     unsigned int        dominant_fold = 0; // 0: no harmonic k >= 2 above the noise level
     unsigned int        symmetry_fold = 0; // the fold beyond the square mesh's imprint
-    double              noise_level = 0;  // max(1e-3 |A_0|, 1e-6) [um]
+    double              noise_level = 0;   // max(1e-3 |A_0|, 1e-6) [um]
     std::vector<double> peak_azimuths_deg; // local maxima above mean + noise level, merged
   };
   // The spectrum on the circle of radius `radius`; std::nullopt if a sample is not covered.
   std::optional<AzimuthalSpectrum> azimuthal_spectrum(const SurfaceInterpolator &surface,
-                                                      double                     radius,
-                                                      unsigned int               n_azimuths = 360,
-                                                      unsigned int               max_fold = 12);
+                                                      double radius, unsigned int n_azimuths = 360,
+                                                      unsigned int max_fold = 12);
   // The fold and peak analysis of given equally spaced samples (used by azimuthal_spectrum).
   AzimuthalSpectrum spectrum_of_samples(const std::vector<double> &samples, unsigned int max_fold);
 
   struct PileUpParameters
   {
-    double       depth = 0;             // indenter depth of this stage [um]
-    double       contact_radius = 0;    // a_c at maximum depth [um]
-    double       radius_factor = 3;     // R = radius_factor * a_c unless half_width > 0
-    double       half_width = 0;        // R [um]; 0: automatic
-    double       grid_spacing = 0;      // [um]; 0: min(h_min / 2, R / 50)
-    unsigned int n_azimuths = 360;      // M
-    unsigned int max_fold = 12;
+    double              depth = 0;          // indenter depth of this stage [um]
+    double              contact_radius = 0; // a_c at maximum depth [um]
+    double              radius_factor = 3;  // R = radius_factor * a_c unless half_width > 0
+    double              half_width = 0;     // R [um]; 0: automatic
+    double              grid_spacing = 0;   // [um]; 0: min(h_min / 2, R / 50)
+    unsigned int        n_azimuths = 360;   // M
+    unsigned int        max_fold = 12;
     std::vector<double> profile_azimuths_deg = {0,   15,  30,  45,  60,  75,  90,  105,
                                                 120, 135, 150, 165, 180, 195, 210, 225,
                                                 240, 255, 270, 285, 300, 315, 330, 345};
@@ -147,24 +146,23 @@ namespace indentsim::analysis::pileup
 
   struct PileUpResult
   {
-    std::string  stage;                  // "max_depth" | "unloaded"
-    double       depth = 0;              // [um]
-    double       contact_radius = 0;     // [um]
-    double       analysis_radius = 0;    // r_c [um]; 0 if no circle was fully covered
-    std::vector<double> mean_height_by_radius_r, mean_height_by_radius_h; // the r_c search [um]
-    AzimuthalSpectrum spectrum;          // on r_c
-    double       max_pileup = 0;         // [um]
-    double       max_pileup_radius = 0;  // [um]
-    double       max_pileup_azimuth_deg = 0;
-    std::optional<double> axis_height;   // h at r = 0 (minus the impression depth) [um]
-    HeightGrid   grid;
+    std::string           stage;               // "max_depth" | "unloaded"
+    double                depth = 0;           // [um]
+    double                contact_radius = 0;  // [um]
+    double                analysis_radius = 0; // r_c [um]; 0 if no circle was fully covered
+    std::vector<double>   mean_height_by_radius_r, mean_height_by_radius_h; // the r_c search [um]
+    AzimuthalSpectrum     spectrum;                                         // on r_c
+    double                max_pileup = 0;                                   // [um]
+    double                max_pileup_radius = 0;                            // [um]
+    double                max_pileup_azimuth_deg = 0;
+    std::optional<double> axis_height; // h at r = 0 (minus the impression depth) [um]
+    HeightGrid            grid;
     std::vector<ProfilePoint> profiles;
   };
 
   // The whole analysis of one stage. `surface` is the full surface (mirror a quarter first).
-  PileUpResult analyse(const std::vector<SurfaceQuad> &surface,
-                       const std::string              &stage,
-                       const PileUpParameters         &parameters);
+  PileUpResult analyse(const std::vector<SurfaceQuad> &surface, const std::string &stage,
+                       const PileUpParameters &parameters);
 
   // pileup.json: {"units", the fields of `top_level`, "<stage>": {the fields of that stage}...}
   // with the fields stage, depth_um, contact_radius_um, analysis_radius_um, dominant_fold,

@@ -22,7 +22,7 @@ namespace indentsim::io
   struct ChoiceWords<TestKind>
   {
     static constexpr std::array<ChoiceWord<TestKind>, 2> words = {
-      {{TestKind::indentation, "indentation"}, {TestKind::tensile, "tensile"}}};
+        {{TestKind::indentation, "indentation"}, {TestKind::tensile, "tensile"}}};
   };
 
   // specimen.symmetry: the full block, or the quarter x >= 0, y >= 0 with mirror planes.
@@ -35,7 +35,7 @@ namespace indentsim::io
   struct ChoiceWords<Symmetry>
   {
     static constexpr std::array<ChoiceWord<Symmetry>, 2> words = {
-      {{Symmetry::full, "full"}, {Symmetry::quarter, "quarter"}}};
+        {{Symmetry::full, "full"}, {Symmetry::quarter, "quarter"}}};
   };
 
   // specimen.grains: one orientation, or a random orientation per element (tensile).
@@ -48,7 +48,7 @@ namespace indentsim::io
   struct ChoiceWords<Grains>
   {
     static constexpr std::array<ChoiceWord<Grains>, 2> words = {
-      {{Grains::single, "single"}, {Grains::per_element, "per_element"}}};
+        {{Grains::single, "single"}, {Grains::per_element, "per_element"}}};
   };
 
   // loading.control: the indenter depth is prescribed, or the force (the depth an unknown).
@@ -61,7 +61,7 @@ namespace indentsim::io
   struct ChoiceWords<Control>
   {
     static constexpr std::array<ChoiceWord<Control>, 2> words = {
-      {{Control::depth, "depth"}, {Control::force, "force"}}};
+        {{Control::depth, "depth"}, {Control::force, "force"}}};
   };
 
   // solver.linear_solver (solver/LinearSolver.h).
@@ -75,22 +75,22 @@ namespace indentsim::io
   struct ChoiceWords<LinearSolverChoice>
   {
     static constexpr std::array<ChoiceWord<LinearSolverChoice>, 3> words = {
-      {{LinearSolverChoice::automatic, "auto"},
-       {LinearSolverChoice::direct, "direct"},
-       {LinearSolverChoice::iterative, "iterative"}}};
+        {{LinearSolverChoice::automatic, "auto"},
+         {LinearSolverChoice::direct, "direct"},
+         {LinearSolverChoice::iterative, "iterative"}}};
   };
 
   struct SpecimenParameters
   {
-    std::array<double, 3> size = {{360., 360., 180.}};       // block edge lengths [um]
+    std::array<double, 3> size = {{360., 360., 180.}};          // block edge lengths [um]
     std::array<double, 3> refined_region = {{120., 120., 30.}}; // refined block under the tip [um]
     unsigned int          contact_elements = 12; // N: N x N faces across the refined top face
     Choice<Symmetry>      symmetry = Symmetry::full;
-    bool                  f_bar = true;          // F-bar element (default on for plasticity)
+    bool                  f_bar = true; // F-bar element (default on for plasticity)
     // Tensile test (test: tensile): a cube of elements_per_side^3 elements of 1 um edge.
-    unsigned int          elements_per_side = 3;
-    Choice<Grains>        grains = Grains::single; // per_element: random orientation each
-    unsigned int          seed = 1;          // seed of the random orientations (per_element)
+    unsigned int   elements_per_side = 3;
+    Choice<Grains> grains = Grains::single; // per_element: random orientation each
+    unsigned int   seed = 1;                // seed of the random orientations (per_element)
 
     bool operator==(const SpecimenParameters &) const = default;
   };
@@ -100,30 +100,30 @@ namespace indentsim::io
   struct LoadingParameters
   {
     Choice<Control> control = Control::depth; // force: the indenter depth becomes an unknown
-    double       max_depth = 6.0;  // depth control: the maximum depth; force control: the
-                                   // largest admissible depth (the refined region's design) [um]
-    double       max_force = 0.0;  // force control: the maximum indenter force [mN]
-    unsigned int steps = 64;       // increments from 0 to the maximum
-    bool         unload = true;    // then back until the indenter force vanishes (force control:
-                                   // down to 1 % of max_force)
-    unsigned int unload_steps = 0; // 0: same increment size as loading (computed)
+    double          max_depth = 6.0; // depth control: the maximum depth; force control: the
+                                     // largest admissible depth (the refined region's design) [um]
+    double       max_force = 0.0;    // force control: the maximum indenter force [mN]
+    unsigned int steps = 64;         // increments from 0 to the maximum
+    bool         unload = true;      // then back until the indenter force vanishes (force control:
+                                     // down to 1 % of max_force)
+    unsigned int unload_steps = 0;   // 0: same increment size as loading (computed)
     unsigned int unload_points = 20; // depth control: each unloading step lowers the force by
                                      // about max force / unload_points (the Oliver-Pharr fit
                                      // needs points on the upper unloading); 0: off
-    unsigned int hold_steps = 0;   // increments holding the maximum (recorded; no creep in these
-                                   // rate-independent models)
-    unsigned int cycles = 1;       // load-hold-unload cycles to the same maximum
-    unsigned int max_cutbacks = 8; // successive halvings of an increment before giving up
-    double       max_strain = 0.2; // tensile test: final logarithmic strain along z [-]
+    unsigned int hold_steps = 0;     // increments holding the maximum (recorded; no creep in these
+                                     // rate-independent models)
+    unsigned int cycles = 1;         // load-hold-unload cycles to the same maximum
+    unsigned int max_cutbacks = 8;   // successive halvings of an increment before giving up
+    double       max_strain = 0.2;   // tensile test: final logarithmic strain along z [-]
 
     bool operator==(const LoadingParameters &) const = default;
   };
 
   struct ContactParameters
   {
-    double friction_coefficient = 0.0; // Coulomb mu [-], 0 <= mu <= 2 (0: frictionless)
-    double penalty = 0.0;              // augmentation parameter [GPa/um]; 0: automatic
-    double penetration_tolerance = 1e-6; // largest admissible penetration at convergence [um]
+    double       friction_coefficient = 0.0;   // Coulomb mu [-], 0 <= mu <= 2 (0: frictionless)
+    double       penalty = 0.0;                // augmentation parameter [GPa/um]; 0: automatic
+    double       penetration_tolerance = 1e-6; // largest admissible penetration at convergence [um]
     unsigned int max_augmentations = 30;
 
     bool operator==(const ContactParameters &) const = default;
@@ -131,7 +131,8 @@ namespace indentsim::io
 
   struct SolverParameters
   {
-    double       residual_tolerance = 1e-7;  // relative to the first residual of the increment (indentation: or the last indenter force, if larger)
+    double residual_tolerance =
+        1e-7; // relative to the first residual of the increment (indentation: or the last indenter force, if larger)
     double       absolute_tolerance = 1e-10; // [mN]
     unsigned int max_newton_iterations = 25;
     // Linear solver of the Newton iterations (linalg/LinearSolver.h): auto (direct below
@@ -150,7 +151,7 @@ namespace indentsim::io
     // A measured load-penetration curve (CSV, units in the column names as for indentsim
     // analyze) overlaid on the plot and compared with the loading curve; "" for none. A
     // relative path is relative to the case file's directory; the reader stores it absolute.
-    std::string  experimental_curve = "";
+    std::string experimental_curve = "";
     // Indentation: wall time between checkpoints of a run [s] (0: only when stopped by
     // SIGINT/SIGTERM); `indentsim run CASE --resume` continues from the last one.
     double checkpoint_interval_s = 300;
@@ -160,9 +161,9 @@ namespace indentsim::io
 
   struct Case
   {
-    std::string        source_file; // the YAML file this case was read from
-    Choice<TestKind>   test = TestKind::indentation;
-    bool               compare_j2 = false;  // tensile: also run the J2 model (material.young_modulus...)
+    std::string      source_file; // the YAML file this case was read from
+    Choice<TestKind> test = TestKind::indentation;
+    bool compare_j2 = false; // tensile: also run the J2 model (material.young_modulus...)
     MaterialParameters material;
     IndenterParameters indenter;
     SpecimenParameters specimen;

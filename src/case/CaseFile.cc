@@ -31,11 +31,10 @@ namespace indentsim::io
           for (std::size_t j = 1; j <= b.size(); ++j)
             {
               const std::size_t substitution =
-                previous[j - 1] +
-                (std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                     std::tolower(static_cast<unsigned char>(b[j - 1])) ?
-                   0 :
-                   1);
+                  previous[j - 1] + (std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                                             std::tolower(static_cast<unsigned char>(b[j - 1]))
+                                         ? 0
+                                         : 1);
               current[j] = std::min({previous[j] + 1, current[j - 1] + 1, substitution});
             }
           std::swap(previous, current);

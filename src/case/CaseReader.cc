@@ -27,7 +27,8 @@ namespace indentsim::io
       CaseReader(std::string source_name, OriginMap &origins)
         : source(std::move(source_name))
         , value_origins(origins)
-      {}
+      {
+      }
 
       Case read(const YAML::Node &root)
       {
@@ -37,7 +38,7 @@ namespace indentsim::io
         if (root.IsDefined() && !root.IsNull() && !root.IsMap())
           fail(line_of(root),
                "the case file must be a mapping of keys (test, material, indenter, ...), got '" +
-                 node_text(root) + "'");
+                   node_text(root) + "'");
         check_keys(root, "", allowed_names(""));
         maps.emplace("", root);
 
@@ -53,7 +54,7 @@ namespace indentsim::io
             if (!read_value(map, key, result) && key.required)
               fail(key.parent().empty() ? -1 : line_of(map),
                    "missing required key '" + key.path +
-                     "' (allowed: " + join(key.choice.words(true)) + ")");
+                       "' (allowed: " + join(key.choice.words(true)) + ")");
           }
 
         // F-bar by default for plasticity (isochoric flow locks plain hexahedra), plain
@@ -89,16 +90,15 @@ namespace indentsim::io
         if (const auto found = maps.find(path); found != maps.end())
           return found->second;
         const std::size_t dot = path.rfind('.');
-        YAML::Node        node = dot == std::string::npos ?
-                                   section(maps.at(""), path) :
-                                   subsection(map_at(path.substr(0, dot)), path.substr(0, dot),
-                                              path.substr(dot + 1));
+        YAML::Node        node = dot == std::string::npos
+                                     ? section(maps.at(""), path)
+                                     : subsection(map_at(path.substr(0, dot)), path.substr(0, dot),
+                                                  path.substr(dot + 1));
         return maps.emplace(path, node).first->second;
       }
 
       // Unknown and duplicate keys at one level; `section_name` is "" for the top level.
-      void check_keys(const YAML::Node               &map,
-                      const std::string              &section_name,
+      void check_keys(const YAML::Node &map, const std::string &section_name,
                       const std::vector<std::string> &allowed) const
       {
         if (!map.IsDefined() || !map.IsMap())
@@ -108,26 +108,23 @@ namespace indentsim::io
           {
             const int line = line_of(entry.first);
             if (!entry.first.IsScalar())
-              fail(line,
-                   "key '" + node_text(entry.first) + "'" +
-                     (section_name.empty() ? "" : " in '" + section_name + "'") +
-                     " is not a plain name; allowed keys: " + join(allowed));
+              fail(line, "key '" + node_text(entry.first) + "'" +
+                             (section_name.empty() ? "" : " in '" + section_name + "'") +
+                             " is not a plain name; allowed keys: " + join(allowed));
             const std::string key = entry.first.Scalar();
             const std::string path = key_path(section_name, key);
             if (const auto previous = seen.find(key); previous != seen.end())
-              fail(line,
-                   "duplicate key '" + path + "' (first given on line " +
-                     std::to_string(previous->second + 1) + "); give each key once");
+              fail(line, "duplicate key '" + path + "' (first given on line " +
+                             std::to_string(previous->second + 1) + "); give each key once");
             seen.emplace(key, line);
 
             if (std::find(allowed.begin(), allowed.end(), key) != allowed.end())
               continue;
-            fail(line,
-                 "unknown key '" + path + "'" + unknown_key_hint(section_name, key) +
-                   " Allowed keys " +
-                   (section_name.empty() ? std::string("at the top level") :
-                                           "in '" + section_name + "'") +
-                   ": " + join(allowed) + ".");
+            fail(line, "unknown key '" + path + "'" + unknown_key_hint(section_name, key) +
+                           " Allowed keys " +
+                           (section_name.empty() ? std::string("at the top level")
+                                                 : "in '" + section_name + "'") +
+                           ": " + join(allowed) + ".");
           }
       }
 
@@ -157,14 +154,13 @@ namespace indentsim::io
         if (!node.IsMap())
           fail(line_of(node),
                "'" + name + "' = " + node_text(node) +
-                 ": expected a mapping of keys (allowed: " + join(allowed_names(name)) + ")");
+                   ": expected a mapping of keys (allowed: " + join(allowed_names(name)) + ")");
         check_keys(node, name, allowed_names(name));
         return node;
       }
 
       // A map nested in a section (e.g. material.elastic), read like a section.
-      YAML::Node subsection(const YAML::Node  &parent,
-                            const std::string &parent_name,
+      YAML::Node subsection(const YAML::Node &parent, const std::string &parent_name,
                             const std::string &key)
       {
         const YAML::Node  node = value_node(parent, parent_name, key);
@@ -173,8 +169,8 @@ namespace indentsim::io
           return YAML::Node(YAML::NodeType::Undefined);
         if (!node.IsMap())
           fail(line_of(node),
-               path + " = " + node_text(node) + ": expected a mapping of keys (allowed: " +
-                 join(allowed_names(path)) + ")");
+               path + " = " + node_text(node) +
+                   ": expected a mapping of keys (allowed: " + join(allowed_names(path)) + ")");
         check_keys(node, path, allowed_names(path));
         return node;
       }
@@ -187,26 +183,26 @@ namespace indentsim::io
           return false;
         switch (key.type)
           {
-            case ValueType::number:
-              key.number(result) = parse_double(node, key.path, key.expected);
-              break;
-            case ValueType::whole_number:
-              key.whole_number(result) = parse_unsigned(node, key.path);
-              break;
-            case ValueType::boolean:
-              key.boolean(result) = parse_bool(node, key.path);
-              break;
-            case ValueType::choice:
-              key.choice.assign(result, parse_word(node, key.path, key.expected));
-              break;
-            case ValueType::text:
-              key.text(result) = parse_word(node, key.path, key.expected);
-              if (key.relative_to_case_file)
-                key.text(result) = relative_to_case_file(key.text(result));
-              break;
-            case ValueType::triple:
-              key.triple(result) = parse_triple(node, key);
-              break;
+          case ValueType::number:
+            key.number(result) = parse_double(node, key.path, key.expected);
+            break;
+          case ValueType::whole_number:
+            key.whole_number(result) = parse_unsigned(node, key.path);
+            break;
+          case ValueType::boolean:
+            key.boolean(result) = parse_bool(node, key.path);
+            break;
+          case ValueType::choice:
+            key.choice.assign(result, parse_word(node, key.path, key.expected));
+            break;
+          case ValueType::text:
+            key.text(result) = parse_word(node, key.path, key.expected);
+            if (key.relative_to_case_file)
+              key.text(result) = relative_to_case_file(key.text(result));
+            break;
+          case ValueType::triple:
+            key.triple(result) = parse_triple(node, key);
+            break;
           }
         return true;
       }
@@ -220,13 +216,13 @@ namespace indentsim::io
         const YAML::Node   node = subsection(material_map, "material", "orientation");
         if (!node.IsDefined())
           return;
-        const bool has_euler = node["euler_bunge_deg"].IsDefined();
-        const bool has_normal = node["surface_normal"].IsDefined();
-        const bool has_reference = node["reference_direction"].IsDefined();
+        const bool        has_euler = node["euler_bunge_deg"].IsDefined();
+        const bool        has_normal = node["surface_normal"].IsDefined();
+        const bool        has_reference = node["reference_direction"].IsDefined();
         const std::string shown = path + " = " + node_text(node) + ": ";
         const std::string either =
-          "give exactly one of euler_bunge_deg: [phi1, Phi, phi2] (degrees) or "
-          "surface_normal: [h, k, l] together with reference_direction: [u, v, w]";
+            "give exactly one of euler_bunge_deg: [phi1, Phi, phi2] (degrees) or "
+            "surface_normal: [h, k, l] together with reference_direction: [u, v, w]";
         if (has_euler && (has_normal || has_reference))
           fail(line_of(node), shown + "both Euler angles and a surface normal given; " + either);
         if (!has_euler && !has_normal && !has_reference)
@@ -272,8 +268,7 @@ namespace indentsim::io
       }
 
       // The value node of `key`, or an undefined node if the key is absent.
-      YAML::Node value_node(const YAML::Node  &map,
-                            const std::string &section_name,
+      YAML::Node value_node(const YAML::Node &map, const std::string &section_name,
                             const std::string &key)
       {
         if (!map.IsDefined() || !map.IsMap())
@@ -284,8 +279,7 @@ namespace indentsim::io
         return node;
       }
 
-      double parse_double(const YAML::Node  &node,
-                          const std::string &path,
+      double parse_double(const YAML::Node &node, const std::string &path,
                           const std::string &meaning) const
       {
         const std::string expected = "expected a number (" + meaning + ")";
@@ -296,8 +290,7 @@ namespace indentsim::io
         std::string       text = node.Scalar();
         const std::size_t start = (!text.empty() && text[0] == '+') ? 1 : 0;
         double            value = 0.;
-        const auto        result =
-          std::from_chars(text.data() + start, text.data() + text.size(), value);
+        const auto result = std::from_chars(text.data() + start, text.data() + text.size(), value);
         if (result.ec != std::errc() || result.ptr != text.data() + text.size() ||
             !std::isfinite(value))
           fail(line_of(node), path + " = \"" + text + "\": " + expected);
@@ -316,8 +309,7 @@ namespace indentsim::io
           fail(line_of(node), path + " = " + text + ": negative; " + expected);
         const std::size_t  start = (!text.empty() && text[0] == '+') ? 1 : 0;
         unsigned long long parsed = 0;
-        const auto         result =
-          std::from_chars(text.data() + start, text.data() + text.size(), parsed);
+        const auto result = std::from_chars(text.data() + start, text.data() + text.size(), parsed);
         if (result.ec == std::errc::result_out_of_range ||
             (result.ec == std::errc() && parsed > std::numeric_limits<unsigned int>::max()))
           fail(line_of(node), path + " = " + text + ": too large; " + expected);
@@ -344,8 +336,7 @@ namespace indentsim::io
           }
       }
 
-      std::string parse_word(const YAML::Node  &node,
-                             const std::string &path,
+      std::string parse_word(const YAML::Node &node, const std::string &path,
                              const std::string &meaning) const
       {
         if (node.IsNull())
@@ -363,9 +354,8 @@ namespace indentsim::io
         if (!node.IsSequence())
           fail(line_of(node), path + " = " + node_text(node) + ": " + expected);
         if (node.size() != 3)
-          fail(line_of(node),
-               path + " = " + node_text(node) + ": " + expected + ", got " +
-                 std::to_string(node.size()) + " entries");
+          fail(line_of(node), path + " = " + node_text(node) + ": " + expected + ", got " +
+                                  std::to_string(node.size()) + " entries");
         std::array<double, 3> values{};
         for (std::size_t i = 0; i < 3; ++i)
           values[i] = parse_double(node[i], path + "[" + std::to_string(i) + "]", key.entry_unit);

@@ -11,42 +11,42 @@ namespace indentsim::io
   {
     struct Section
     {
-      const char *name;  // "" for the top level
+      const char *name; // "" for the top level
       const char *title;
       const char *about;
     };
 
     const Section sections[] = {
-      {"", "Top level", "The kind of test."},
-      {"material", "material", "The constitutive model and its parameters."},
-      {"indenter", "indenter",
-       "The rigid indenter. Every key is read and range-checked for every shape but used only by "
-       "the shapes named in its description (`indenter.file` is opened only for "
-       "`profile_table`)."},
-      {"specimen", "specimen",
-       "The block under the indenter (indentation) or the cube (tensile), and its mesh."},
-      {"loading", "loading", "The loading programme."},
-      {"contact", "contact", "Augmented-Lagrangian contact with Coulomb friction."},
-      {"solver", "solver", "Newton's method and the linear solver."},
-      {"output", "output", "Where the results go and what is written."},
+        {"", "Top level", "The kind of test."},
+        {"material", "material", "The constitutive model and its parameters."},
+        {"indenter", "indenter",
+         "The rigid indenter. Every key is read and range-checked for every shape but used only by "
+         "the shapes named in its description (`indenter.file` is opened only for "
+         "`profile_table`)."},
+        {"specimen", "specimen",
+         "The block under the indenter (indentation) or the cube (tensile), and its mesh."},
+        {"loading", "loading", "The loading programme."},
+        {"contact", "contact", "Augmented-Lagrangian contact with Coulomb friction."},
+        {"solver", "solver", "Newton's method and the linear solver."},
+        {"output", "output", "Where the results go and what is written."},
     };
 
     std::string type_name(const ValueType type)
     {
       switch (type)
         {
-          case ValueType::number:
-            return "number";
-          case ValueType::whole_number:
-            return "whole number";
-          case ValueType::boolean:
-            return "true/false";
-          case ValueType::choice:
-            return "word";
-          case ValueType::text:
-            return "text";
-          case ValueType::triple:
-            return "3 numbers";
+        case ValueType::number:
+          return "number";
+        case ValueType::whole_number:
+          return "whole number";
+        case ValueType::boolean:
+          return "true/false";
+        case ValueType::choice:
+          return "word";
+        case ValueType::text:
+          return "text";
+        case ValueType::triple:
+          return "3 numbers";
         }
       return {};
     }
@@ -106,32 +106,32 @@ namespace indentsim::io
     }
 
     const char *notes =
-      "## Notes\n"
-      "\n"
-      "The crystal keys are read and checked for every model but used only by `crystal` (the "
-      "resolved case always lists them); the J2 keys also serve `compare_j2`. Indentation and "
-      "tensile keys may share one file: each test ignores the other's.\n"
-      "\n"
-      "**Crystal orientation convention** (`materials/Orientation.h`): Bunge, passive. The "
-      "rotation g = R_z(φ2) R_x(Φ) R_z(φ1), R_z(a) = [[cos a, sin a, 0], [−sin a, cos a, 0], "
-      "[0, 0, 1]], maps sample components to crystal components, v_crystal = g v_sample: its "
-      "rows are the crystal axes [100], [010], [001] in the sample frame. Euler angles "
-      "(0, 0, 0) put the crystal axes along the sample axes, so the (001) plane is indented. "
-      "`surface_normal: [h, k, l]` is the crystal direction along sample z and "
-      "`reference_direction: [u, v, w]` the crystal direction along sample x (e.g. [1, 1, 1] "
-      "with [1, −1, 0]); neither needs to be normalised. The resolved case writes the form "
-      "that was given.\n"
-      "\n"
-      "Boundary conditions: bottom face fixed (all components), lateral faces traction-free, "
-      "top face free except for contact; `quarter` adds u_x = 0 on x = 0 and u_y = 0 on "
-      "y = 0. Mesh: the refined region holds N×N cells across its top face (edge h = "
-      "refined_x/N) and about cubic coarse cells 2^L h, coarsened by p4est's 2:1 balance and "
-      "geometric grading (ratio 1.6) outside; its depth is honoured in whole coarse layers.\n"
-      "\n"
-      "Bad input never reaches the solver: every problem stops the program with one message "
-      "that names the file, the line, the key, the value and what is allowed (with a \"did you "
-      "mean\" for a misspelt key or word). Every run writes `resolved_case.yaml`, the case with "
-      "every default filled in, next to its results.\n";
+        "## Notes\n"
+        "\n"
+        "The crystal keys are read and checked for every model but used only by `crystal` (the "
+        "resolved case always lists them); the J2 keys also serve `compare_j2`. Indentation and "
+        "tensile keys may share one file: each test ignores the other's.\n"
+        "\n"
+        "**Crystal orientation convention** (`materials/Orientation.h`): Bunge, passive. The "
+        "rotation g = R_z(φ2) R_x(Φ) R_z(φ1), R_z(a) = [[cos a, sin a, 0], [−sin a, cos a, 0], "
+        "[0, 0, 1]], maps sample components to crystal components, v_crystal = g v_sample: its "
+        "rows are the crystal axes [100], [010], [001] in the sample frame. Euler angles "
+        "(0, 0, 0) put the crystal axes along the sample axes, so the (001) plane is indented. "
+        "`surface_normal: [h, k, l]` is the crystal direction along sample z and "
+        "`reference_direction: [u, v, w]` the crystal direction along sample x (e.g. [1, 1, 1] "
+        "with [1, −1, 0]); neither needs to be normalised. The resolved case writes the form "
+        "that was given.\n"
+        "\n"
+        "Boundary conditions: bottom face fixed (all components), lateral faces traction-free, "
+        "top face free except for contact; `quarter` adds u_x = 0 on x = 0 and u_y = 0 on "
+        "y = 0. Mesh: the refined region holds N×N cells across its top face (edge h = "
+        "refined_x/N) and about cubic coarse cells 2^L h, coarsened by p4est's 2:1 balance and "
+        "geometric grading (ratio 1.6) outside; its depth is honoured in whole coarse layers.\n"
+        "\n"
+        "Bad input never reaches the solver: every problem stops the program with one message "
+        "that names the file, the line, the key, the value and what is allowed (with a \"did you "
+        "mean\" for a misspelt key or word). Every run writes `resolved_case.yaml`, the case with "
+        "every default filled in, next to its results.\n";
   } // namespace
 
   std::string case_file_reference_markdown()
@@ -148,14 +148,15 @@ namespace indentsim::io
         << "edit the schema, not this file (a unit test fails when the two differ).\n";
     for (const auto &section : sections)
       {
-        out << "\n## " << section.title << "\n\n" << section.about << "\n\n"
+        out << "\n## " << section.title << "\n\n"
+            << section.about << "\n\n"
             << "| key | type | unit | default | allowed | description |\n"
             << "|---|---|---|---|---|---|\n";
         for (const auto &key : case_keys())
           if (in_section(key, section.name))
-            out << "| `" << key.path << "` | " << type_name(key.type) << " | "
-                << cell(key.unit) << " | " << cell(default_of(key)) << " | "
-                << cell(allowed_of(key)) << " | " << cell(key.description) << " |\n";
+            out << "| `" << key.path << "` | " << type_name(key.type) << " | " << cell(key.unit)
+                << " | " << cell(default_of(key)) << " | " << cell(allowed_of(key)) << " | "
+                << cell(key.description) << " |\n";
       }
     out << "\n" << notes;
     return out.str();

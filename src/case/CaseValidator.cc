@@ -27,7 +27,8 @@ namespace indentsim::io
       CaseValidator(const Case &checked_case, const OriginMap *origins)
         : checked(checked_case)
         , value_origins(origins)
-      {}
+      {
+      }
 
       void validate() const
       {
@@ -70,32 +71,32 @@ namespace indentsim::io
         Case &c = const_cast<Case &>(checked); // the accessors only read here
         switch (key.type)
           {
-            case ValueType::number:
-              if (key.has_range && !key.range.contains(key.number(c)))
-                reject(key.path, format_number(key.number(c)), key.range_message);
-              break;
-            case ValueType::whole_number:
-              if (key.has_range && !key.range.contains(key.whole_number(c)))
-                reject(key.path, std::to_string(key.whole_number(c)), key.range_message);
-              break;
-            case ValueType::triple:
-              for (unsigned int d = 0; d < 3; ++d)
-                if (key.has_range && !key.range.contains(key.triple(c)[d]))
-                  reject(key.path, format_triple(key.triple(c)),
-                         key.range_message + "; the " + axis_names[d] + " entry is not");
-              break;
-            case ValueType::choice:
-              if (!key.choice.known(c))
-                reject_unknown_word(key.path, key.choice.word(c), key.choice.words(true));
-              if (!key.choice.implemented(c))
-                reject(key.path, "'" + key.choice.word(c) + "'", key.not_implemented_message);
-              break;
-            case ValueType::text:
-              if (key.non_empty && key.text(c).empty())
-                reject(key.path, "\"\"", key.range_message);
-              break;
-            case ValueType::boolean:
-              break;
+          case ValueType::number:
+            if (key.has_range && !key.range.contains(key.number(c)))
+              reject(key.path, format_number(key.number(c)), key.range_message);
+            break;
+          case ValueType::whole_number:
+            if (key.has_range && !key.range.contains(key.whole_number(c)))
+              reject(key.path, std::to_string(key.whole_number(c)), key.range_message);
+            break;
+          case ValueType::triple:
+            for (unsigned int d = 0; d < 3; ++d)
+              if (key.has_range && !key.range.contains(key.triple(c)[d]))
+                reject(key.path, format_triple(key.triple(c)),
+                       key.range_message + "; the " + axis_names[d] + " entry is not");
+            break;
+          case ValueType::choice:
+            if (!key.choice.known(c))
+              reject_unknown_word(key.path, key.choice.word(c), key.choice.words(true));
+            if (!key.choice.implemented(c))
+              reject(key.path, "'" + key.choice.word(c) + "'", key.not_implemented_message);
+            break;
+          case ValueType::text:
+            if (key.non_empty && key.text(c).empty())
+              reject(key.path, "\"\"", key.range_message);
+            break;
+          case ValueType::boolean:
+            break;
           }
       }
 
@@ -124,17 +125,18 @@ namespace indentsim::io
         if (!(m.C11 - m.C12 > 0.))
           {
             const std::string path =
-              given_or_first({"material.elastic.C12", "material.elastic.C11"});
+                given_or_first({"material.elastic.C12", "material.elastic.C11"});
             reject(path, format_number(path == "material.elastic.C11" ? m.C11 : m.C12),
                    "the cubic stiffness must be positive definite: C11 - C12 > 0 " + constants);
           }
         if (!(m.C11 + 2. * m.C12 > 0.))
           {
             const std::string path =
-              given_or_first({"material.elastic.C12", "material.elastic.C11"});
+                given_or_first({"material.elastic.C12", "material.elastic.C11"});
             reject(path, format_number(path == "material.elastic.C11" ? m.C11 : m.C12),
                    "the cubic stiffness must be positive definite: C11 + 2 C12 > 0 (a positive "
-                   "bulk modulus) " + constants);
+                   "bulk modulus) " +
+                       constants);
           }
         if (m.theta0 > 0. && !(m.tau1 > 0.))
           reject(given_or_first({"material.hardening.tau1", "material.hardening.theta0"}),
@@ -161,8 +163,7 @@ namespace indentsim::io
               reject("material.orientation.reference_direction",
                      format_triple(o.reference_direction), what);
             else
-              reject("material.orientation.surface_normal", format_triple(o.surface_normal),
-                     what);
+              reject("material.orientation.surface_normal", format_triple(o.surface_normal), what);
           }
       }
 
@@ -175,7 +176,7 @@ namespace indentsim::io
         if (!(ind.edge_radius >= 0. && ind.edge_radius <= ind.radius))
           reject(given_or_first({"indenter.edge_radius", "indenter.radius"}),
                  "edge_radius = " + format_number(ind.edge_radius) +
-                   ", radius = " + format_number(ind.radius),
+                     ", radius = " + format_number(ind.radius),
                  "the rim rounding of the flat punch must satisfy 0 <= edge_radius <= radius "
                  "(um; 0: a sharp rim)");
         if (ind.shape == IndenterShape::profile_table && ind.file.empty())
@@ -204,8 +205,8 @@ namespace indentsim::io
           if (s.refined_region[d] > s.size[d])
             reject("specimen.refined_region", format_triple(s.refined_region),
                    std::string("the refined region must fit inside the specimen: its ") +
-                     axis_names[d] + " extent " + format_number(s.refined_region[d]) +
-                     " um exceeds specimen.size = " + format_triple(s.size));
+                       axis_names[d] + " extent " + format_number(s.refined_region[d]) +
+                       " um exceeds specimen.size = " + format_triple(s.size));
         const bool quarter = s.symmetry == Symmetry::quarter;
         if (!tensile() && quarter && !surface.mirror_symmetric_about_xz_and_yz())
           reject_quarter_symmetry_of_the_indenter();
@@ -225,7 +226,7 @@ namespace indentsim::io
           reject("loading.max_depth", format_number(l.max_depth),
                  "must be smaller than the depth of the refined region, specimen.refined_region"
                  "[2] = " +
-                   format_number(s.refined_region[2]) + " um");
+                     format_number(s.refined_region[2]) + " um");
         if (l.control == Control::force)
           {
             if (tensile())
@@ -262,8 +263,8 @@ namespace indentsim::io
           {
             reject("output.experimental_curve", "\"" + o.experimental_curve + "\"",
                    std::string(error.what()) +
-                     " (a CSV with a header; depth and force columns with their units in "
-                     "the names, e.g. depth_nm,load_uN)");
+                       " (a CSV with a header; depth and force columns with their units in "
+                       "the names, e.g. depth_nm,load_uN)");
           }
       }
 
@@ -297,36 +298,36 @@ namespace indentsim::io
                    "symmetry: full";
         reject("specimen.symmetry", to_string(checked.specimen.symmetry),
                "the quarter model (u_x = 0 on x = 0, u_y = 0 on y = 0) needs the planes x = 0 "
-               "and y = 0 to be mirror planes of the indenter, and " + shape +
-                 " is not mirror-symmetric about both; " + advice);
+               "and y = 0 to be mirror planes of the indenter, and " +
+                   shape + " is not mirror-symmetric about both; " + advice);
       }
 
       // The quarter model imposes u_x = 0 on x = 0 and u_y = 0 on y = 0; for a crystal that is
       // exact only if both planes are mirror planes of the lattice (m-3m point group).
       void check_quarter_symmetry_of_the_lattice() const
       {
-        const auto &o = checked.material.orientation;
+        const auto                &o = checked.material.orientation;
         const dealii::Tensor<2, 3> g = materials::create_orientation(o);
         const dealii::Tensor<1, 3> e_x({1., 0., 0.}), e_y({0., 1., 0.});
-        const bool x_mirror = materials::is_cubic_mirror_plane(g, e_x);
-        const bool y_mirror = materials::is_cubic_mirror_plane(g, e_y);
+        const bool                 x_mirror = materials::is_cubic_mirror_plane(g, e_x);
+        const bool                 y_mirror = materials::is_cubic_mirror_plane(g, e_y);
         if (x_mirror && y_mirror)
           return;
         const std::string orientation =
-          o.kind == OrientationKind::surface_normal ?
-            "material.orientation: surface_normal " + format_triple(o.surface_normal) +
-              ", reference_direction " + format_triple(o.reference_direction) :
-            "material.orientation: euler_bunge_deg " + format_triple(o.euler_bunge_deg);
+            o.kind == OrientationKind::surface_normal
+                ? "material.orientation: surface_normal " + format_triple(o.surface_normal) +
+                      ", reference_direction " + format_triple(o.reference_direction)
+                : "material.orientation: euler_bunge_deg " + format_triple(o.euler_bunge_deg);
         reject("specimen.symmetry", to_string(checked.specimen.symmetry),
                "the quarter model needs the sample planes x = 0 and y = 0 to be mirror planes "
-               "of the cubic lattice, but for " + orientation + " the plane " +
-                 (x_mirror ? "y = 0" : (y_mirror ? "x = 0" : "x = 0 (and y = 0)")) +
-                 " is not one (e.g. a (111) surface has no two perpendicular mirror planes); "
-                 "use symmetry: full");
+               "of the cubic lattice, but for " +
+                   orientation + " the plane " +
+                   (x_mirror ? "y = 0" : (y_mirror ? "x = 0" : "x = 0 (and y = 0)")) +
+                   " is not one (e.g. a (111) surface has no two perpendicular mirror planes); "
+                   "use symmetry: full");
       }
 
-      [[noreturn]] void reject(const std::string &path,
-                               const std::string &value,
+      [[noreturn]] void reject(const std::string &path, const std::string &value,
                                const std::string &what) const
       {
         int         line = -1;
@@ -341,8 +342,7 @@ namespace indentsim::io
         fail(checked.source_file, line, path + " = " + shown + ": " + what);
       }
 
-      [[noreturn]] void reject_unknown_word(const std::string              &path,
-                                            const std::string              &word,
+      [[noreturn]] void reject_unknown_word(const std::string &path, const std::string &word,
                                             const std::vector<std::string> &allowed) const
       {
         std::string message = "unknown value; allowed: " + join(allowed, " | ");

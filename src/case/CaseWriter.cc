@@ -80,7 +80,7 @@ namespace indentsim::io
             open_group = parent;
           }
         const std::string value =
-          key.type == ValueType::text ? quoted(key.value_text(c)) : key.value_text(c);
+            key.type == ValueType::text ? quoted(key.value_text(c)) : key.value_text(c);
         write_line(out, indentation(key.path) + key.name() + ": " + value, key.comment);
       }
     return out.str();

@@ -36,7 +36,8 @@ namespace indentsim::io
   public:
     Choice(const Enum value)
       : value_(value)
-    {}
+    {
+    }
 
     // The enumerator named `word`, or an unknown choice that keeps the word.
     Choice(const std::string &word)
@@ -53,7 +54,8 @@ namespace indentsim::io
 
     Choice(const char *word)
       : Choice(std::string(word))
-    {}
+    {
+    }
 
     // Whether the word names an enumerator (implemented or not).
     bool known() const { return known_; }

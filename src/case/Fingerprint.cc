@@ -1,6 +1,6 @@
 // The fingerprint of a case (see Fingerprint.h).
-#include "case/CaseFile.h"
 #include "case/Fingerprint.h"
+#include "case/CaseFile.h"
 #include "case/Schema.h"
 
 #include <algorithm>

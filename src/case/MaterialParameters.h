@@ -18,9 +18,9 @@ namespace indentsim::io
   struct ChoiceWords<ModelKind>
   {
     static constexpr std::array<ChoiceWord<ModelKind>, 3> words = {
-      {{ModelKind::neo_hookean, "neo_hookean"},
-       {ModelKind::j2, "j2"},
-       {ModelKind::crystal, "crystal"}}};
+        {{ModelKind::neo_hookean, "neo_hookean"},
+         {ModelKind::j2, "j2"},
+         {ModelKind::crystal, "crystal"}}};
   };
 
   // The stress that enters the Mises yield function of J2 (eq. 4).
@@ -33,7 +33,7 @@ namespace indentsim::io
   struct ChoiceWords<YieldStressMeasure>
   {
     static constexpr std::array<ChoiceWord<YieldStressMeasure>, 2> words = {
-      {{YieldStressMeasure::cauchy, "cauchy"}, {YieldStressMeasure::kirchhoff, "kirchhoff"}}};
+        {{YieldStressMeasure::cauchy, "cauchy"}, {YieldStressMeasure::kirchhoff, "kirchhoff"}}};
   };
 
   // The crystal lattice and its slip systems; bcc and hcp are recognised but not implemented.
@@ -47,7 +47,7 @@ namespace indentsim::io
   struct ChoiceWords<Lattice>
   {
     static constexpr std::array<ChoiceWord<Lattice>, 3> words = {
-      {{Lattice::fcc, "fcc"}, {Lattice::bcc, "bcc", false}, {Lattice::hcp, "hcp", false}}};
+        {{Lattice::fcc, "fcc"}, {Lattice::bcc, "bcc", false}, {Lattice::hcp, "hcp", false}}};
   };
 
   // Which form of material.orientation the case file gave.
@@ -60,8 +60,8 @@ namespace indentsim::io
   struct ChoiceWords<OrientationKind>
   {
     static constexpr std::array<ChoiceWord<OrientationKind>, 2> words = {
-      {{OrientationKind::euler_bunge_deg, "euler_bunge_deg"},
-       {OrientationKind::surface_normal, "surface_normal"}}};
+        {{OrientationKind::euler_bunge_deg, "euler_bunge_deg"},
+         {OrientationKind::surface_normal, "surface_normal"}}};
   };
 
   // Crystal orientation (material.orientation). Bunge convention, passive: the rotation matrix
@@ -71,31 +71,31 @@ namespace indentsim::io
   struct OrientationParameters
   {
     Choice<OrientationKind> kind = OrientationKind::euler_bunge_deg;
-    std::array<double, 3> euler_bunge_deg = {{0., 0., 0.}}; // (phi1, Phi, phi2) [deg]
-    std::array<double, 3> surface_normal = {{0., 0., 1.}};  // Miller indices [hkl] of the plane
-    std::array<double, 3> reference_direction = {{1., 0., 0.}}; // [uvw] along sample x
+    std::array<double, 3>   euler_bunge_deg = {{0., 0., 0.}}; // (phi1, Phi, phi2) [deg]
+    std::array<double, 3>   surface_normal = {{0., 0., 1.}};  // Miller indices [hkl] of the plane
+    std::array<double, 3>   reference_direction = {{1., 0., 0.}}; // [uvw] along sample x
 
     bool operator==(const OrientationParameters &) const = default;
   };
 
   struct MaterialParameters
   {
-    Choice<ModelKind> model = ModelKind::j2;
-    double      young_modulus = 69.0;    // E [GPa]
-    double      poisson_ratio = 0.26;    // nu [-], -1 < nu < 0.5
-    double      yield_stress = 0.305;    // sigma_y0 [GPa]
-    double      hardening_modulus = 0.5; // H [GPa], linear isotropic hardening
+    Choice<ModelKind>          model = ModelKind::j2;
+    double                     young_modulus = 69.0;    // E [GPa]
+    double                     poisson_ratio = 0.26;    // nu [-], -1 < nu < 0.5
+    double                     yield_stress = 0.305;    // sigma_y0 [GPa]
+    double                     hardening_modulus = 0.5; // H [GPa], linear isotropic hardening
     Choice<YieldStressMeasure> yield_stress_measure = YieldStressMeasure::cauchy;
 
     // Crystal plasticity (model: crystal), the paper's section 2.2 and Table 2.
-    Choice<Lattice> lattice = Lattice::fcc;  // fcc: {111}<110>, 12 slip systems
-    double      C11 = 106.7, C12 = 60.4, C44 = 28.3; // cubic elastic constants [GPa]
-    double      tau0 = 0.12;   // initial critical resolved shear stress [GPa]
-    double      tau1 = 0.02;   // Voce back-extrapolated increment [GPa]
-    double      theta0 = 0.1;  // initial hardening rate [GPa]
-    double      theta1 = 0.006; // asymptotic hardening rate [GPa]
-    double      q = 1.4;       // latent hardening ratio [-]
-    double      yield_exponent_n = 10; // n of the regularized Schmid law (exponent 2n), eq. 14
+    Choice<Lattice> lattice = Lattice::fcc;              // fcc: {111}<110>, 12 slip systems
+    double          C11 = 106.7, C12 = 60.4, C44 = 28.3; // cubic elastic constants [GPa]
+    double          tau0 = 0.12;           // initial critical resolved shear stress [GPa]
+    double          tau1 = 0.02;           // Voce back-extrapolated increment [GPa]
+    double          theta0 = 0.1;          // initial hardening rate [GPa]
+    double          theta1 = 0.006;        // asymptotic hardening rate [GPa]
+    double          q = 1.4;               // latent hardening ratio [-]
+    double          yield_exponent_n = 10; // n of the regularized Schmid law (exponent 2n), eq. 14
     OrientationParameters orientation;
 
     bool operator==(const MaterialParameters &) const = default;

@@ -1,6 +1,6 @@
 // Protection of an output directory (see OutputDirectory.h).
-#include "case/CaseFile.h"
 #include "case/OutputDirectory.h"
+#include "case/CaseFile.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -61,14 +61,13 @@ namespace indentsim::io
     if (!earlier.empty())
       {
         if (!overwrite)
-          throw CaseFileError("output directory '" + directory +
-                              "' already contains results of an earlier run (" +
-                              earlier.front().filename().string() +
-                              (earlier.size() > 1 ?
-                                 " and " + std::to_string(earlier.size() - 1) + " more" :
-                                 std::string()) +
-                              "); pass --overwrite to replace them, or choose another directory "
-                              "(--output DIR or output.directory)");
+          throw CaseFileError(
+              "output directory '" + directory + "' already contains results of an earlier run (" +
+              earlier.front().filename().string() +
+              (earlier.size() > 1 ? " and " + std::to_string(earlier.size() - 1) + " more"
+                                  : std::string()) +
+              "); pass --overwrite to replace them, or choose another directory "
+              "(--output DIR or output.directory)");
         for (const auto &file : earlier)
           {
             if (fs::is_directory(file, error)) // only the checkpoint folder

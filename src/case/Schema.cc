@@ -28,12 +28,12 @@ namespace indentsim::io
     // (and n^3 would overflow the orientation count).
     constexpr double max_elements_per_side = 200;
 
-    using C  = Case;
-    using M  = MaterialParameters;
+    using C = Case;
+    using M = MaterialParameters;
     using OP = OrientationParameters;
-    using I  = IndenterParameters;
-    using S  = SpecimenParameters;
-    using L  = LoadingParameters;
+    using I = IndenterParameters;
+    using S = SpecimenParameters;
+    using L = LoadingParameters;
     using CP = ContactParameters;
     using SP = SolverParameters;
     using OU = OutputParameters;
@@ -42,22 +42,25 @@ namespace indentsim::io
     {
       return c.material.orientation.kind == OrientationKind::surface_normal;
     }
-    bool orientation_by_angles(const Case &c) { return !orientation_by_normal(c); }
+    bool orientation_by_angles(const Case &c)
+    {
+      return !orientation_by_normal(c);
+    }
 
     std::vector<Key> top_level_keys()
     {
       using D = Declare;
       return {
-        D::at<&C::test>("test")
-          .expect("the kind of test")
-          .required()
-          .comment("indentation | tensile")
-          .describe("the kind of test: indentation of a block, or the tensile test of a cube"),
-        D::at<&C::compare_j2>("compare_j2")
-          .comment("tensile: also run J2 (young_modulus...) on the same mesh")
-          .describe("`tensile` only: repeat the run with J2 (`young_modulus`, `poisson_ratio`, "
-                    "`yield_stress`, `hardening_modulus`) on the same cube; command line "
-                    "`--compare-j2` sets it"),
+          D::at<&C::test>("test")
+              .expect("the kind of test")
+              .required()
+              .comment("indentation | tensile")
+              .describe("the kind of test: indentation of a block, or the tensile test of a cube"),
+          D::at<&C::compare_j2>("compare_j2")
+              .comment("tensile: also run J2 (young_modulus...) on the same mesh")
+              .describe("`tensile` only: repeat the run with J2 (`young_modulus`, `poisson_ratio`, "
+                        "`yield_stress`, `hardening_modulus`) on the same cube; command line "
+                        "`--compare-j2` sets it"),
       };
     }
 
@@ -65,128 +68,130 @@ namespace indentsim::io
     {
       using D = Declare;
       return {
-        D::at<&C::material, &M::model>("material.model")
-          .expect("the material model")
-          .required()
-          .comment("neo_hookean | j2 | crystal")
-          .describe("hyperelastic neo-Hookean, finite-strain J2 plasticity, or crystal "
-                    "plasticity"),
-        D::at<&C::material, &M::young_modulus>("material.young_modulus")
-          .unit("GPa")
-          .expect("E in GPa")
-          .range(above(0), "Young's modulus E must be > 0 GPa")
-          .comment("E [GPa]")
-          .describe("Young's modulus E (neo_hookean, j2)"),
-        D::at<&C::material, &M::poisson_ratio>("material.poisson_ratio")
-          .expect("nu")
-          .range(between(-1, false, 0.5, false),
-                 "Poisson's ratio must satisfy -1 < nu < 0.5 (0.5 is incompressible, which a "
-                 "displacement formulation cannot represent)")
-          .comment("nu [-], -1 < nu < 0.5")
-          .describe("Poisson's ratio ν (neo_hookean, j2)"),
-        D::at<&C::material, &M::yield_stress>("material.yield_stress")
-          .unit("GPa")
-          .expect("sigma_y0 in GPa")
-          .range(above(0), "the initial yield stress sigma_y0 must be > 0 GPa")
-          .comment("sigma_y0 [GPa] (j2)")
-          .describe("initial yield stress σy0 (j2)"),
-        D::at<&C::material, &M::hardening_modulus>("material.hardening_modulus")
-          .unit("GPa")
-          .expect("H in GPa")
-          .range(at_least(0), "the hardening modulus H must be >= 0 GPa (0: perfect plasticity)")
-          .comment("H [GPa], linear isotropic hardening (j2)")
-          .describe("linear isotropic hardening modulus H; 0: perfect plasticity (j2)"),
-        D::at<&C::material, &M::yield_stress_measure>("material.yield_stress_measure")
-          .expect("a stress measure")
-          .comment("cauchy | kirchhoff: stress in the Mises yield function (j2)")
-          .describe("the stress in the Mises yield function, eq. 4 (j2)"),
-        D::at<&C::material, &M::lattice>("material.lattice")
-          .expect("a lattice")
-          .not_implemented("only fcc ({111}<110>, 12 slip systems) is implemented; bcc and hcp "
-                           "are not yet")
-          .comment("fcc: {111}<110> slip (crystal)")
-          .describe("`fcc`: {111}⟨110⟩, 12 slip systems; `bcc`, `hcp` not yet (crystal)"),
-        D::at<&C::material, &M::C11>("material.elastic.C11")
-          .unit("GPa")
-          .expect("C11 in GPa")
-          .comment("[GPa]")
-          .describe("cubic stiffness in the lattice frame; positive definite with C12, C44: "
-                    "C11 − C12 > 0, C11 + 2 C12 > 0 (crystal)"),
-        D::at<&C::material, &M::C12>("material.elastic.C12")
-          .unit("GPa")
-          .expect("C12 in GPa")
-          .comment("[GPa]")
-          .describe("cubic stiffness in the lattice frame (crystal)"),
-        D::at<&C::material, &M::C44>("material.elastic.C44")
-          .unit("GPa")
-          .expect("C44 in GPa")
-          .allowed_is("> 0; checked with C11 and C12 (positive definite)")
-          .comment("[GPa]")
-          .describe("cubic shear stiffness in the lattice frame (crystal)"),
-        D::at<&C::material, &M::tau0>("material.hardening.tau0")
-          .unit("GPa")
-          .expect("tau0 in GPa")
-          .range(above(0), "the initial critical resolved shear stress tau0 must be > 0 GPa")
-          .comment("initial critical shear [GPa]")
-          .describe("initial critical resolved shear stress τ0 (crystal)"),
-        D::at<&C::material, &M::tau1>("material.hardening.tau1")
-          .unit("GPa")
-          .expect("tau1 in GPa")
-          .range(at_least(0), "must be >= 0 GPa")
-          .comment("[GPa]")
-          .describe("Voce saturation increment τ1; > 0 when `theta0` > 0 (the Voce law τc = τ0 + "
-                    "(τ1 + θ1 Γ)(1 − exp(−θ0 Γ/τ1)) divides by τ1) (crystal)"),
-        D::at<&C::material, &M::theta0>("material.hardening.theta0")
-          .unit("GPa")
-          .expect("theta0 in GPa")
-          .range(at_least(0), "must be >= 0 GPa")
-          .comment("initial hardening rate [GPa]")
-          .describe("initial hardening rate θ0 (crystal)"),
-        D::at<&C::material, &M::theta1>("material.hardening.theta1")
-          .unit("GPa")
-          .expect("theta1 in GPa")
-          .range(at_least(0), "must be >= 0 GPa")
-          .comment("asymptotic hardening rate [GPa]")
-          .describe("asymptotic hardening rate θ1 (crystal)"),
-        D::at<&C::material, &M::q>("material.hardening.q")
-          .expect("the latent hardening ratio q")
-          .range(at_least(0),
-                 "the latent hardening ratio q must be >= 0 (1: isotropic hardening)")
-          .comment("latent hardening ratio [-]")
-          .describe("latent hardening ratio (1: isotropic hardening) (crystal)"),
-        D::at<&C::material, &M::yield_exponent_n>("material.yield_exponent_n")
-          .expect("the exponent n of eq. 14")
-          .range(between(1, true, max_yield_exponent, true),
-                 "n (exponent 2n in eq. 14) must satisfy 1 <= n <= " +
-                   format_number(max_yield_exponent) +
-                   " (a real number; larger n makes (tau/tau_c)^(2n) overflow)")
-          .comment("n, exponent 2n of eq. 14 (crystal)")
-          .describe("real exponent 2n of the regularized Schmid law (eq. 14); larger n would "
-                    "overflow (τ/τc)^2n (crystal)"),
-        D::at<&C::material, &M::orientation, &OP::euler_bunge_deg>(
-          "material.orientation.euler_bunge_deg")
-          .unit("deg")
-          .entries("[phi1, Phi, phi2] in degrees", "degrees")
-          .written_if(&orientation_by_angles)
-          .comment("(phi1, Phi, phi2) [deg]")
-          .describe("Bunge Euler angles (φ1, Φ, φ2); **or** the next two keys, never both "
-                    "(crystal)"),
-        D::at<&C::material, &M::orientation, &OP::surface_normal>(
-          "material.orientation.surface_normal")
-          .entries("[h, k, l], a crystal direction", "a Miller index")
-          .written_if(&orientation_by_normal)
-          .default_is("–")
-          .comment("crystal direction [hkl] along sample z")
-          .describe("[h, k, l]: the crystal direction along sample z (the indented plane's "
-                    "normal); needs `reference_direction` (crystal)"),
-        D::at<&C::material, &M::orientation, &OP::reference_direction>(
-          "material.orientation.reference_direction")
-          .entries("[u, v, w], a crystal direction", "a Miller index")
-          .written_if(&orientation_by_normal)
-          .default_is("–")
-          .comment("crystal direction [uvw] along sample x")
-          .describe("[u, v, w]: the crystal direction along sample x, perpendicular to "
-                    "`surface_normal` (not guessed) (crystal)"),
+          D::at<&C::material, &M::model>("material.model")
+              .expect("the material model")
+              .required()
+              .comment("neo_hookean | j2 | crystal")
+              .describe("hyperelastic neo-Hookean, finite-strain J2 plasticity, or crystal "
+                        "plasticity"),
+          D::at<&C::material, &M::young_modulus>("material.young_modulus")
+              .unit("GPa")
+              .expect("E in GPa")
+              .range(above(0), "Young's modulus E must be > 0 GPa")
+              .comment("E [GPa]")
+              .describe("Young's modulus E (neo_hookean, j2)"),
+          D::at<&C::material, &M::poisson_ratio>("material.poisson_ratio")
+              .expect("nu")
+              .range(between(-1, false, 0.5, false),
+                     "Poisson's ratio must satisfy -1 < nu < 0.5 (0.5 is incompressible, which a "
+                     "displacement formulation cannot represent)")
+              .comment("nu [-], -1 < nu < 0.5")
+              .describe("Poisson's ratio ν (neo_hookean, j2)"),
+          D::at<&C::material, &M::yield_stress>("material.yield_stress")
+              .unit("GPa")
+              .expect("sigma_y0 in GPa")
+              .range(above(0), "the initial yield stress sigma_y0 must be > 0 GPa")
+              .comment("sigma_y0 [GPa] (j2)")
+              .describe("initial yield stress σy0 (j2)"),
+          D::at<&C::material, &M::hardening_modulus>("material.hardening_modulus")
+              .unit("GPa")
+              .expect("H in GPa")
+              .range(at_least(0),
+                     "the hardening modulus H must be >= 0 GPa (0: perfect plasticity)")
+              .comment("H [GPa], linear isotropic hardening (j2)")
+              .describe("linear isotropic hardening modulus H; 0: perfect plasticity (j2)"),
+          D::at<&C::material, &M::yield_stress_measure>("material.yield_stress_measure")
+              .expect("a stress measure")
+              .comment("cauchy | kirchhoff: stress in the Mises yield function (j2)")
+              .describe("the stress in the Mises yield function, eq. 4 (j2)"),
+          D::at<&C::material, &M::lattice>("material.lattice")
+              .expect("a lattice")
+              .not_implemented("only fcc ({111}<110>, 12 slip systems) is implemented; bcc and hcp "
+                               "are not yet")
+              .comment("fcc: {111}<110> slip (crystal)")
+              .describe("`fcc`: {111}⟨110⟩, 12 slip systems; `bcc`, `hcp` not yet (crystal)"),
+          D::at<&C::material, &M::C11>("material.elastic.C11")
+              .unit("GPa")
+              .expect("C11 in GPa")
+              .comment("[GPa]")
+              .describe("cubic stiffness in the lattice frame; positive definite with C12, C44: "
+                        "C11 − C12 > 0, C11 + 2 C12 > 0 (crystal)"),
+          D::at<&C::material, &M::C12>("material.elastic.C12")
+              .unit("GPa")
+              .expect("C12 in GPa")
+              .comment("[GPa]")
+              .describe("cubic stiffness in the lattice frame (crystal)"),
+          D::at<&C::material, &M::C44>("material.elastic.C44")
+              .unit("GPa")
+              .expect("C44 in GPa")
+              .allowed_is("> 0; checked with C11 and C12 (positive definite)")
+              .comment("[GPa]")
+              .describe("cubic shear stiffness in the lattice frame (crystal)"),
+          D::at<&C::material, &M::tau0>("material.hardening.tau0")
+              .unit("GPa")
+              .expect("tau0 in GPa")
+              .range(above(0), "the initial critical resolved shear stress tau0 must be > 0 GPa")
+              .comment("initial critical shear [GPa]")
+              .describe("initial critical resolved shear stress τ0 (crystal)"),
+          D::at<&C::material, &M::tau1>("material.hardening.tau1")
+              .unit("GPa")
+              .expect("tau1 in GPa")
+              .range(at_least(0), "must be >= 0 GPa")
+              .comment("[GPa]")
+              .describe(
+                  "Voce saturation increment τ1; > 0 when `theta0` > 0 (the Voce law τc = τ0 + "
+                  "(τ1 + θ1 Γ)(1 − exp(−θ0 Γ/τ1)) divides by τ1) (crystal)"),
+          D::at<&C::material, &M::theta0>("material.hardening.theta0")
+              .unit("GPa")
+              .expect("theta0 in GPa")
+              .range(at_least(0), "must be >= 0 GPa")
+              .comment("initial hardening rate [GPa]")
+              .describe("initial hardening rate θ0 (crystal)"),
+          D::at<&C::material, &M::theta1>("material.hardening.theta1")
+              .unit("GPa")
+              .expect("theta1 in GPa")
+              .range(at_least(0), "must be >= 0 GPa")
+              .comment("asymptotic hardening rate [GPa]")
+              .describe("asymptotic hardening rate θ1 (crystal)"),
+          D::at<&C::material, &M::q>("material.hardening.q")
+              .expect("the latent hardening ratio q")
+              .range(at_least(0),
+                     "the latent hardening ratio q must be >= 0 (1: isotropic hardening)")
+              .comment("latent hardening ratio [-]")
+              .describe("latent hardening ratio (1: isotropic hardening) (crystal)"),
+          D::at<&C::material, &M::yield_exponent_n>("material.yield_exponent_n")
+              .expect("the exponent n of eq. 14")
+              .range(between(1, true, max_yield_exponent, true),
+                     "n (exponent 2n in eq. 14) must satisfy 1 <= n <= " +
+                         format_number(max_yield_exponent) +
+                         " (a real number; larger n makes (tau/tau_c)^(2n) overflow)")
+              .comment("n, exponent 2n of eq. 14 (crystal)")
+              .describe("real exponent 2n of the regularized Schmid law (eq. 14); larger n would "
+                        "overflow (τ/τc)^2n (crystal)"),
+          D::at<&C::material, &M::orientation, &OP::euler_bunge_deg>(
+              "material.orientation.euler_bunge_deg")
+              .unit("deg")
+              .entries("[phi1, Phi, phi2] in degrees", "degrees")
+              .written_if(&orientation_by_angles)
+              .comment("(phi1, Phi, phi2) [deg]")
+              .describe("Bunge Euler angles (φ1, Φ, φ2); **or** the next two keys, never both "
+                        "(crystal)"),
+          D::at<&C::material, &M::orientation, &OP::surface_normal>(
+              "material.orientation.surface_normal")
+              .entries("[h, k, l], a crystal direction", "a Miller index")
+              .written_if(&orientation_by_normal)
+              .default_is("–")
+              .comment("crystal direction [hkl] along sample z")
+              .describe("[h, k, l]: the crystal direction along sample z (the indented plane's "
+                        "normal); needs `reference_direction` (crystal)"),
+          D::at<&C::material, &M::orientation, &OP::reference_direction>(
+              "material.orientation.reference_direction")
+              .entries("[u, v, w], a crystal direction", "a Miller index")
+              .written_if(&orientation_by_normal)
+              .default_is("–")
+              .comment("crystal direction [uvw] along sample x")
+              .describe("[u, v, w]: the crystal direction along sample x, perpendicular to "
+                        "`surface_normal` (not guessed) (crystal)"),
       };
     }
 
@@ -194,66 +199,69 @@ namespace indentsim::io
     {
       using D = Declare;
       return {
-        D::at<&C::indenter, &I::shape>("indenter.shape")
-          .expect("an indenter shape")
-          .comment("rounded_cone | sphere | cone | vickers | berkovich | flat_punch | "
-                   "profile_table")
-          .describe("the rigid indenter (see the indenter shapes in the user guide)"),
-        D::at<&C::indenter, &I::a>("indenter.a")
-          .expect("the slope parameter a")
-          .range(above(0), "the slope parameter a (tan of the cone half-angle) must be > 0")
-          .comment("rounded_cone (eq. 16): slope [-], half-angle atan(a)")
-          .describe("slope parameter of eq. 16, cone half-angle atan(a) (rounded_cone)"),
-        D::at<&C::indenter, &I::delta>("indenter.delta")
-          .unit("um")
-          .expect("the tip rounding delta in um")
-          .range(at_least(0), "the tip rounding delta must be >= 0 um (0: sharp cone)")
-          .comment("tip rounding [um], tip radius a^2*delta")
-          .describe("tip rounding δ, tip radius a²δ; 0 = sharp cone (rounded_cone)"),
-        D::at<&C::indenter, &I::radius>("indenter.radius")
-          .unit("um")
-          .expect("the radius in um")
-          .range(finite_above(0), "the radius of the sphere or of the flat punch must be > 0 um")
-          .comment("sphere, flat_punch: radius [um]")
-          .describe("the sphere's radius (sphere), the punch's radius (flat_punch)"),
-        D::at<&C::indenter, &I::half_angle_deg>("indenter.half_angle_deg")
-          .unit("deg")
-          .expect("the cone half-angle in degrees")
-          .range(between(0, false, 90, false),
-                 "the cone half-angle (between flank and axis) must satisfy 0 < alpha < 90 deg "
-                 "(70.3: the area function 24.5 h^2 of the Vickers and Berkovich pyramids)")
-          .comment("cone: half-angle flank-axis [deg]")
-          .describe("angle α between flank and axis (cone; 70.3°: the area function 24.5 h² of "
-                    "the pyramids)"),
-        D::at<&C::indenter, &I::tip_radius>("indenter.tip_radius")
-          .unit("um")
-          .expect("the tip radius in um")
-          .range(finite_at_least(0), "the tip radius of the cone or pyramid must be >= 0 um (0: sharp)")
-          .comment("cone, vickers, berkovich: tip and edge radius [um], 0: sharp")
-          .describe("radius of the rounded tip and edges; 0 = sharp (cone, vickers, berkovich)"),
-        D::at<&C::indenter, &I::rotation_deg>("indenter.rotation_deg")
-          .unit("deg")
-          .expect("an angle in degrees")
-          .range(finite(),
-                 "the rotation about the indentation axis must be a finite angle in degrees")
-          .comment("vickers, berkovich: about +z, ccw from above [deg]; 0: a face towards +x")
-          .describe("angle about +z, counterclockwise seen from above; at 0 face 0 faces +x "
-                    "(vickers: faces towards ±x, ±y, edges along x = ±y; berkovich: an edge "
-                    "along −x) (vickers, berkovich)"),
-        D::at<&C::indenter, &I::edge_radius>("indenter.edge_radius")
-          .unit("um")
-          .expect("the edge radius in um")
-          .allowed_is("0 ≤ x ≤ `radius`")
-          .comment("flat_punch: rim rounding [um], 0: sharp")
-          .describe("rounding of the rim; 0 = sharp (flat_punch)"),
-        D::at<&C::indenter, &I::file>("indenter.file")
-          .unit("path")
-          .expect("the path of a CSV profile table")
-          .relative_to_case_file()
-          .comment("profile_table: CSV r_um,z_um or depth_um,area_um2")
-          .describe("CSV table, relative to the case file's directory (the resolved case lists "
-                    "the absolute path); header `r_um,z_um` or `depth_um,area_um2`; required "
-                    "for (and read only by) profile_table"),
+          D::at<&C::indenter, &I::shape>("indenter.shape")
+              .expect("an indenter shape")
+              .comment("rounded_cone | sphere | cone | vickers | berkovich | flat_punch | "
+                       "profile_table")
+              .describe("the rigid indenter (see the indenter shapes in the user guide)"),
+          D::at<&C::indenter, &I::a>("indenter.a")
+              .expect("the slope parameter a")
+              .range(above(0), "the slope parameter a (tan of the cone half-angle) must be > 0")
+              .comment("rounded_cone (eq. 16): slope [-], half-angle atan(a)")
+              .describe("slope parameter of eq. 16, cone half-angle atan(a) (rounded_cone)"),
+          D::at<&C::indenter, &I::delta>("indenter.delta")
+              .unit("um")
+              .expect("the tip rounding delta in um")
+              .range(at_least(0), "the tip rounding delta must be >= 0 um (0: sharp cone)")
+              .comment("tip rounding [um], tip radius a^2*delta")
+              .describe("tip rounding δ, tip radius a²δ; 0 = sharp cone (rounded_cone)"),
+          D::at<&C::indenter, &I::radius>("indenter.radius")
+              .unit("um")
+              .expect("the radius in um")
+              .range(finite_above(0),
+                     "the radius of the sphere or of the flat punch must be > 0 um")
+              .comment("sphere, flat_punch: radius [um]")
+              .describe("the sphere's radius (sphere), the punch's radius (flat_punch)"),
+          D::at<&C::indenter, &I::half_angle_deg>("indenter.half_angle_deg")
+              .unit("deg")
+              .expect("the cone half-angle in degrees")
+              .range(between(0, false, 90, false),
+                     "the cone half-angle (between flank and axis) must satisfy 0 < alpha < 90 deg "
+                     "(70.3: the area function 24.5 h^2 of the Vickers and Berkovich pyramids)")
+              .comment("cone: half-angle flank-axis [deg]")
+              .describe("angle α between flank and axis (cone; 70.3°: the area function 24.5 h² of "
+                        "the pyramids)"),
+          D::at<&C::indenter, &I::tip_radius>("indenter.tip_radius")
+              .unit("um")
+              .expect("the tip radius in um")
+              .range(finite_at_least(0),
+                     "the tip radius of the cone or pyramid must be >= 0 um (0: sharp)")
+              .comment("cone, vickers, berkovich: tip and edge radius [um], 0: sharp")
+              .describe(
+                  "radius of the rounded tip and edges; 0 = sharp (cone, vickers, berkovich)"),
+          D::at<&C::indenter, &I::rotation_deg>("indenter.rotation_deg")
+              .unit("deg")
+              .expect("an angle in degrees")
+              .range(finite(),
+                     "the rotation about the indentation axis must be a finite angle in degrees")
+              .comment("vickers, berkovich: about +z, ccw from above [deg]; 0: a face towards +x")
+              .describe("angle about +z, counterclockwise seen from above; at 0 face 0 faces +x "
+                        "(vickers: faces towards ±x, ±y, edges along x = ±y; berkovich: an edge "
+                        "along −x) (vickers, berkovich)"),
+          D::at<&C::indenter, &I::edge_radius>("indenter.edge_radius")
+              .unit("um")
+              .expect("the edge radius in um")
+              .allowed_is("0 ≤ x ≤ `radius`")
+              .comment("flat_punch: rim rounding [um], 0: sharp")
+              .describe("rounding of the rim; 0 = sharp (flat_punch)"),
+          D::at<&C::indenter, &I::file>("indenter.file")
+              .unit("path")
+              .expect("the path of a CSV profile table")
+              .relative_to_case_file()
+              .comment("profile_table: CSV r_um,z_um or depth_um,area_um2")
+              .describe("CSV table, relative to the case file's directory (the resolved case lists "
+                        "the absolute path); header `r_um,z_um` or `depth_um,area_um2`; required "
+                        "for (and read only by) profile_table"),
       };
     }
 
@@ -261,51 +269,53 @@ namespace indentsim::io
     {
       using D = Declare;
       return {
-        D::at<&C::specimen, &S::size>("specimen.size")
-          .unit("um")
-          .range(above(0), "every edge length must be > 0 um")
-          .comment("full block edge lengths [um]")
-          .describe("edge lengths of the full block"),
-        D::at<&C::specimen, &S::refined_region>("specimen.refined_region")
-          .unit("um")
-          .range(above(0), "every edge length must be > 0 um")
-          .allowed_is("3 numbers > 0, ≤ `size`")
-          .comment("refined block under the tip [um]")
-          .describe("the refined block under the tip"),
-        D::at<&C::specimen, &S::contact_elements>("specimen.contact_elements")
-          .range({4, true, infinity, true, 4},
-                 "N must be a positive multiple of 4 (4, 8, 12, 16, ...) so that the mesh can be "
-                 "built: the 2:1 coarsening around the refined region needs N/2 even, and with "
-                 "symmetry: quarter the modelled N/2 x N/2 faces must be even as well; a "
-                 "multiple of 4 satisfies both")
-          .comment("N: N x N faces across the refined top face")
-          .describe("N: N×N faces across the refined top face"),
-        D::at<&C::specimen, &S::symmetry>("specimen.symmetry")
-          .expect("a symmetry")
-          .comment("full | quarter (x >= 0, y >= 0)")
-          .describe("`quarter`: x ≥ 0, y ≥ 0 with symmetry planes x = 0, y = 0; for `crystal` "
-                    "only if x = 0 and y = 0 are cubic mirror planes (e.g. (001), or (011) with "
-                    "[100] along x; not (111)); only for an indenter with these mirror planes "
-                    "(every axisymmetric shape, `vickers` at a `rotation_deg` that is a "
-                    "multiple of 45, never `berkovich`)"),
-        D::at<&C::specimen, &S::f_bar>("specimen.f_bar")
-          .default_is("true for j2 and crystal, false for neo_hookean")
-          .comment("F-bar element")
-          .describe("the F-bar element (isochoric plastic flow locks plain hexahedra)"),
-        D::at<&C::specimen, &S::elements_per_side>("specimen.elements_per_side")
-          .range(between(1, true, max_elements_per_side, true),
-                 "the tensile cube has n x n x n elements of 1 um; n must satisfy 1 <= n <= " +
-                   format_number(max_elements_per_side))
-          .comment("tensile: cube of n^3 elements of 1 um")
-          .describe("tensile: a cube of n³ elements of 1 µm"),
-        D::at<&C::specimen, &S::grains>("specimen.grains")
-          .expect("a grain layout")
-          .comment("single | per_element (tensile)")
-          .describe("`single`: every element has `material.orientation`; `per_element`: a "
-                    "uniformly random orientation per element (tensile only)"),
-        D::at<&C::specimen, &S::seed>("specimen.seed")
-          .comment("random orientations (per_element)")
-          .describe("seed of the random orientations (`per_element`)"),
+          D::at<&C::specimen, &S::size>("specimen.size")
+              .unit("um")
+              .range(above(0), "every edge length must be > 0 um")
+              .comment("full block edge lengths [um]")
+              .describe("edge lengths of the full block"),
+          D::at<&C::specimen, &S::refined_region>("specimen.refined_region")
+              .unit("um")
+              .range(above(0), "every edge length must be > 0 um")
+              .allowed_is("3 numbers > 0, ≤ `size`")
+              .comment("refined block under the tip [um]")
+              .describe("the refined block under the tip"),
+          D::at<&C::specimen, &S::contact_elements>("specimen.contact_elements")
+              .range(
+                  {4, true, infinity, true, 4},
+                  "N must be a positive multiple of 4 (4, 8, 12, 16, ...) so that the mesh can be "
+                  "built: the 2:1 coarsening around the refined region needs N/2 even, and with "
+                  "symmetry: quarter the modelled N/2 x N/2 faces must be even as well; a "
+                  "multiple of 4 satisfies both")
+              .comment("N: N x N faces across the refined top face")
+              .describe("N: N×N faces across the refined top face"),
+          D::at<&C::specimen, &S::symmetry>("specimen.symmetry")
+              .expect("a symmetry")
+              .comment("full | quarter (x >= 0, y >= 0)")
+              .describe(
+                  "`quarter`: x ≥ 0, y ≥ 0 with symmetry planes x = 0, y = 0; for `crystal` "
+                  "only if x = 0 and y = 0 are cubic mirror planes (e.g. (001), or (011) with "
+                  "[100] along x; not (111)); only for an indenter with these mirror planes "
+                  "(every axisymmetric shape, `vickers` at a `rotation_deg` that is a "
+                  "multiple of 45, never `berkovich`)"),
+          D::at<&C::specimen, &S::f_bar>("specimen.f_bar")
+              .default_is("true for j2 and crystal, false for neo_hookean")
+              .comment("F-bar element")
+              .describe("the F-bar element (isochoric plastic flow locks plain hexahedra)"),
+          D::at<&C::specimen, &S::elements_per_side>("specimen.elements_per_side")
+              .range(between(1, true, max_elements_per_side, true),
+                     "the tensile cube has n x n x n elements of 1 um; n must satisfy 1 <= n <= " +
+                         format_number(max_elements_per_side))
+              .comment("tensile: cube of n^3 elements of 1 um")
+              .describe("tensile: a cube of n³ elements of 1 µm"),
+          D::at<&C::specimen, &S::grains>("specimen.grains")
+              .expect("a grain layout")
+              .comment("single | per_element (tensile)")
+              .describe("`single`: every element has `material.orientation`; `per_element`: a "
+                        "uniformly random orientation per element (tensile only)"),
+          D::at<&C::specimen, &S::seed>("specimen.seed")
+              .comment("random orientations (per_element)")
+              .describe("seed of the random orientations (`per_element`)"),
       };
     }
 
@@ -313,65 +323,68 @@ namespace indentsim::io
     {
       using D = Declare;
       return {
-        D::at<&C::loading, &L::control>("loading.control")
-          .expect("a loading control")
-          .comment("depth | force")
-          .describe("`force`: the indenter depth becomes an unknown (indentation only)"),
-        D::at<&C::loading, &L::max_depth>("loading.max_depth")
-          .unit("um")
-          .expect("a depth in um")
-          .range(above(0), "must be > 0 um")
-          .allowed_is("> 0, < `refined_region[2]`")
-          .comment("[um] (force control: the largest admissible depth)")
-          .describe("depth control: the maximum depth; force control: the largest admissible "
-                    "depth (the run stops with an error beyond it)"),
-        D::at<&C::loading, &L::max_force>("loading.max_force")
-          .unit("mN")
-          .expect("a force in mN")
-          .allowed_is("force control: > 0; depth control: 0")
-          .comment("[mN] (force control)")
-          .describe("force control: the maximum indenter force (whole indent); must stay 0 "
-                    "under depth control"),
-        D::at<&C::loading, &L::steps>("loading.steps")
-          .range(at_least(1), "must be >= 1")
-          .comment("increments to the maximum (tensile: max_strain)")
-          .describe("increments to the maximum (tensile: equal increments of log strain to "
-                    "`max_strain`)"),
-        D::at<&C::loading, &L::unload>("loading.unload")
-          .comment("then back until the force vanishes (force control: to 1 % of max_force)")
-          .describe("then back until the force vanishes (force control: to 1 % of "
-                    "`max_force`)"),
-        D::at<&C::loading, &L::unload_steps>("loading.unload_steps")
-          .comment("0: same increment size as loading")
-          .describe("unloading increments; 0: same increment as loading"),
-        D::at<&C::loading, &L::unload_points>("loading.unload_points")
-          .range(at_most(10000), "must satisfy 0 <= unload_points <= 10000 (0: uniform depth steps)")
-          .comment("depth control: force drop per unloading step <= max force / unload_points; "
-                   "0: off")
-          .describe("depth control: each unloading step lowers the force by about (maximum "
-                    "force)/`unload_points` (the depth increment comes from the last step's "
-                    "secant unloading stiffness; the first takes a quarter of the nominal "
-                    "increment), so the elastic recovery, a small part of the depth, is "
-                    "resolved for the Oliver–Pharr fit; still at most the nominal increment; 0: "
-                    "uniform depth steps only"),
-        D::at<&C::loading, &L::hold_steps>("loading.hold_steps")
-          .comment("increments holding the maximum")
-          .describe("increments holding the maximum depth or force (recorded as `hold`; the "
-                    "rate-independent models do not creep)"),
-        D::at<&C::loading, &L::cycles>("loading.cycles")
-          .range(between(1, true, 1000, true), "must satisfy 1 <= cycles <= 1000")
-          .comment("load-hold-unload cycles")
-          .describe("load–hold–unload cycles to the same maximum (> 1 needs `unload: true`)"),
-        D::at<&C::loading, &L::max_cutbacks>("loading.max_cutbacks")
-          .range(at_most(max_cutbacks), "must be <= " + format_number(max_cutbacks))
-          .comment("successive halvings of an increment")
-          .describe("successive halvings of a failing increment"),
-        D::at<&C::loading, &L::max_strain>("loading.max_strain")
-          .expect("a logarithmic strain")
-          .range(between(0, false, 1, true),
-                 "the final logarithmic strain of the tensile test must satisfy 0 < strain <= 1")
-          .comment("tensile: final logarithmic strain along z [-]")
-          .describe("tensile: final logarithmic strain along z"),
+          D::at<&C::loading, &L::control>("loading.control")
+              .expect("a loading control")
+              .comment("depth | force")
+              .describe("`force`: the indenter depth becomes an unknown (indentation only)"),
+          D::at<&C::loading, &L::max_depth>("loading.max_depth")
+              .unit("um")
+              .expect("a depth in um")
+              .range(above(0), "must be > 0 um")
+              .allowed_is("> 0, < `refined_region[2]`")
+              .comment("[um] (force control: the largest admissible depth)")
+              .describe("depth control: the maximum depth; force control: the largest admissible "
+                        "depth (the run stops with an error beyond it)"),
+          D::at<&C::loading, &L::max_force>("loading.max_force")
+              .unit("mN")
+              .expect("a force in mN")
+              .allowed_is("force control: > 0; depth control: 0")
+              .comment("[mN] (force control)")
+              .describe("force control: the maximum indenter force (whole indent); must stay 0 "
+                        "under depth control"),
+          D::at<&C::loading, &L::steps>("loading.steps")
+              .range(at_least(1), "must be >= 1")
+              .comment("increments to the maximum (tensile: max_strain)")
+              .describe("increments to the maximum (tensile: equal increments of log strain to "
+                        "`max_strain`)"),
+          D::at<&C::loading, &L::unload>("loading.unload")
+              .comment("then back until the force vanishes (force control: to 1 % of max_force)")
+              .describe("then back until the force vanishes (force control: to 1 % of "
+                        "`max_force`)"),
+          D::at<&C::loading, &L::unload_steps>("loading.unload_steps")
+              .comment("0: same increment size as loading")
+              .describe("unloading increments; 0: same increment as loading"),
+          D::at<&C::loading, &L::unload_points>("loading.unload_points")
+              .range(at_most(10000),
+                     "must satisfy 0 <= unload_points <= 10000 (0: uniform depth steps)")
+              .comment("depth control: force drop per unloading step <= max force / unload_points; "
+                       "0: off")
+              .describe(
+                  "depth control: each unloading step lowers the force by about (maximum "
+                  "force)/`unload_points` (the depth increment comes from the last step's "
+                  "secant unloading stiffness; the first takes a quarter of the nominal "
+                  "increment), so the elastic recovery, a small part of the depth, is "
+                  "resolved for the Oliver–Pharr fit; still at most the nominal increment; 0: "
+                  "uniform depth steps only"),
+          D::at<&C::loading, &L::hold_steps>("loading.hold_steps")
+              .comment("increments holding the maximum")
+              .describe("increments holding the maximum depth or force (recorded as `hold`; the "
+                        "rate-independent models do not creep)"),
+          D::at<&C::loading, &L::cycles>("loading.cycles")
+              .range(between(1, true, 1000, true), "must satisfy 1 <= cycles <= 1000")
+              .comment("load-hold-unload cycles")
+              .describe("load–hold–unload cycles to the same maximum (> 1 needs `unload: true`)"),
+          D::at<&C::loading, &L::max_cutbacks>("loading.max_cutbacks")
+              .range(at_most(max_cutbacks), "must be <= " + format_number(max_cutbacks))
+              .comment("successive halvings of an increment")
+              .describe("successive halvings of a failing increment"),
+          D::at<&C::loading, &L::max_strain>("loading.max_strain")
+              .expect("a logarithmic strain")
+              .range(
+                  between(0, false, 1, true),
+                  "the final logarithmic strain of the tensile test must satisfy 0 < strain <= 1")
+              .comment("tensile: final logarithmic strain along z [-]")
+              .describe("tensile: final logarithmic strain along z"),
       };
     }
 
@@ -379,30 +392,30 @@ namespace indentsim::io
     {
       using D = Declare;
       return {
-        // Measured indenter-metal coefficients lie below 0.5; 2 leaves room for studies without
-        // admitting a typo (e.g. 10 for 0.10).
-        D::at<&C::contact, &CP::friction_coefficient>("contact.friction_coefficient")
-          .expect("the Coulomb coefficient mu")
-          .range(between(0, true, 2, true),
-                 "the Coulomb coefficient mu must satisfy 0 <= mu <= 2 (0: frictionless)")
-          .comment("Coulomb mu [-], 0: frictionless")
-          .describe("Coulomb μ (0: frictionless)"),
-        D::at<&C::contact, &CP::penalty>("contact.penalty")
-          .unit("GPa/um")
-          .expect("a penalty in GPa/um")
-          .range(at_least(0), "must be >= 0 GPa/um (0: chosen automatically)")
-          .default_is("0 (= 30 μ/h, μ shear modulus, h contact-element size)")
-          .comment("[GPa/um], 0: automatic")
-          .describe("augmentation parameter; 0: chosen automatically"),
-        D::at<&C::contact, &CP::penetration_tolerance>("contact.penetration_tolerance")
-          .unit("um")
-          .expect("a length in um")
-          .range(above(0), "must be > 0 um")
-          .comment("[um]")
-          .describe("largest admissible penetration at convergence"),
-        D::at<&C::contact, &CP::max_augmentations>("contact.max_augmentations")
-          .range(at_least(1), "must be >= 1")
-          .describe("augmentation passes of an increment"),
+          // Measured indenter-metal coefficients lie below 0.5; 2 leaves room for studies without
+          // admitting a typo (e.g. 10 for 0.10).
+          D::at<&C::contact, &CP::friction_coefficient>("contact.friction_coefficient")
+              .expect("the Coulomb coefficient mu")
+              .range(between(0, true, 2, true),
+                     "the Coulomb coefficient mu must satisfy 0 <= mu <= 2 (0: frictionless)")
+              .comment("Coulomb mu [-], 0: frictionless")
+              .describe("Coulomb μ (0: frictionless)"),
+          D::at<&C::contact, &CP::penalty>("contact.penalty")
+              .unit("GPa/um")
+              .expect("a penalty in GPa/um")
+              .range(at_least(0), "must be >= 0 GPa/um (0: chosen automatically)")
+              .default_is("0 (= 30 μ/h, μ shear modulus, h contact-element size)")
+              .comment("[GPa/um], 0: automatic")
+              .describe("augmentation parameter; 0: chosen automatically"),
+          D::at<&C::contact, &CP::penetration_tolerance>("contact.penetration_tolerance")
+              .unit("um")
+              .expect("a length in um")
+              .range(above(0), "must be > 0 um")
+              .comment("[um]")
+              .describe("largest admissible penetration at convergence"),
+          D::at<&C::contact, &CP::max_augmentations>("contact.max_augmentations")
+              .range(at_least(1), "must be >= 1")
+              .describe("augmentation passes of an increment"),
       };
     }
 
@@ -410,40 +423,41 @@ namespace indentsim::io
     {
       using D = Declare;
       return {
-        D::at<&C::solver, &SP::residual_tolerance>("solver.residual_tolerance")
-          .expect("a relative tolerance")
-          .range(between(0, false, 1, false),
-                 "must satisfy 0 < tolerance < 1 (relative to the first residual)")
-          .comment("relative to the first residual of an increment")
-          .describe("relative to the larger of the first residual of the increment and the "
-                    "indenter force of the last converged step (indentation). The default keeps "
-                    "the Newton error below the contact tolerance's: against a reference run "
-                    "with 1e-10 and a contact tolerance of 1e-9 µm, `j2_24` deviates by 8.72e-7 "
-                    "of the largest force at 1e-8, 8.70e-7 at 1e-7 and 8.66e-7 at 1e-6 "
-                    "(`crystal_24`: 2.54e-6 at both 1e-8 and 1e-7). For curves that agree "
-                    "across rank counts to 1e-8, set it to 1e-8 together with "
-                    "`contact.penetration_tolerance` 1e-8"),
-        D::at<&C::solver, &SP::absolute_tolerance>("solver.absolute_tolerance")
-          .unit("mN")
-          .expect("a force in mN")
-          .range(above(0), "must be > 0 mN")
-          .comment("[mN]")
-          .describe("absolute residual tolerance"),
-        D::at<&C::solver, &SP::max_newton_iterations>("solver.max_newton_iterations")
-          .range(at_least(1), "must be >= 1")
-          .describe("Newton iterations of an increment before it is cut back"),
-        D::at<&C::solver, &SP::linear_solver>("solver.linear_solver")
-          .expect("a linear solver")
-          .comment("auto | direct (MUMPS) | iterative (AMG-preconditioned CG/GMRES)")
-          .describe("`auto`: direct below 60 000 DOFs, else iterative; `direct`: MUMPS LU; "
-                    "`iterative`: AMG-preconditioned CG for symmetric tangents, GMRES "
-                    "otherwise"),
-        D::at<&C::solver, &SP::threads>("solver.threads")
-          .range(at_most(1024), "must be between 0 (automatic) and 1024")
-          .not_a_result()
-          .comment("assembly threads per MPI rank, 0: cores / ranks")
-          .describe("threads of the cell loop per MPI rank; 0: the node's cores divided among "
-                    "its ranks"),
+          D::at<&C::solver, &SP::residual_tolerance>("solver.residual_tolerance")
+              .expect("a relative tolerance")
+              .range(between(0, false, 1, false),
+                     "must satisfy 0 < tolerance < 1 (relative to the first residual)")
+              .comment("relative to the first residual of an increment")
+              .describe(
+                  "relative to the larger of the first residual of the increment and the "
+                  "indenter force of the last converged step (indentation). The default keeps "
+                  "the Newton error below the contact tolerance's: against a reference run "
+                  "with 1e-10 and a contact tolerance of 1e-9 µm, `j2_24` deviates by 8.72e-7 "
+                  "of the largest force at 1e-8, 8.70e-7 at 1e-7 and 8.66e-7 at 1e-6 "
+                  "(`crystal_24`: 2.54e-6 at both 1e-8 and 1e-7). For curves that agree "
+                  "across rank counts to 1e-8, set it to 1e-8 together with "
+                  "`contact.penetration_tolerance` 1e-8"),
+          D::at<&C::solver, &SP::absolute_tolerance>("solver.absolute_tolerance")
+              .unit("mN")
+              .expect("a force in mN")
+              .range(above(0), "must be > 0 mN")
+              .comment("[mN]")
+              .describe("absolute residual tolerance"),
+          D::at<&C::solver, &SP::max_newton_iterations>("solver.max_newton_iterations")
+              .range(at_least(1), "must be >= 1")
+              .describe("Newton iterations of an increment before it is cut back"),
+          D::at<&C::solver, &SP::linear_solver>("solver.linear_solver")
+              .expect("a linear solver")
+              .comment("auto | direct (MUMPS) | iterative (AMG-preconditioned CG/GMRES)")
+              .describe("`auto`: direct below 60 000 DOFs, else iterative; `direct`: MUMPS LU; "
+                        "`iterative`: AMG-preconditioned CG for symmetric tangents, GMRES "
+                        "otherwise"),
+          D::at<&C::solver, &SP::threads>("solver.threads")
+              .range(at_most(1024), "must be between 0 (automatic) and 1024")
+              .not_a_result()
+              .comment("assembly threads per MPI rank, 0: cores / ranks")
+              .describe("threads of the cell loop per MPI rank; 0: the node's cores divided among "
+                        "its ranks"),
       };
     }
 
@@ -451,36 +465,38 @@ namespace indentsim::io
     {
       using D = Declare;
       return {
-        D::at<&C::output, &OU::directory>("output.directory")
-          .unit("path")
-          .expect("a directory path")
-          .non_empty("must be a non-empty directory path")
-          .not_a_result()
-          .comment("relative paths: relative to the working directory")
-          .describe("where the results go; relative to the working directory"),
-        D::at<&C::output, &OU::vtu_every>("output.vtu_every")
-          .unit("steps")
-          .comment("VTU every k-th step (0: at max depth and end)")
-          .describe("0: VTU only at the start, at max depth and at the end"),
-        D::at<&C::output, &OU::experimental_curve>("output.experimental_curve")
-          .unit("path")
-          .expect("the path of a CSV with depth and force columns")
-          .relative_to_case_file()
-          .default_is("\"\" (none)")
-          .comment("measured curve (CSV) to overlay and compare; \"\": none")
-          .describe("`test: indentation`: a measured load–penetration curve (CSV with a header, "
-                    "the depth and force columns found and their units read from the names as "
-                    "for `indentsim analyze`, e.g. `depth_nm,load_uN`), relative to the case "
-                    "file's directory; read and checked before the computation; overlaid on "
-                    "`load_penetration.png` and compared (`comparison_with_experiment.json`)"),
-        D::at<&C::output, &OU::checkpoint_interval_s>("output.checkpoint_interval_s")
-          .unit("s")
-          .expect("a wall time in s")
-          .range(finite_at_least(0), "must be a wall time >= 0 s (0: checkpoint only when stopped)")
-          .not_a_result()
-          .comment("[s] wall time between checkpoints (0: only when stopped)")
-          .describe("indentation: wall time between checkpoints for `--resume` (0: only when "
-                    "stopped by Ctrl-C/SIGTERM)"),
+          D::at<&C::output, &OU::directory>("output.directory")
+              .unit("path")
+              .expect("a directory path")
+              .non_empty("must be a non-empty directory path")
+              .not_a_result()
+              .comment("relative paths: relative to the working directory")
+              .describe("where the results go; relative to the working directory"),
+          D::at<&C::output, &OU::vtu_every>("output.vtu_every")
+              .unit("steps")
+              .comment("VTU every k-th step (0: at max depth and end)")
+              .describe("0: VTU only at the start, at max depth and at the end"),
+          D::at<&C::output, &OU::experimental_curve>("output.experimental_curve")
+              .unit("path")
+              .expect("the path of a CSV with depth and force columns")
+              .relative_to_case_file()
+              .default_is("\"\" (none)")
+              .comment("measured curve (CSV) to overlay and compare; \"\": none")
+              .describe(
+                  "`test: indentation`: a measured load–penetration curve (CSV with a header, "
+                  "the depth and force columns found and their units read from the names as "
+                  "for `indentsim analyze`, e.g. `depth_nm,load_uN`), relative to the case "
+                  "file's directory; read and checked before the computation; overlaid on "
+                  "`load_penetration.png` and compared (`comparison_with_experiment.json`)"),
+          D::at<&C::output, &OU::checkpoint_interval_s>("output.checkpoint_interval_s")
+              .unit("s")
+              .expect("a wall time in s")
+              .range(finite_at_least(0),
+                     "must be a wall time >= 0 s (0: checkpoint only when stopped)")
+              .not_a_result()
+              .comment("[s] wall time between checkpoints (0: only when stopped)")
+              .describe("indentation: wall time between checkpoints for `--resume` (0: only when "
+                        "stopped by Ctrl-C/SIGTERM)"),
       };
     }
 
@@ -496,13 +512,13 @@ namespace indentsim::io
     std::vector<Group> declare_groups()
     {
       return {
-        {"material.elastic", "cubic constants, lattice frame (crystal)",
-         "Cubic elastic constants in the lattice frame (crystal)."},
-        {"material.hardening", "extended Voce law (crystal)",
-         "The extended Voce hardening law of the crystal model."},
-        {"material.orientation", "Bunge, passive: v_crystal = g v_sample (crystal)",
-         "Crystal orientation: `euler_bunge_deg`, or `surface_normal` with "
-         "`reference_direction`."},
+          {"material.elastic", "cubic constants, lattice frame (crystal)",
+           "Cubic elastic constants in the lattice frame (crystal)."},
+          {"material.hardening", "extended Voce law (crystal)",
+           "The extended Voce hardening law of the crystal model."},
+          {"material.orientation", "Bunge, passive: v_crystal = g v_sample (crystal)",
+           "Crystal orientation: `euler_bunge_deg`, or `surface_normal` with "
+           "`reference_direction`."},
       };
     }
   } // namespace
@@ -512,7 +528,7 @@ namespace indentsim::io
     const bool above_lower = lower_included ? value >= lower : value > lower;
     const bool below_upper = upper_included ? value <= upper : value < upper;
     const bool multiple =
-      multiple_of == 0 || std::fmod(value, static_cast<double>(multiple_of)) == 0.;
+        multiple_of == 0 || std::fmod(value, static_cast<double>(multiple_of)) == 0.;
     return above_lower && below_upper && multiple;
   }
 
@@ -553,18 +569,18 @@ namespace indentsim::io
     Case &readable = const_cast<Case &>(c); // the accessors only read here
     switch (type)
       {
-        case ValueType::number:
-          return format_number(number(readable));
-        case ValueType::whole_number:
-          return std::to_string(whole_number(readable));
-        case ValueType::boolean:
-          return format_bool(boolean(readable));
-        case ValueType::choice:
-          return choice.word(c);
-        case ValueType::text:
-          return text(readable);
-        case ValueType::triple:
-          return format_triple(triple(readable));
+      case ValueType::number:
+        return format_number(number(readable));
+      case ValueType::whole_number:
+        return std::to_string(whole_number(readable));
+      case ValueType::boolean:
+        return format_bool(boolean(readable));
+      case ValueType::choice:
+        return choice.word(c);
+      case ValueType::text:
+        return text(readable);
+      case ValueType::triple:
+        return format_triple(triple(readable));
       }
     return {};
   }
@@ -646,5 +662,8 @@ namespace indentsim::io
            format_number(values[2]) + "]";
   }
 
-  std::string format_bool(const bool value) { return value ? "true" : "false"; }
+  std::string format_bool(const bool value)
+  {
+    return value ? "true" : "false";
+  }
 } // namespace indentsim::io

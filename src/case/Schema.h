@@ -21,9 +21,9 @@ namespace indentsim::io
     number,       // double
     whole_number, // unsigned int
     boolean,
-    choice,       // Choice<E>: a word of its table
-    text,         // a string the user chooses freely (a path)
-    triple        // three numbers
+    choice, // Choice<E>: a word of its table
+    text,   // a string the user chooses freely (a path)
+    triple  // three numbers
   };
 
   // Admissible values: an interval, open or closed at each end (infinite ends exclude infinity),
@@ -55,22 +55,23 @@ namespace indentsim::io
   {
     std::string path; // "material.elastic.C11"
     ValueType   type = ValueType::number;
-    std::string unit;        // "GPa", "um", ... ; "" for dimensionless values and words
-    std::string expected;    // the reader's "expected ..." (e.g. "E in GPa"); triples: the list
-    std::string entry_unit;  // triples: what each entry is ("um", "degrees")
-    std::string comment;     // the comment of the line in resolved_case.yaml
-    std::string description; // the reference's description
+    std::string unit;         // "GPa", "um", ... ; "" for dimensionless values and words
+    std::string expected;     // the reader's "expected ..." (e.g. "E in GPa"); triples: the list
+    std::string entry_unit;   // triples: what each entry is ("um", "degrees")
+    std::string comment;      // the comment of the line in resolved_case.yaml
+    std::string description;  // the reference's description
     std::string default_text; // the reference's default, where not the Case{} value
     std::string allowed_text; // the reference's "allowed", where checked by hand
     bool        has_range = false;
     Range       range;
     std::string range_message; // the validator's "what is allowed" for a value out of range
     std::string not_implemented_message; // choices: a word recognised but not implemented
-    bool required = false;              // no default: the case file must give it
-    bool non_empty = false;             // text: "" is not admissible (range_message says why)
-    bool relative_to_case_file = false; // text: a path relative to the case file's directory
-    bool determines_results = true;     // false: left out of the fingerprint (Fingerprint.h)
-    bool (*written)(const Case &) = nullptr; // resolved case: written only if true (nullptr: always)
+    bool        required = false;        // no default: the case file must give it
+    bool        non_empty = false;       // text: "" is not admissible (range_message says why)
+    bool        relative_to_case_file = false; // text: a path relative to the case file's directory
+    bool        determines_results = true;     // false: left out of the fingerprint (Fingerprint.h)
+    bool (*written)(const Case &) =
+        nullptr; // resolved case: written only if true (nullptr: always)
 
     // Where the value is stored: the one accessor that matches `type`.
     double &(*number)(Case &) = nullptr;

@@ -15,18 +15,36 @@ namespace indentsim::io::schema_builder
   inline constexpr double infinity = std::numeric_limits<double>::infinity();
 
   // Bounded below only (infinity admitted, as `!(x > lower)` checks).
-  inline Range above(const double lower) { return {lower, false, infinity, true, 0}; }
-  inline Range at_least(const double lower) { return {lower, true, infinity, true, 0}; }
+  inline Range above(const double lower)
+  {
+    return {lower, false, infinity, true, 0};
+  }
+  inline Range at_least(const double lower)
+  {
+    return {lower, true, infinity, true, 0};
+  }
   // Bounded below and finite.
-  inline Range finite_above(const double lower) { return {lower, false, infinity, false, 0}; }
-  inline Range finite_at_least(const double lower) { return {lower, true, infinity, false, 0}; }
-  inline Range at_most(const double upper) { return {-infinity, true, upper, true, 0}; }
+  inline Range finite_above(const double lower)
+  {
+    return {lower, false, infinity, false, 0};
+  }
+  inline Range finite_at_least(const double lower)
+  {
+    return {lower, true, infinity, false, 0};
+  }
+  inline Range at_most(const double upper)
+  {
+    return {-infinity, true, upper, true, 0};
+  }
   inline Range between(const double lower, const bool lower_included, const double upper,
-                const bool upper_included)
+                       const bool upper_included)
   {
     return {lower, lower_included, upper, upper_included, 0};
   }
-  inline Range finite() { return {}; }
+  inline Range finite()
+  {
+    return {};
+  }
 
   // The member of a Case reached through `Members` (e.g. &Case::material,
   // &MaterialParameters::C11).
@@ -51,8 +69,8 @@ namespace indentsim::io::schema_builder
     template <auto... Members>
     static Declare at(const char *path)
     {
-      Declare    d;
-      Key       &k = d.key;
+      Declare d;
+      Key    &k = d.key;
       k.path = path;
       using T = std::remove_cvref_t<decltype(stored<Members...>(std::declval<Case &>()))>;
       if constexpr (std::is_same_v<T, double>)
@@ -106,7 +124,7 @@ namespace indentsim::io::schema_builder
 
     Declare &unit(const char *text) { return key.unit = text, *this; }
     Declare &expect(const char *text) { return key.expected = text, *this; }
-    Declare &entries(const char *list, const char *entry) 
+    Declare &entries(const char *list, const char *entry)
     {
       key.expected = list;
       key.entry_unit = entry;

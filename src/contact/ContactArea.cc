@@ -59,7 +59,7 @@ namespace indentsim::contact
       {
         const unsigned int j = (i + 1) % 4;
         const ContactPatch part =
-          triangle_contact_patch({{xy[i], xy[j], centre}}, {{phi[i], phi[j], phi_centre}});
+            triangle_contact_patch({{xy[i], xy[j], centre}}, {{phi[i], phi[j], phi_centre}});
         patch.area += part.area;
         patch.max_radius = std::max(patch.max_radius, part.max_radius);
       }

@@ -17,11 +17,12 @@ namespace indentsim::contact
 
   NodeToSurfaceContact::NodeToSurfaceContact(const indenter::IndenterSurface &surface,
                                              const double                     penalty,
-                                             const double friction_coefficient)
+                                             const double                     friction_coefficient)
     : surface_(surface)
     , penalty_(penalty)
     , mu_(friction_coefficient)
-  {}
+  {
+  }
 
   void NodeToSurfaceContact::set_lateral_offset(const Tensor<1, 3> &offset)
   {
@@ -30,10 +31,8 @@ namespace indentsim::contact
 
   void NodeToSurfaceContact::setup(const DoFHandler<3>             &dof_handler,
                                    const AffineConstraints<double> &hanging_node_constraints,
-                                   const types::boundary_id         top_boundary,
-                                   const double                     half_x,
-                                   const double                     half_y,
-                                   const MPI_Comm                   communicator)
+                                   const types::boundary_id top_boundary, const double half_x,
+                                   const double half_y, const MPI_Comm communicator)
   {
     communicator_ = communicator;
     nodes_.clear();
@@ -42,9 +41,9 @@ namespace indentsim::contact
     // Tributary areas by nodal (Lobatto) quadrature of the top faces: each vertex of a
     // rectangular face receives a quarter of its area. Faces owned by other ranks contribute to
     // our nodes through the compress(add).
-    PETScWrappers::MPI::Vector area(owned, communicator);
+    PETScWrappers::MPI::Vector                     area(owned, communicator);
     std::map<types::global_dof_index, ContactNode> found;
-    const double tol = 1e-8 * (half_x + half_y);
+    const double                                   tol = 1e-8 * (half_x + half_y);
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
@@ -82,11 +81,8 @@ namespace indentsim::contact
   }
 
   NodeToSurfaceContact::NodeResponse
-  NodeToSurfaceContact::respond(const ContactNode   &node,
-                                const Point<3>      &x,
-                                const int            normal_active,
-                                const ContactStatus *fixed_status,
-                                const double         depth) const
+  NodeToSurfaceContact::respond(const ContactNode &node, const Point<3> &x, const int normal_active,
+                                const ContactStatus *fixed_status, const double depth) const
   {
     NodeResponse response;
     response.projection = surface_.project(x - offset_, depth);
@@ -94,8 +90,8 @@ namespace indentsim::contact
     if (!response.projection.converged || !std::isfinite(response.projection.gap))
       return response;
     const Tensor<1, 3> &n = response.projection.normal;
-    const double augmented = node.lambda - penalty_ * response.projection.gap;
-    const bool   active = normal_active >= 0 ? normal_active == 1 : augmented > 0;
+    const double        augmented = node.lambda - penalty_ * response.projection.gap;
+    const bool          active = normal_active >= 0 ? normal_active == 1 : augmented > 0;
     if (!active)
       return response;
     response.pressure = augmented;
@@ -109,8 +105,7 @@ namespace indentsim::contact
     Tensor<1, 3> s = (x - node.x_converged) - (offset_ - offset_converged_);
     s[2] += depth - depth_converged_;
     response.slip = s - (s * n) * n;
-    const Tensor<1, 3> multiplier =
-      node.traction_multiplier - (node.traction_multiplier * n) * n;
+    const Tensor<1, 3> multiplier = node.traction_multiplier - (node.traction_multiplier * n) * n;
     const Tensor<1, 3> trial = multiplier - penalty_ * response.slip;
     const double       limit = mu_ * std::max(response.pressure, 0.0);
     const double       trial_norm = trial.norm();
@@ -119,8 +114,8 @@ namespace indentsim::contact
     // Newton iteration jumps from one side of the cone to the other when the penalty is stiffer
     // than the specimen under the node (the spring-block test then cycles forever).
     const bool reversed = node.status == ContactStatus::slip && trial * node.traction < 0;
-    const bool stick = fixed_status ? *fixed_status == ContactStatus::stick :
-                                      (trial_norm <= limit || reversed);
+    const bool stick =
+        fixed_status ? *fixed_status == ContactStatus::stick : (trial_norm <= limit || reversed);
     if (stick)
       {
         response.status = ContactStatus::stick;
@@ -136,9 +131,8 @@ namespace indentsim::contact
     return response;
   }
 
-  bool NodeToSurfaceContact::evaluate(const PETScWrappers::MPI::Vector &u,
-                                      const double                      depth,
-                                      const ActiveSet                   mode)
+  bool NodeToSurfaceContact::evaluate(const PETScWrappers::MPI::Vector &u, const double depth,
+                                      const ActiveSet mode)
   {
     n_changes_ = 0;
     search_failed_ = false;
@@ -154,7 +148,7 @@ namespace indentsim::contact
           normal_active = node.active;
         const ContactStatus  previous = node.status;
         const ContactStatus *fixed =
-          (mode == ActiveSet::frozen && node.active) ? &previous : nullptr;
+            (mode == ActiveSet::frozen && node.active) ? &previous : nullptr;
         NodeResponse response = respond(node, node.x, normal_active, fixed, depth_);
         // A node that carried no pressure in the last converged increment joins the
         // predictor's set only if the predicted state clearly penetrates: by more than the
@@ -185,10 +179,10 @@ namespace indentsim::contact
     return !search_failed_;
   }
 
-  void NodeToSurfaceContact::assemble(const AffineConstraints<double>     &constraints,
-                                      PETScWrappers::MPI::Vector          &residual,
-                                      PETScWrappers::MPI::SparseMatrix    *matrix,
-                                      DepthCoupling                       *coupling)
+  void NodeToSurfaceContact::assemble(const AffineConstraints<double>  &constraints,
+                                      PETScWrappers::MPI::Vector       &residual,
+                                      PETScWrappers::MPI::SparseMatrix *matrix,
+                                      DepthCoupling                    *coupling)
   {
     Assert(!coupling || matrix, ExcMessage("the depth coupling needs the tangent"));
     kept_.clear();
@@ -242,16 +236,14 @@ namespace indentsim::contact
                     const NodeResponse rm = respond(node, xm, 1, &node.status, depth_);
                     for (unsigned int i = 0; i < 3; ++i)
                       {
-                        const double fp =
-                          rp.pressure * rp.projection.normal[i] + rp.traction[i];
-                        const double fm =
-                          rm.pressure * rm.projection.normal[i] + rm.traction[i];
+                        const double fp = rp.pressure * rp.projection.normal[i] + rp.traction[i];
+                        const double fm = rm.pressure * rm.projection.normal[i] + rm.traction[i];
                         local_matrix(i, j) = -node.area * (fp - fm) / (2 * h);
                       }
                   }
               }
-            constraints.distribute_local_to_global(
-              local_matrix, local_residual, dofs, *matrix, residual);
+            constraints.distribute_local_to_global(local_matrix, local_residual, dofs, *matrix,
+                                                   residual);
             if (kept_valid_)
               {
                 Contribution kept;
@@ -300,9 +292,8 @@ namespace indentsim::contact
     bool possible = kept_valid_;
     for (const Contribution &kept : kept_)
       for (const types::global_dof_index dof : kept.dofs)
-        if (constraints.is_constrained(dof) &&
-            (constraints.is_inhomogeneously_constrained(dof) ||
-             !constraints.get_constraint_entries(dof)->empty()))
+        if (constraints.is_constrained(dof) && (constraints.is_inhomogeneously_constrained(dof) ||
+                                                !constraints.get_constraint_entries(dof)->empty()))
           possible = false;
     if (Utilities::MPI::min(static_cast<unsigned int>(possible), communicator_) == 0)
       return false;
@@ -334,8 +325,8 @@ namespace indentsim::contact
         for (unsigned int i = 0; i < 3; ++i)
           if (constraints.is_constrained(dofs[i]))
             {
-              const double diagonal = local_matrix(i, i) != 0 ? std::abs(local_matrix(i, i)) :
-                                                                mean_diagonal;
+              const double diagonal =
+                  local_matrix(i, i) != 0 ? std::abs(local_matrix(i, i)) : mean_diagonal;
               matrix.add(dofs[i], dofs[i], -2 * diagonal);
             }
       }
@@ -355,9 +346,8 @@ namespace indentsim::contact
     for (ContactNode &node : nodes_)
       {
         largest_change =
-          std::max({largest_change,
-                    std::abs(node.pressure - node.lambda) * node.area,
-                    (node.traction - node.traction_multiplier).norm() * node.area});
+            std::max({largest_change, std::abs(node.pressure - node.lambda) * node.area,
+                      (node.traction - node.traction_multiplier).norm() * node.area});
         node.lambda = node.pressure;
         node.traction_multiplier = node.traction;
       }
@@ -368,9 +358,10 @@ namespace indentsim::contact
   {
     double sum_of_squares = 0;
     for (const ContactNode &node : nodes_)
-      sum_of_squares += ((node.pressure - node.lambda) * node.normal + node.traction -
-                         node.traction_multiplier).norm_square() *
-                        node.area * node.area;
+      sum_of_squares +=
+          ((node.pressure - node.lambda) * node.normal + node.traction - node.traction_multiplier)
+              .norm_square() *
+          node.area * node.area;
     return std::sqrt(Utilities::MPI::sum(sum_of_squares, communicator_));
   }
 
@@ -396,8 +387,8 @@ namespace indentsim::contact
   {
     for (ContactNode &node : nodes_)
       if (node.lambda_converged > 0 && node.lambda_previous > 0)
-        node.lambda = std::max(
-          0.0, node.lambda_converged + ratio * (node.lambda_converged - node.lambda_previous));
+        node.lambda = std::max(0.0, node.lambda_converged +
+                                        ratio * (node.lambda_converged - node.lambda_previous));
   }
 
   void NodeToSurfaceContact::reject_increment()
@@ -454,8 +445,7 @@ namespace indentsim::contact
       throw std::runtime_error("the contact state of the checkpoint has " +
                                std::to_string(state.size()) + " values, this rank's " +
                                std::to_string(nodes_.size()) + " contact nodes need " +
-                               std::to_string(n_global_values +
-                                              n_values_per_node * nodes_.size()));
+                               std::to_string(n_global_values + n_values_per_node * nodes_.size()));
     std::size_t i = 0;
     const auto  get = [&state, &i]() { return state[i++]; };
     const auto  get_tensor = [&get](auto &t) {
@@ -527,7 +517,7 @@ namespace indentsim::contact
     s.n_stick = Utilities::MPI::sum(local_stick, communicator_);
     s.n_slip = Utilities::MPI::sum(local_slip, communicator_);
     s.search_failed =
-      Utilities::MPI::max(static_cast<unsigned int>(search_failed_), communicator_) > 0;
+        Utilities::MPI::max(static_cast<unsigned int>(search_failed_), communicator_) > 0;
     return s;
   }
 

@@ -53,24 +53,24 @@ namespace indentsim::contact
 
   struct ContactNode
   {
-    std::array<dealii::types::global_dof_index, 3> dofs; // x, y, z displacement dofs
-    Point<3>                                       X;    // reference position [um]
-    double area = 0;          // tributary reference area [um^2]
-    double lambda = 0;        // normal multiplier (nominal pressure) [GPa]
-    double lambda_converged = 0; // normal multiplier of the last converged increment
-    double lambda_previous = 0;  // ... and of the one before
+    std::array<dealii::types::global_dof_index, 3> dofs;     // x, y, z displacement dofs
+    Point<3>                                       X;        // reference position [um]
+    double                                         area = 0; // tributary reference area [um^2]
+    double       lambda = 0;                    // normal multiplier (nominal pressure) [GPa]
+    double       lambda_converged = 0;          // normal multiplier of the last converged increment
+    double       lambda_previous = 0;           // ... and of the one before
     Tensor<1, 3> traction_multiplier;           // tangential multiplier t_i [GPa]
     Tensor<1, 3> traction_multiplier_converged; // t_i of the last converged increment
-    Point<3>     x_converged; // position at the last converged increment [um]
+    Point<3>     x_converged;                   // position at the last converged increment [um]
     // State at the last evaluation.
     double        gap = 0;      // [um]
     double        pressure = 0; // augmented pressure p [GPa]
     bool          active = false;
     ContactStatus status = ContactStatus::open;
     Tensor<1, 3>  normal;
-    Tensor<1, 3>  traction;     // tangential traction t on the node [GPa]
-    Tensor<1, 3>  slip;         // tangential slip s_T over the increment [um]
-    Point<3>      x;            // current position [um]
+    Tensor<1, 3>  traction; // tangential traction t on the node [GPa]
+    Tensor<1, 3>  slip;     // tangential slip s_T over the increment [um]
+    Point<3>      x;        // current position [um]
   };
 
   struct ContactSummary
@@ -106,12 +106,10 @@ namespace indentsim::contact
 
     // Collects the locally owned top-face nodes inside the footprint |x| <= half_x,
     // |y| <= half_y and their tributary areas. Hanging nodes (constrained x dof) are excluded.
-    void setup(const dealii::DoFHandler<3>            &dof_handler,
+    void setup(const dealii::DoFHandler<3>             &dof_handler,
                const dealii::AffineConstraints<double> &hanging_node_constraints,
-               dealii::types::boundary_id               top_boundary,
-               double                                   half_x,
-               double                                   half_y,
-               MPI_Comm                                 communicator);
+               dealii::types::boundary_id top_boundary, double half_x, double half_y,
+               MPI_Comm communicator);
 
     // Penetration [um] beyond which a node outside the last converged active set is active in
     // `predictor` mode (see evaluate); 0 until set. IndentationProblem sets the contact
@@ -156,10 +154,10 @@ namespace indentsim::contact
     // Adds residual -f and tangent for the active nodes through `constraints`; with `coupling`
     // (and a matrix), also the depth coupling of force control.
     // Without coupling, the contributions added to the matrix are also kept, for retract().
-    void assemble(const dealii::AffineConstraints<double>   &constraints,
-                  dealii::PETScWrappers::MPI::Vector        &residual,
-                  dealii::PETScWrappers::MPI::SparseMatrix  *matrix,
-                  DepthCoupling                             *coupling = nullptr);
+    void assemble(const dealii::AffineConstraints<double>  &constraints,
+                  dealii::PETScWrappers::MPI::Vector       &residual,
+                  dealii::PETScWrappers::MPI::SparseMatrix *matrix,
+                  DepthCoupling                            *coupling = nullptr);
 
     // Subtracts what the last assemble() with a matrix and without coupling added to `residual`
     // and `matrix` (both compressed since): after an augmentation at an unchanged displacement,
@@ -198,13 +196,13 @@ namespace indentsim::contact
     std::vector<double> persistent_state() const;
     void                restore_state(const std::vector<double> &state);
 
-    ContactSummary summary() const; // global (MPI-summed) values
+    ContactSummary                  summary() const; // global (MPI-summed) values
     const std::vector<ContactNode> &nodes() const { return nodes_; }
-    double penalty() const { return penalty_; }
-    double friction_coefficient() const { return mu_; }
+    double                          penalty() const { return penalty_; }
+    double                          friction_coefficient() const { return mu_; }
     // The contact tangent is symmetric only without friction (the Coulomb return is not).
-    bool symmetric_tangent() const { return mu_ == 0.0; }
-    double total_area() const;      // global tributary area of all contact nodes [um^2]
+    bool   symmetric_tangent() const { return mu_ == 0.0; }
+    double total_area() const; // global tributary area of all contact nodes [um^2]
 
   private:
     // Pressure, traction and status of `node` placed at `x`. normal_active: -1 decides by the

@@ -6,9 +6,9 @@
 #include <deal.II/grid/filtered_iterator.h>
 
 #include <array>
+#include <deal.II/fe/fe_values_extractors.h>
 #include <stdexcept>
 #include <utility>
-#include <deal.II/fe/fe_values_extractors.h>
 
 namespace indentsim::fem
 {
@@ -30,7 +30,7 @@ namespace indentsim::fem
                                   "FESystem(FE_Q(1), 3) with node-wise dof numbering and 2x2x2 "
                                   "Gauss points");
     // FE_Q(1) shape function i belongs to vertex i.
-    const FE_Q<3> trilinear(1);
+    const FE_Q<3>  trilinear(1);
     const Point<3> centre(0.5, 0.5, 0.5);
     reference_grad.assign(n_q_points, std::vector<Tensor<1, 3>>(scratch.n_nodes));
     reference_grad0.resize(scratch.n_nodes);
@@ -43,10 +43,8 @@ namespace indentsim::fem
     weights = gauss.get_weights();
   }
 
-  GhostedVector to_thread_readable(const PETScWrappers::MPI::Vector &source,
-                                   const IndexSet                   &owned,
-                                   const IndexSet                   &relevant,
-                                   const MPI_Comm                    communicator)
+  GhostedVector to_thread_readable(const PETScWrappers::MPI::Vector &source, const IndexSet &owned,
+                                   const IndexSet &relevant, const MPI_Comm communicator)
   {
     GhostedVector result(owned, relevant, communicator);
     copy_to_thread_readable(source, result);
@@ -66,34 +64,30 @@ namespace indentsim::fem
 
   CellWorkspace::CellWorkspace(const CellWorkspace &other)
     : CellWorkspace(other.vector_fe, other.scratch.n_q_points)
-  {}
+  {
+  }
 
   CellContribution::CellContribution(const unsigned int n_dofs)
     : matrix(n_dofs, n_dofs)
     , vector(n_dofs)
     , dof_indices(n_dofs)
-  {}
-
-  void run_on_owned_cells(const DoFHandler<3> &dof_handler,
-                          const unsigned int   n_q_points,
-                          const CellWorker    &worker,
-                          const CellCopier    &copier)
   {
-    const auto cells = filter_iterators(dof_handler.active_cell_iterators(),
-                                        IteratorFilters::LocallyOwnedCell());
+  }
+
+  void run_on_owned_cells(const DoFHandler<3> &dof_handler, const unsigned int n_q_points,
+                          const CellWorker &worker, const CellCopier &copier)
+  {
+    const auto cells =
+        filter_iterators(dof_handler.active_cell_iterators(), IteratorFilters::LocallyOwnedCell());
     const unsigned int n_dofs = dof_handler.get_fe().n_dofs_per_cell();
-    WorkStream::run(cells.begin(),
-                    cells.end(),
-                    worker,
-                    copier,
-                    CellWorkspace(dof_handler.get_fe(), n_q_points),
-                    CellContribution(n_dofs));
+    WorkStream::run(cells.begin(), cells.end(), worker, copier,
+                    CellWorkspace(dof_handler.get_fe(), n_q_points), CellContribution(n_dofs));
   }
 
   namespace
   {
     // grad_X N_i = J^-T grad_xi N_i with J = dX/dxi = sum_i X_i (x) grad_xi N_i; returns det J.
-    double physical_gradients(const std::array<Point<3>, 8>     &vertices,
+    double physical_gradients(const std::array<Point<3>, 8>   &vertices,
                               const std::vector<Tensor<1, 3>> &reference,
                               std::vector<Tensor<1, 3>>       &gradients)
     {
@@ -149,7 +143,7 @@ namespace indentsim::fem
       {
         for (unsigned int q = 0; q < scratch.n_q_points; ++q)
           scratch.JxW[q] =
-            physical_gradients(vertices, reference_grad[q], scratch.grad[q]) * weights[q];
+              physical_gradients(vertices, reference_grad[q], scratch.grad[q]) * weights[q];
         physical_gradients(vertices, reference_grad0, scratch.grad0);
       }
     cell->get_dof_values(solution, u_local);

@@ -18,9 +18,9 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/petsc_vector.h>
-#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
 #include <array>
@@ -34,9 +34,8 @@ namespace indentsim::fem
   using GhostedVector = dealii::LinearAlgebra::distributed::Vector<double>;
   // Collective: copies the owned and ghost values of `source` (a ghosted PETSc vector).
   GhostedVector to_thread_readable(const dealii::PETScWrappers::MPI::Vector &source,
-                                   const dealii::IndexSet                   &owned,
-                                   const dealii::IndexSet                   &relevant,
-                                   MPI_Comm                                  communicator);
+                                   const dealii::IndexSet &owned, const dealii::IndexSet &relevant,
+                                   MPI_Comm communicator);
   // The same into an existing vector with the layout of `source` (not collective: the
   // partitioner, whose construction is, is built once).
   void copy_to_thread_readable(const dealii::PETScWrappers::MPI::Vector &source,
@@ -51,15 +50,15 @@ namespace indentsim::fem
     CellWorkspace(const CellWorkspace &other);
     // Evaluates the gradients on `cell` and reads its displacement values from `solution`.
     void reinit(const dealii::DoFHandler<3>::active_cell_iterator &cell,
-                const GhostedVector                                &solution);
+                const GhostedVector                               &solution);
 
     const dealii::FiniteElement<3> &vector_fe;
     // grad_xi N_i at the Gauss points [q][i] and at the centre [i], Gauss weights [q].
     std::vector<std::vector<dealii::Tensor<1, 3>>> reference_grad;
     std::vector<dealii::Tensor<1, 3>>              reference_grad0;
     std::vector<double>                            weights;
-    ElementScratch         scratch;
-    dealii::Vector<double> u_local, r_local;
+    ElementScratch                                 scratch;
+    dealii::Vector<double>                         u_local, r_local;
   };
 
   // What one cell adds to the global system.
@@ -70,7 +69,7 @@ namespace indentsim::fem
     dealii::FullMatrix<double>                   matrix; // left unused without a matrix
     dealii::Vector<double>                       vector;
     std::vector<dealii::types::global_dof_index> dof_indices;
-    unsigned int cell_index = 0; // active cell index
+    unsigned int                                 cell_index = 0; // active cell index
     std::array<double, 2> sums = {{0., 0.}}; // problem-specific cell sums (reactions, volume)
   };
 

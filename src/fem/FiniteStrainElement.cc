@@ -24,10 +24,10 @@ namespace indentsim::fem
     , c(3 * n_nodes)
     , beta(3 * n_nodes)
     , K_columns_by_component(9 * n_nodes * n_nodes)
-  {}
+  {
+  }
 
-  Tensor<2, 3> deformation_gradient(const ElementScratch &s,
-                                    const unsigned int    q,
+  Tensor<2, 3> deformation_gradient(const ElementScratch &s, const unsigned int q,
                                     const Vector<double> &u_local)
   {
     const std::vector<Tensor<1, 3>> &g = q < s.n_q_points ? s.grad[q] : s.grad0;
@@ -72,8 +72,7 @@ namespace indentsim::fem
               for (unsigned int a = 0; a < 24; ++a)
                 {
                   double *row = K + a * 24 + d * 8;
-                  store(row, load(row) + t.P[a][d][0] * g0 + t.P[a][d][1] * g1 +
-                               t.P[a][d][2] * g2);
+                  store(row, load(row) + t.P[a][d][0] * g0 + t.P[a][d][1] * g1 + t.P[a][d][2] * g2);
                 }
               continue;
             }
@@ -89,9 +88,9 @@ namespace indentsim::fem
                 {
                   const unsigned int a = 3 * i + c;
                   double            *row = K + a * 24 + d * 8;
-                  store(row, load(row) + t.P[a][d][0] * g0 + t.P[a][d][1] * g1 +
-                               t.P[a][d][2] * g2 + t.X[a][0] * y0 + t.X[a][1] * y1 +
-                               t.X[a][2] * y2 + t.X[a][3] * y3 + gh * hc[c] - gh0 * h0c[c]);
+                  store(row, load(row) + t.P[a][d][0] * g0 + t.P[a][d][1] * g1 + t.P[a][d][2] * g2 +
+                                 t.X[a][0] * y0 + t.X[a][1] * y1 + t.X[a][2] * y2 + t.X[a][3] * y3 +
+                                 gh * hc[c] - gh0 * h0c[c]);
                 }
             }
         }
@@ -121,15 +120,11 @@ namespace indentsim::fem
   } // namespace
 
   materials::UpdateStatus
-  element_residual_and_tangent(const materials::MaterialModel &material,
-                               const bool                      use_f_bar,
-                               const Vector<double>           &u_local,
-                               std::span<const double>         state_old,
-                               std::span<double>               state_new,
-                               ElementScratch                 &s,
-                               Vector<double>                 &residual,
-                               FullMatrix<double>             *tangent,
-                               std::vector<Tensor<2, 3>>      *cauchy_stress)
+  element_residual_and_tangent(const materials::MaterialModel &material, const bool use_f_bar,
+                               const Vector<double> &u_local, std::span<const double> state_old,
+                               std::span<double> state_new, ElementScratch &s,
+                               Vector<double> &residual, FullMatrix<double> *tangent,
+                               std::vector<Tensor<2, 3>> *cauchy_stress)
   {
     const unsigned int n_nodes = s.n_nodes;
     const unsigned int n_state = material.n_state_variables();
@@ -163,11 +158,9 @@ namespace indentsim::fem
         const double       theta = use_f_bar ? std::cbrt(J0 / J) : 1.0;
         const Tensor<2, 3> F_bar = theta * F;
 
-        const auto status = material.update(F_bar,
-                                            state_old.subspan(q * n_state, n_state),
-                                            response,
-                                            state_new.subspan(q * n_state, n_state),
-                                            tangent != nullptr);
+        const auto status =
+            material.update(F_bar, state_old.subspan(q * n_state, n_state), response,
+                            state_new.subspan(q * n_state, n_state), tangent != nullptr);
         if (status != materials::UpdateStatus::success)
           return status;
         const Tensor<2, 3> &P = response.P;

@@ -36,11 +36,11 @@ namespace indentsim::fem
   // for the vectorized accumulation in FiniteStrainElement.cc: arrays over the nodes j last.
   struct PointTangentTerms
   {
-    alignas(64) double gT[3][8];    // g_jL
-    alignas(64) double YT[4][3][8]; // F-bar factors Y_k of DOF (j, d)
+    alignas(64) double gT[3][8];            // g_jL
+    alignas(64) double YT[4][3][8];         // F-bar factors Y_k of DOF (j, d)
     alignas(64) double hT[3][8], h0T[3][8]; // (F^-T g_j)_c, (F_0^-T g0_j)_c
-    double P[24][3][3];             // theta^2 w g_iJ A_cJdL of row a = 3 i + c
-    double X[24][4];                // F-bar factors X_k of row a
+    double P[24][3][3];                     // theta^2 w g_iJ A_cJdL of row a = 3 i + c
+    double X[24][4];                        // F-bar factors X_k of row a
     double h[8][3], h0[8][3];
     double weighted_geometric_p = 0; // w theta / 3 P : F
     bool   f_bar = false;
@@ -54,29 +54,23 @@ namespace indentsim::fem
     std::vector<Tensor<1, 3>>              grad0; // [i] grad_X N_i at the element centre
     std::vector<double>                    JxW;   // [q] reference volume weights
     // Work arrays (allocated once).
-    std::vector<Tensor<1, 3>>              h, h0, Pg;           // [i]
-    std::vector<double>                    c, beta;             // [a]
-    PointTangentTerms                      point;
+    std::vector<Tensor<1, 3>> h, h0, Pg; // [i]
+    std::vector<double>       c, beta;   // [a]
+    PointTangentTerms         point;
     // The element tangent with its columns ordered by component (row a, column d 8 + j),
     // copied into deal.II's order at the end of the element.
-    std::vector<double>                    K_columns_by_component;
+    std::vector<double> K_columns_by_component;
   };
 
   // F = 1 + sum_i u_i (x) g_i at quadrature point q (q = n_q_points: the element centre).
-  Tensor<2, 3> deformation_gradient(const ElementScratch         &scratch,
-                                    unsigned int                  q,
+  Tensor<2, 3> deformation_gradient(const ElementScratch &scratch, unsigned int q,
                                     const dealii::Vector<double> &u_local);
 
   // Computes residual (and tangent when `tangent` is not null) for one element.
   // `state_old` / `state_new` hold n_q_points consecutive material states.
-  materials::UpdateStatus
-  element_residual_and_tangent(const materials::MaterialModel &material,
-                               bool                            use_f_bar,
-                               const dealii::Vector<double>   &u_local,
-                               std::span<const double>         state_old,
-                               std::span<double>               state_new,
-                               ElementScratch                 &scratch,
-                               dealii::Vector<double>         &residual,
-                               dealii::FullMatrix<double>     *tangent,
-                               std::vector<Tensor<2, 3>>      *cauchy_stress = nullptr);
+  materials::UpdateStatus element_residual_and_tangent(
+      const materials::MaterialModel &material, bool use_f_bar,
+      const dealii::Vector<double> &u_local, std::span<const double> state_old,
+      std::span<double> state_new, ElementScratch &scratch, dealii::Vector<double> &residual,
+      dealii::FullMatrix<double> *tangent, std::vector<Tensor<2, 3>> *cauchy_stress = nullptr);
 } // namespace indentsim::fem

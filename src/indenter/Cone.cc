@@ -31,7 +31,10 @@ namespace indentsim::indenter
                                   std::to_string(tip_radius));
   }
 
-  double Cone::blunting_offset() const { return R * (1. / sin_alpha - 1.); }
+  double Cone::blunting_offset() const
+  {
+    return R * (1. / sin_alpha - 1.);
+  }
 
   double Cone::profile(const double x, const double y) const
   {
@@ -60,8 +63,8 @@ namespace indentsim::indenter
     // Flank direction (sin alpha, cos alpha) and outward normal (cos alpha, -sin alpha) in the
     // meridian plane: t is the foot's position along the flank, s the signed distance to the
     // flank line (<= 0 exactly inside the cone).
-    const double t = rho * sin_alpha + zeta * cos_alpha;
-    const double s = rho * cos_alpha - zeta * sin_alpha;
+    const double       t = rho * sin_alpha + zeta * cos_alpha;
+    const double       s = rho * cos_alpha - zeta * sin_alpha;
     const Tensor<1, 3> flank_normal({cos_alpha * cos_phi, cos_alpha * sin_phi, -sin_alpha});
 
     SharpProjection sharp;
@@ -72,7 +75,7 @@ namespace indentsim::indenter
         sharp.signed_distance = s;
         const double foot = std::max(t, 0.);
         sharp.boundary_point =
-          Point<3>(foot * sin_alpha * cos_phi, foot * sin_alpha * sin_phi, R + foot * cos_alpha);
+            Point<3>(foot * sin_alpha * cos_phi, foot * sin_alpha * sin_phi, R + foot * cos_alpha);
         sharp.normal = flank_normal;
       }
     else
@@ -81,8 +84,8 @@ namespace indentsim::indenter
         sharp.boundary_point = Point<3>(0., 0., R);
         const Tensor<1, 3> offset({x[0], x[1], zeta});
         sharp.signed_distance = robust_norm(offset);
-        sharp.normal = sharp.signed_distance > 0. ? offset / sharp.signed_distance :
-                                                    Tensor<1, 3>({0., 0., -1.});
+        sharp.normal = sharp.signed_distance > 0. ? offset / sharp.signed_distance
+                                                  : Tensor<1, 3>({0., 0., -1.});
       }
     return offset_projection(sharp, R, depth);
   }

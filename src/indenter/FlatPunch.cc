@@ -18,9 +18,9 @@ namespace indentsim::indenter
       throw std::invalid_argument("FlatPunch: the radius must be > 0 um, got " +
                                   std::to_string(radius));
     if (!(edge_radius >= 0. && edge_radius <= radius))
-      throw std::invalid_argument("FlatPunch: the edge radius must satisfy 0 <= e <= a = " +
-                                  std::to_string(radius) + " um, got " +
-                                  std::to_string(edge_radius));
+      throw std::invalid_argument(
+          "FlatPunch: the edge radius must satisfy 0 <= e <= a = " + std::to_string(radius) +
+          " um, got " + std::to_string(edge_radius));
   }
 
   double FlatPunch::profile(const double x, const double y) const
@@ -31,7 +31,7 @@ namespace indentsim::indenter
       return 0.;
     if (r > a)
       return std::numeric_limits<double>::infinity();
-    const double s = r - flat; // 0 < s <= e on the rim
+    const double s = r - flat;                         // 0 < s <= e on the rim
     return s * s / (e + std::sqrt((e - s) * (e + s))); // e - sqrt(e^2 - s^2), no cancellation
   }
 
@@ -42,10 +42,10 @@ namespace indentsim::indenter
       return failed_projection();
 
     // The sharp solid {rho <= a - e, z >= e} in the meridian plane (x-z plane on the axis).
-    const double rho = std::hypot(x[0], x[1]);
-    const double cos_phi = rho > 0. ? x[0] / rho : 1.;
-    const double sin_phi = rho > 0. ? x[1] / rho : 0.;
-    const double wall = a - e, end = e;
+    const double       rho = std::hypot(x[0], x[1]);
+    const double       cos_phi = rho > 0. ? x[0] / rho : 1.;
+    const double       sin_phi = rho > 0. ? x[1] / rho : 0.;
+    const double       wall = a - e, end = e;
     const Tensor<1, 3> radial({cos_phi, sin_phi, 0.});
     const Tensor<1, 3> down({0., 0., -1.});
 

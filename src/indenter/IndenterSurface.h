@@ -29,7 +29,7 @@ namespace indentsim::indenter
     Point<3>     closest_point; // closest point on the indenter surface (specimen frame) [um]
     Tensor<1, 3> normal;        // unit outward normal of the indenter at closest_point,
                                 // pointing from the indenter into the specimen (z-component <= 0)
-    bool         converged = true; // false if the closest-point search failed
+    bool converged = true;      // false if the closest-point search failed
   };
 
   class IndenterSurface

@@ -64,18 +64,18 @@ namespace indentsim::indenter
       }
     switch (quadrant)
       {
-        case 0:
-          cosine = c, sine = s;
-          break;
-        case 1:
-          cosine = -s, sine = c;
-          break;
-        case 2:
-          cosine = -c, sine = -s;
-          break;
-        default:
-          cosine = s, sine = -c;
-          break;
+      case 0:
+        cosine = c, sine = s;
+        break;
+      case 1:
+        cosine = -s, sine = c;
+        break;
+      case 2:
+        cosine = -c, sine = -s;
+        break;
+      default:
+        cosine = s, sine = -c;
+        break;
       }
   }
 } // namespace indentsim::indenter

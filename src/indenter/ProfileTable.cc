@@ -61,8 +61,8 @@ namespace indentsim::indenter
     }
 
     const std::string allowed_headers =
-      "allowed: 'r_um,z_um' (the profile: height z above the apex at the distance r from the "
-      "axis) or 'depth_um,area_um2' (the area function A(h))";
+        "allowed: 'r_um,z_um' (the profile: height z above the apex at the distance r from the "
+        "axis) or 'depth_um,area_um2' (the area function A(h))";
 
     // The rules of ProfileTable.h, stated in the columns the user wrote.
     void validate_rows(const std::vector<Row> &rows, const ProfileTable::Kind kind,
@@ -73,36 +73,37 @@ namespace indentsim::indenter
       const std::string second_name = area ? "area_um2" : "z_um";
       if (rows.size() < 2)
         fail(source, std::to_string(rows.size()) + " data row" + (rows.size() == 1 ? "" : "s") +
-                       "; at least 2 rows are needed (the apex 0,0 and at least one more)");
+                         "; at least 2 rows are needed (the apex 0,0 and at least one more)");
       if (rows[0].first != 0. || rows[0].second != 0.)
         fail(rows[0].where, "the first row must be the apex 0,0 (" + first_name + " = 0, " +
-                              second_name + " = 0), got " + format_number(rows[0].first) + "," +
-                              format_number(rows[0].second));
+                                second_name + " = 0), got " + format_number(rows[0].first) + "," +
+                                format_number(rows[0].second));
       for (std::size_t i = 1; i < rows.size(); ++i)
         {
           const Row &row = rows[i], &previous = rows[i - 1];
           if (!(row.first > previous.first))
-            fail(row.where, first_name + " = " + format_number(row.first) +
-                              " does not increase (previous row: " +
-                              format_number(previous.first) + "); " + first_name +
-                              " must be strictly increasing");
+            fail(row.where,
+                 first_name + " = " + format_number(row.first) +
+                     " does not increase (previous row: " + format_number(previous.first) + "); " +
+                     first_name + " must be strictly increasing");
           if (area && !(row.second > previous.second))
             fail(row.where, second_name + " = " + format_number(row.second) +
-                              " does not increase (previous row: " +
-                              format_number(previous.second) + "); " + second_name +
-                              " must be strictly increasing (a constant area would be a "
-                              "vertical wall, which is not a profile z(r))");
+                                " does not increase (previous row: " +
+                                format_number(previous.second) + "); " + second_name +
+                                " must be strictly increasing (a constant area would be a "
+                                "vertical wall, which is not a profile z(r))");
           if (!area && row.second < previous.second)
             fail(row.where, second_name + " = " + format_number(row.second) +
-                              " is below the previous row's " + format_number(previous.second) +
-                              "; " + second_name + " must be non-decreasing (z(r) of an indenter "
-                              "that opens upwards)");
+                                " is below the previous row's " + format_number(previous.second) +
+                                "; " + second_name +
+                                " must be non-decreasing (z(r) of an indenter "
+                                "that opens upwards)");
         }
       if (!area && !(rows.back().second > rows[rows.size() - 2].second))
         fail(rows.back().where,
              "the last two rows have the same z_um = " + format_number(rows.back().second) +
-               "; the table must end rising, because the profile continues beyond its last row "
-               "with the last slope (a flat continuation would be an infinite flat plane)");
+                 "; the table must end rising, because the profile continues beyond its last row "
+                 "with the last slope (a flat continuation would be an infinite flat plane)");
     }
 
     // Descartes' rule of signs for the Bernstein form: the number of sign changes of the
@@ -177,10 +178,10 @@ namespace indentsim::indenter
             continue;
           }
         const std::string columns =
-          table.table_kind == Kind::profile ? "r_um,z_um" : "depth_um,area_um2";
+            table.table_kind == Kind::profile ? "r_um,z_um" : "depth_um,area_um2";
         if (fields.size() != 2)
-          fail(where, "'" + text + "': expected 2 comma-separated numbers (" + columns +
-                        "), got " + std::to_string(fields.size()) + " fields");
+          fail(where, "'" + text + "': expected 2 comma-separated numbers (" + columns + "), got " +
+                          std::to_string(fields.size()) + " fields");
         Row row;
         row.where = where;
         for (int column = 0; column < 2; ++column)
@@ -189,11 +190,11 @@ namespace indentsim::indenter
             const std::size_t  start = (!field.empty() && field[0] == '+') ? 1 : 0;
             double             value = 0.;
             const auto         result =
-              std::from_chars(field.data() + start, field.data() + field.size(), value);
+                std::from_chars(field.data() + start, field.data() + field.size(), value);
             if (field.empty() || result.ec != std::errc() ||
                 result.ptr != field.data() + field.size() || !std::isfinite(value))
               fail(where, "'" + field + "' is not a number; each row holds two finite numbers (" +
-                            columns + "), e.g. '0.5,0.02'");
+                              columns + "), e.g. '0.5,0.02'");
             (column == 0 ? row.first : row.second) = value;
           }
         rows.push_back(row);
@@ -263,8 +264,8 @@ namespace indentsim::indenter
               dz_dr[k] = (w1 + w2) / (w1 / secant[k - 1] + w2 / secant[k]);
             }
         // r = 0: the one-sided three-point estimate, limited to keep the first piece monotone.
-        double start = ((2. * width[0] + width[1]) * secant[0] - width[0] * secant[1]) /
-                       (width[0] + width[1]);
+        double start =
+            ((2. * width[0] + width[1]) * secant[0] - width[0] * secant[1]) / (width[0] + width[1]);
         if (start * secant[0] <= 0.)
           start = 0.;
         else if (secant[0] * secant[1] <= 0. && std::abs(start) > 3. * std::abs(secant[0]))
@@ -323,7 +324,7 @@ namespace indentsim::indenter
       return z[last] + dz_dr[last] * (radius - r[last]);
     const std::size_t k = piece_of(std::max(radius, 0.));
     const double      width = r[k + 1] - r[k];
-    const auto c = hermite_coefficients(z[k], z[k + 1], dz_dr[k], dz_dr[k + 1], width);
+    const auto        c = hermite_coefficients(z[k], z[k + 1], dz_dr[k], dz_dr[k + 1], width);
     return horner(c, (std::max(radius, 0.) - r[k]) / width);
   }
 
@@ -334,7 +335,7 @@ namespace indentsim::indenter
       return dz_dr[last];
     const std::size_t k = piece_of(std::max(radius, 0.));
     const double      width = r[k + 1] - r[k];
-    const auto c = hermite_coefficients(z[k], z[k + 1], dz_dr[k], dz_dr[k + 1], width);
+    const auto        c = hermite_coefficients(z[k], z[k + 1], dz_dr[k], dz_dr[k + 1], width);
     return horner_derivative(c, (std::max(radius, 0.) - r[k]) / width) / width;
   }
 
@@ -352,12 +353,12 @@ namespace indentsim::indenter
       return r[last] + (h - z[last]) / dz_dr[last];
     // The first row at or above h closes the (monotone, rising) piece that reaches h.
     const std::size_t i =
-      static_cast<std::size_t>(std::lower_bound(z.begin(), z.end(), h) - z.begin());
+        static_cast<std::size_t>(std::lower_bound(z.begin(), z.end(), h) - z.begin());
     const std::size_t k = i - 1; // z[k] < h <= z[k + 1]
     const double      width = r[k + 1] - r[k];
-    const auto c = hermite_coefficients(z[k], z[k + 1], dz_dr[k], dz_dr[k + 1], width);
-    double     lo = 0., hi = 1.;
-    double     t = (h - z[k]) / (z[k + 1] - z[k]);
+    const auto        c = hermite_coefficients(z[k], z[k + 1], dz_dr[k], dz_dr[k + 1], width);
+    double            lo = 0., hi = 1.;
+    double            t = (h - z[k]) / (z[k + 1] - z[k]);
     for (unsigned int iteration = 0; iteration < 200 && hi - lo > 1e-16; ++iteration)
       {
         const double value = horner(c, t) - h;
@@ -392,8 +393,8 @@ namespace indentsim::indenter
     const double cos_phi = rho > 0. ? x[0] / rho : 1.;
     const double sin_phi = rho > 0. ? x[1] / rho : 0.;
 
-    double best = std::numeric_limits<double>::infinity();
-    double foot_r = 0., foot_z = 0.;
+    double     best = std::numeric_limits<double>::infinity();
+    double     foot_r = 0., foot_z = 0.;
     const auto consider = [&](const double radius, const double height) {
       const double distance = std::hypot(radius - rho, height - zeta);
       if (distance < best)
@@ -425,7 +426,7 @@ namespace indentsim::indenter
         if (!(std::hypot(below, beside) < best))
           continue;
         const double width = r[k + 1] - r[k];
-        const auto F = hermite_coefficients(z[k], z[k + 1], dz_dr[k], dz_dr[k + 1], width);
+        const auto   F = hermite_coefficients(z[k], z[k + 1], dz_dr[k], dz_dr[k + 1], width);
         std::array<double, 4> P = F;
         P[0] -= zeta;
         const std::array<double, 3> Q = {{F[1], 2. * F[2], 3. * F[3]}};
@@ -437,10 +438,10 @@ namespace indentsim::indenter
         power[1] += width * width;
 
         // Bernstein coefficients b_i = sum_{j <= i} C(i, j) / C(5, j) p_j.
-        static constexpr double binomial[6][6] = {{1, 0, 0, 0, 0, 0},   {1, 1, 0, 0, 0, 0},
-                                                  {1, 2, 1, 0, 0, 0},   {1, 3, 3, 1, 0, 0},
-                                                  {1, 4, 6, 4, 1, 0},   {1, 5, 10, 10, 5, 1}};
-        std::array<double, 6> bernstein{};
+        static constexpr double binomial[6][6] = {{1, 0, 0, 0, 0, 0}, {1, 1, 0, 0, 0, 0},
+                                                  {1, 2, 1, 0, 0, 0}, {1, 3, 3, 1, 0, 0},
+                                                  {1, 4, 6, 4, 1, 0}, {1, 5, 10, 10, 5, 1}};
+        std::array<double, 6>   bernstein{};
         for (int i = 0; i < 6; ++i)
           for (int j = 0; j <= i; ++j)
             bernstein[i] += binomial[i][j] / binomial[5][j] * power[j];
@@ -482,8 +483,8 @@ namespace indentsim::indenter
           return t;
         };
         // Root isolation by midpoint subdivision of the Bernstein form.
-        const auto isolate = [&](const auto &self, const std::array<double, 6> &b,
-                                 const double t0, const double t1, const int level) -> void {
+        const auto isolate = [&](const auto &self, const std::array<double, 6> &b, const double t0,
+                                 const double t1, const int level) -> void {
           if (b[0] == 0.)
             foot_at(t0);
           const int changes = sign_changes(b);

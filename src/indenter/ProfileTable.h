@@ -85,8 +85,8 @@ namespace indentsim::indenter
   private:
     Kind                table_kind = Kind::profile;
     std::string         source_name;
-    std::vector<double> r, z;  // rows [um]
-    std::vector<double> dz_dr; // PCHIP slopes at the rows [-]
+    std::vector<double> r, z;              // rows [um]
+    std::vector<double> dz_dr;             // PCHIP slopes at the rows [-]
     std::vector<double> box_low, box_high; // z range of each cubic piece (Bezier hull) [um]
 
     ProfileTable() = default;

@@ -1,6 +1,6 @@
 // Regular pyramids (Vickers, Berkovich), sharp or rounded (MinkowskiRounding.h). Units: um.
-#include "indenter/MinkowskiRounding.h"
 #include "indenter/Pyramid.h"
+#include "indenter/MinkowskiRounding.h"
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -23,12 +23,11 @@ namespace indentsim::indenter
   {
     if (n_faces < 3 || n_faces > max_faces)
       throw std::invalid_argument("Pyramid: the number of faces must be between 3 and " +
-                                  std::to_string(max_faces) + ", got " +
-                                  std::to_string(n_faces));
+                                  std::to_string(max_faces) + ", got " + std::to_string(n_faces));
     if (!(face_angle_deg > 0. && face_angle_deg < 90.))
       throw std::invalid_argument(
-        "Pyramid: the face-to-axis angle must satisfy 0 < theta < 90 deg, got " +
-        std::to_string(face_angle_deg));
+          "Pyramid: the face-to-axis angle must satisfy 0 < theta < 90 deg, got " +
+          std::to_string(face_angle_deg));
     if (!(tip_radius >= 0.) || !std::isfinite(tip_radius))
       throw std::invalid_argument("Pyramid: the tip radius must be >= 0 um, got " +
                                   std::to_string(tip_radius));
@@ -42,13 +41,13 @@ namespace indentsim::indenter
         double cos_phi = 0., sin_phi = 0.;
         cos_sin_deg(rotation_deg + 360. * i / n_faces, cos_phi, sin_phi);
         face_normals.emplace_back(
-          Tensor<1, 3>({cos_theta * cos_phi, cos_theta * sin_phi, -sin_theta}));
+            Tensor<1, 3>({cos_theta * cos_phi, cos_theta * sin_phi, -sin_theta}));
       }
     // Edge k is the intersection line of faces k and k+1, pointing upwards.
     for (unsigned int k = 0; k < n_faces; ++k)
       {
         Tensor<1, 3> edge =
-          dealii::cross_product_3d(face_normals[k], face_normals[(k + 1) % n_faces]);
+            dealii::cross_product_3d(face_normals[k], face_normals[(k + 1) % n_faces]);
         edge /= edge.norm();
         if (edge[2] < 0.)
           edge = -edge;
@@ -74,7 +73,10 @@ namespace indentsim::indenter
     return n * std::tan(std::numbers::pi / n) * tan_theta * tan_theta;
   }
 
-  double Pyramid::blunting_offset() const { return R * (1. / sin_theta - 1.); }
+  double Pyramid::blunting_offset() const
+  {
+    return R * (1. / sin_theta - 1.);
+  }
 
   double Pyramid::corner_deficit() const
   {
@@ -140,7 +142,7 @@ namespace indentsim::indenter
 
     // Signed distances to the face planes; the point is inside the sharp solid iff all <= 0.
     std::array<double, max_faces> plane_distance{}; // no allocation per projection
-    unsigned int        nearest_plane = 0;
+    unsigned int                  nearest_plane = 0;
     for (unsigned int i = 0; i < n; ++i)
       {
         plane_distance[i] = face_normals[i] * p;
@@ -163,7 +165,7 @@ namespace indentsim::indenter
     // Outside: the projection onto the convex cone lies in a face's interior, on an edge ray or
     // at the apex; every candidate below is a point of the cone, so the nearest one is it.
     double       best = robust_norm(p); // the apex
-    Tensor<1, 3> best_foot;              // relative to the apex
+    Tensor<1, 3> best_foot;             // relative to the apex
     Tensor<1, 3> best_normal;
     bool         best_is_face = false;
     for (unsigned int i = 0; i < n; ++i)
@@ -183,7 +185,7 @@ namespace indentsim::indenter
             best_is_face = true;
           }
       }
-    bool on_edge = false;
+    bool         on_edge = false;
     unsigned int best_edge = 0;
     for (unsigned int k = 0; k < n; ++k)
       {
@@ -211,8 +213,7 @@ namespace indentsim::indenter
         else if (on_edge)
           {
             // On the edge itself (only reachable through round-off): the bisecting normal.
-            best_normal =
-              face_normals[best_edge] + face_normals[(best_edge + 1) % n];
+            best_normal = face_normals[best_edge] + face_normals[(best_edge + 1) % n];
             best_normal /= best_normal.norm();
           }
         else
@@ -252,8 +253,8 @@ namespace indentsim::indenter
     const double c = (h - R) * (h - R) * sin_beta * sin_beta - R * R;
     const auto   r_squared = [&](const double phi) {
       const double a = sin_beta * std::cos(phi);
-      const double r = (a * b + std::sqrt(std::max(0., a * a * b * b - (1. - a * a) * c))) /
-                       (1. - a * a);
+      const double r =
+          (a * b + std::sqrt(std::max(0., a * a * b * b - (1. - a * a) * c))) / (1. - a * a);
       return r * r;
     };
     const dealii::QGauss<1> gauss(20);

@@ -28,8 +28,8 @@ namespace indentsim::indenter
   class Pyramid : public IndenterSurface
   {
   public:
-    static constexpr double vickers_face_angle_deg = 68.;
-    static constexpr double berkovich_face_angle_deg = 65.27;
+    static constexpr double       vickers_face_angle_deg = 68.;
+    static constexpr double       berkovich_face_angle_deg = 65.27;
     static constexpr unsigned int max_faces = 16;
 
     // 3 <= n_faces <= max_faces, 0 < theta < 90 deg, R >= 0 [um], finite rotation [deg]; throws
@@ -60,10 +60,10 @@ namespace indentsim::indenter
 
     std::string name() const override { return shape_name; }
 
-    unsigned int n_faces() const { return static_cast<unsigned int>(face_normals.size()); }
-    double       face_angle() const { return theta; } // [rad]
-    double       tip_radius() const { return R; }
-    double       rotation_deg() const { return rotation; }
+    unsigned int        n_faces() const { return static_cast<unsigned int>(face_normals.size()); }
+    double              face_angle() const { return theta; } // [rad]
+    double              tip_radius() const { return R; }
+    double              rotation_deg() const { return rotation; }
     const Tensor<1, 3> &face_normal(unsigned int i) const { return face_normals[i]; }
     const Tensor<1, 3> &edge_direction(unsigned int k) const { return edge_directions[k]; }
     // n tan(pi/n) tan^2(theta): A = coefficient h^2 for the sharp pyramid.

@@ -21,7 +21,10 @@ namespace indentsim::indenter
                                   std::to_string(delta));
   }
 
-  double RoundedCone::half_angle() const { return std::atan(a); }
+  double RoundedCone::half_angle() const
+  {
+    return std::atan(a);
+  }
 
   // f = s - delta with s = sqrt(r^2/a^2 + delta^2), rewritten as (r^2/a^2)/(s + delta).
   double RoundedCone::profile_at_radius(const double r) const
@@ -77,8 +80,8 @@ namespace indentsim::indenter
     const double cos_phi = rho > 0. ? x[0] / rho : 1.;
     const double sin_phi = rho > 0. ? x[1] / rho : 0.;
 
-    double r_foot = 0.;      // radius of the closest point
-    double foot_slope = 0.;  // f'(r_foot)
+    double r_foot = 0.;     // radius of the closest point
+    double foot_slope = 0.; // f'(r_foot)
     bool   foot_is_sharp_apex = false;
 
     if (delta == 0.)
@@ -141,15 +144,14 @@ namespace indentsim::indenter
 
         if (solve)
           {
-            const double tolerance =
-              4. * std::numeric_limits<double>::epsilon() *
-              std::max({hi, std::abs(zeta), a * delta});
+            const double tolerance = 4. * std::numeric_limits<double>::epsilon() *
+                                     std::max({hi, std::abs(zeta), a * delta});
             // Start from the end of the bracket where |g| is smaller (near the surface the
             // foot is close to rho); on the axis g(0) = 0 is the distance maximum, so start
             // from hi, where Newton on the convex g descends monotonically to the foot.
-            const double g_lo = g(lo), g_hi = g(hi);
-            double       r = (rho > 0. && std::abs(g_lo) < std::abs(g_hi)) ? lo : hi;
-            bool         converged = false;
+            const double           g_lo = g(lo), g_hi = g(hi);
+            double                 r = (rho > 0. && std::abs(g_lo) < std::abs(g_hi)) ? lo : hi;
+            bool                   converged = false;
             constexpr unsigned int max_iterations = 200;
             for (unsigned int iteration = 0; iteration < max_iterations; ++iteration)
               {
@@ -198,8 +200,8 @@ namespace indentsim::indenter
       {
         // Meridian normal (f', -1)/sqrt(1 + f'^2): from the indenter into the specimen.
         const double norm = std::sqrt(1. + foot_slope * foot_slope);
-        result.normal = Tensor<1, 3>(
-          {foot_slope * cos_phi / norm, foot_slope * sin_phi / norm, -1. / norm});
+        result.normal =
+            Tensor<1, 3>({foot_slope * cos_phi / norm, foot_slope * sin_phi / norm, -1. / norm});
       }
     // x - closest_point is parallel to the normal at the exact foot, so this is the signed
     // distance: > 0 outside the indenter, < 0 inside.

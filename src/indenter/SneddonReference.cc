@@ -31,8 +31,7 @@ namespace indentsim::indenter
     }
   } // namespace
 
-  SneddonReference::SneddonReference(const double reduced_modulus,
-                                     const double a,
+  SneddonReference::SneddonReference(const double reduced_modulus, const double a,
                                      const double delta)
     : E_star(reduced_modulus)
     , A(a)

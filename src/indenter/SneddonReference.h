@@ -21,8 +21,8 @@ namespace indentsim::indenter
       return young_modulus / (1. - poisson_ratio * poisson_ratio);
     }
 
-    double depth_at_contact_radius(double contact_radius) const; // h [um]
-    double force_at_contact_radius(double contact_radius) const; // P [mN]
+    double depth_at_contact_radius(double contact_radius) const;     // h [um]
+    double force_at_contact_radius(double contact_radius) const;     // P [mN]
     double stiffness_at_contact_radius(double contact_radius) const; // S = 2 E* a_c [mN/um]
 
     // a_c(h) by inverting the monotone h(a_c) (safeguarded Newton); 0 for h <= 0.

@@ -1,6 +1,6 @@
 // The spherical indenter as a rounded half-line (MinkowskiRounding.h). Units: um.
-#include "indenter/MinkowskiRounding.h"
 #include "indenter/Sphere.h"
+#include "indenter/MinkowskiRounding.h"
 
 #include <cmath>
 #include <limits>
@@ -34,7 +34,7 @@ namespace indentsim::indenter
       return failed_projection();
 
     // Nearest point of the half-line {(0, 0, z): z >= R} (the centre and the shank's axis).
-    const double rho = std::hypot(x[0], x[1]);
+    const double    rho = std::hypot(x[0], x[1]);
     SharpProjection sharp;
     sharp.boundary_point = Point<3>(0., 0., std::max(height, R));
     const Tensor<1, 3> offset = Point<3>(x[0], x[1], height) - sharp.boundary_point;

@@ -19,10 +19,8 @@ namespace indentsim::io
 
     // The value of `option` given as "--option VALUE" or "--option=VALUE" at arguments[i]
     // (advances i past a separate value).
-    std::string option_value(const std::vector<std::string> &arguments,
-                             std::size_t                    &i,
-                             const std::string              &option,
-                             const std::string              &value_name)
+    std::string option_value(const std::vector<std::string> &arguments, std::size_t &i,
+                             const std::string &option, const std::string &value_name)
     {
       const std::string &argument = arguments[i];
       std::string        value;
@@ -40,8 +38,7 @@ namespace indentsim::io
     }
 
     // A whole number in [1, largest] for --ranks and --jobs.
-    unsigned int positive_count(const std::string &option,
-                                const std::string &value,
+    unsigned int positive_count(const std::string &option, const std::string &value,
                                 const unsigned int largest)
     {
       unsigned long parsed = 0;
@@ -92,7 +89,7 @@ namespace indentsim::io
                 bad_usage("--ranks given twice");
               ranks_given = true;
               options.study_ranks =
-                positive_count("--ranks", option_value(arguments, i, "--ranks", "N"), 1024);
+                  positive_count("--ranks", option_value(arguments, i, "--ranks", "N"), 1024);
             }
           else if (is_option("--jobs"))
             {
@@ -100,7 +97,7 @@ namespace indentsim::io
                 bad_usage("--jobs given twice");
               jobs_given = true;
               options.study_jobs =
-                positive_count("--jobs", option_value(arguments, i, "--jobs", "J"), 64);
+                  positive_count("--jobs", option_value(arguments, i, "--jobs", "J"), 64);
             }
           else if (argument == "--dry-run")
             options.study_dry_run = true;
@@ -150,7 +147,7 @@ namespace indentsim::io
       for (std::size_t i = 1; i < arguments.size(); ++i)
         {
           const std::string &argument = arguments[i];
-          const auto value = [&]() -> std::string {
+          const auto         value = [&]() -> std::string {
             if (i + 1 >= arguments.size() || arguments[i + 1].empty())
               bad_usage(argument + " needs a value");
             return arguments[++i];
@@ -317,7 +314,10 @@ namespace indentsim::io
            "Parallel runs: mpirun -np 2 indentsim run CASE.yaml\n";
   }
 
-  std::string version_text() { return std::string("indentsim ") + indentsim::version() + "\n"; }
+  std::string version_text()
+  {
+    return std::string("indentsim ") + indentsim::version() + "\n";
+  }
 
   CommandLineOptions parse_command_line(const std::vector<std::string> &arguments)
   {
@@ -349,7 +349,8 @@ namespace indentsim::io
     else if (first == "check")
       options.command = Command::check;
     else if (!first.empty() && first[0] == '-')
-      bad_usage("unknown option '" + first + "' (a command comes first: run, check, analyze or study)");
+      bad_usage("unknown option '" + first +
+                "' (a command comes first: run, check, analyze or study)");
     else
       bad_usage("unknown command '" + first +
                 "'; allowed: run, check, analyze, study, --help, --version");
@@ -401,8 +402,8 @@ namespace indentsim::io
         else if (options.case_file.empty())
           options.case_file = argument;
         else
-          bad_usage("more than one case file given ('" + options.case_file + "' and '" +
-                    argument + "')");
+          bad_usage("more than one case file given ('" + options.case_file + "' and '" + argument +
+                    "')");
       }
 
     if (options.case_file.empty())

@@ -33,34 +33,34 @@ namespace indentsim::io
   // indentsim analyze: what to analyse and how (analysis/OliverPharr.h).
   struct AnalyzeOptions
   {
-    std::string           target;        // a run directory or a CSV of depth and force
+    std::string           target;         // a run directory or a CSV of depth and force
     std::string           indenter_shape; // --indenter SHAPE: the shape with its default keys
     std::string           indenter_case;  // --indenter-case FILE: the indenter block of a case
     std::optional<double> epsilon;        // --epsilon: geometry factor (default by shape)
     double                beta = 1.0;     // --beta
-    double                fit_lower = 0.5, fit_upper = 1.0; // --fit-range LO,HI (of P_max)
-    std::optional<double> sample_poisson_ratio;    // --poisson NU
-    std::optional<double> indenter_modulus;        // --indenter-modulus E [GPa]
-    double                indenter_poisson_ratio = 0.07; // --indenter-poisson NU
+    double                fit_lower = 0.5, fit_upper = 1.0;         // --fit-range LO,HI (of P_max)
+    std::optional<double> sample_poisson_ratio;                     // --poisson NU
+    std::optional<double> indenter_modulus;                         // --indenter-modulus E [GPa]
+    double                indenter_poisson_ratio = 0.07;            // --indenter-poisson NU
     std::string depth_column, force_column, depth_unit, force_unit; // CSV columns and units
   };
 
   struct CommandLineOptions
   {
     Command                    command = Command::help;
-    std::string                case_file;         // run, check
-    std::optional<std::string> output_directory;  // --output DIR: replaces output.directory
-    bool                       overwrite = false; // --overwrite: replace an earlier run's results
+    std::string                case_file;          // run, check
+    std::optional<std::string> output_directory;   // --output DIR: replaces output.directory
+    bool                       overwrite = false;  // --overwrite: replace an earlier run's results
     bool                       compare_j2 = false; // --compare-j2: sets the case's compare_j2
     bool                       resume = false;     // --resume: continue from the checkpoint
     AnalyzeOptions             analyze;            // analyze
 
     // study (study/StudyRunner.h); output_directory above replaces the study's `output`.
     std::string              study_file;
-    unsigned int             study_ranks = 1;   // --ranks N: MPI ranks of each case
-    unsigned int             study_jobs = 1;    // --jobs J: cases run side by side
+    unsigned int             study_ranks = 1;       // --ranks N: MPI ranks of each case
+    unsigned int             study_jobs = 1;        // --jobs J: cases run side by side
     bool                     study_dry_run = false; // --dry-run: print the plan, run nothing
-    std::vector<std::string> study_only;        // --only NAME[,NAME...]: case names or groups
+    std::vector<std::string> study_only;            // --only NAME[,NAME...]: case names or groups
   };
 
   // `arguments` excludes the program name. Throws CommandLineError.

@@ -15,24 +15,24 @@ namespace indentsim::io
     for (const unsigned char c : text)
       switch (c)
         {
-          case '"':
-            out << "\\\"";
-            break;
-          case '\\':
-            out << "\\\\";
-            break;
-          case '\n':
-            out << "\\n";
-            break;
-          case '\t':
-            out << "\\t";
-            break;
-          default:
-            if (c < 0x20)
-              out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec
-                  << std::setfill(' ');
-            else
-              out << c;
+        case '"':
+          out << "\\\"";
+          break;
+        case '\\':
+          out << "\\\\";
+          break;
+        case '\n':
+          out << "\\n";
+          break;
+        case '\t':
+          out << "\\t";
+          break;
+        default:
+          if (c < 0x20)
+            out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec
+                << std::setfill(' ');
+          else
+            out << c;
         }
     out << '"';
     return out.str();

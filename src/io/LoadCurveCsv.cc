@@ -91,7 +91,7 @@ namespace indentsim::io
             fields.push_back(field);
           return fields;
         }
-      std::string field;
+      std::string        field;
       std::istringstream in(line);
       while (std::getline(in, field, delimiter))
         fields.push_back(trim(field));
@@ -106,28 +106,28 @@ namespace indentsim::io
     std::ifstream in(path);
     if (!in)
       throw std::invalid_argument(path + ": cannot open the file");
-    std::string line;
-    std::size_t line_number = 0;
+    std::string              line;
+    std::size_t              line_number = 0;
     std::vector<std::string> header;
-    char delimiter = ',';
+    char                     delimiter = ',';
     while (std::getline(in, line))
       {
         ++line_number;
         if (trim(line).empty() || trim(line)[0] == '#')
           continue;
-        delimiter = line.find(',') != std::string::npos  ? ',' :
-                    line.find('\t') != std::string::npos ? '\t' :
-                    line.find(';') != std::string::npos  ? ';' :
-                                                           ' ';
+        delimiter = line.find(',') != std::string::npos    ? ','
+                    : line.find('\t') != std::string::npos ? '\t'
+                    : line.find(';') != std::string::npos  ? ';'
+                                                           : ' ';
         header = split(line, delimiter);
         break;
       }
     if (header.empty())
       throw std::invalid_argument(path + ": no header line (column names) found");
 
-    const auto find_column = [&](const std::string &requested,
+    const auto find_column = [&](const std::string                  &requested,
                                  std::initializer_list<const char *> prefixes,
-                                 const char *what) -> std::size_t {
+                                 const char                         *what) -> std::size_t {
       for (std::size_t c = 0; c < header.size(); ++c)
         if (requested.empty() ? starts_with_any(header[c], prefixes) : header[c] == requested)
           return c;
@@ -135,16 +135,15 @@ namespace indentsim::io
       for (const auto &name : header)
         names += (names.empty() ? "" : ", ") + name;
       throw std::invalid_argument(
-        path + ": " +
-        (requested.empty() ? std::string("no ") + what + " column found by name" :
-                             std::string("no column named '") + requested + "'") +
-        "; the header has: " + names + " (name the column with --" + what + "-column)");
+          path + ": " +
+          (requested.empty() ? std::string("no ") + what + " column found by name"
+                             : std::string("no column named '") + requested + "'") +
+          "; the header has: " + names + " (name the column with --" + what + "-column)");
     };
-    const std::size_t depth_index =
-      find_column(depth_column, {"depth", "h_", "h ", "h(", "h[", "displacement", "penetration"},
-                  "depth");
+    const std::size_t depth_index = find_column(
+        depth_column, {"depth", "h_", "h ", "h(", "h[", "displacement", "penetration"}, "depth");
     const std::size_t force_index =
-      find_column(force_column, {"force", "load", "p_", "p ", "p(", "p["}, "force");
+        find_column(force_column, {"force", "load", "p_", "p ", "p(", "p["}, "force");
     std::size_t area_index = header.size();
     for (std::size_t c = 0; c < header.size(); ++c)
       if (header[c] == "contact_area_um2")
@@ -155,20 +154,22 @@ namespace indentsim::io
     const double      d_factor = depth_factor(d_unit), f_factor = force_factor(f_unit);
     if (d_factor == 0)
       throw std::invalid_argument(path + ": column '" + header[depth_index] + "': depth unit '" +
-                                  d_unit + "' is not known; allowed: um, nm, mm (write it into "
-                                           "the column name, e.g. depth_nm, or pass --depth-unit)");
+                                  d_unit +
+                                  "' is not known; allowed: um, nm, mm (write it into "
+                                  "the column name, e.g. depth_nm, or pass --depth-unit)");
     if (f_factor == 0)
       throw std::invalid_argument(path + ": column '" + header[force_index] + "': force unit '" +
-                                  f_unit + "' is not known; allowed: mN, uN, N (write it into "
-                                           "the column name, e.g. force_mN, or pass --force-unit)");
+                                  f_unit +
+                                  "' is not known; allowed: mN, uN, N (write it into "
+                                  "the column name, e.g. force_mN, or pass --force-unit)");
 
     LoadCurve curve;
     curve.source = path;
     const auto number = [&](const std::vector<std::string> &fields, const std::size_t index) {
       const std::optional<double> value = parse_finite_number(fields[index]);
       if (!value)
-        throw std::invalid_argument(path + ", line " + std::to_string(line_number) +
-                                    ", column '" + header[index] + "': '" + fields[index] +
+        throw std::invalid_argument(path + ", line " + std::to_string(line_number) + ", column '" +
+                                    header[index] + "': '" + fields[index] +
                                     "' is not a finite number");
       return *value;
     };
@@ -178,7 +179,7 @@ namespace indentsim::io
         if (trim(line).empty() || trim(line)[0] == '#')
           continue;
         const std::vector<std::string> fields = split(line, delimiter);
-        const std::size_t needed = std::max(depth_index, force_index) + 1;
+        const std::size_t              needed = std::max(depth_index, force_index) + 1;
         if (fields.size() < needed)
           throw std::invalid_argument(path + ", line " + std::to_string(line_number) + ": " +
                                       std::to_string(fields.size()) + " fields, the header has " +

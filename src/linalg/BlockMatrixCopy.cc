@@ -31,8 +31,7 @@ namespace indentsim::linalg
         , compressed(blocks ? PETSC_TRUE : PETSC_FALSE)
       {
         PetscBool done = PETSC_FALSE;
-        check(MatGetRowIJ(matrix, 0, PETSC_FALSE, compressed, &n_rows, &row_start, &columns,
-                          &done),
+        check(MatGetRowIJ(matrix, 0, PETSC_FALSE, compressed, &n_rows, &row_start, &columns, &done),
               "MatGetRowIJ");
         if (!done)
           throw std::runtime_error("BlockMatrixCopy: MatGetRowIJ not available");
@@ -47,7 +46,10 @@ namespace indentsim::linalg
     };
   } // namespace
 
-  BlockMatrixCopy::~BlockMatrixCopy() { clear(); }
+  BlockMatrixCopy::~BlockMatrixCopy()
+  {
+    clear();
+  }
 
   void BlockMatrixCopy::clear()
   {
@@ -78,8 +80,8 @@ namespace indentsim::linalg
     const PetscInt *off_diagonal_columns; // global column of each off-diagonal block column
     check(MatMPIAIJGetSeqAIJ(source, &diagonal, &off_diagonal, &off_diagonal_columns),
           "MatMPIAIJGetSeqAIJ");
-    const PetscInt n_local_rows = row_end - row_begin;
-    const PetscInt n_block_rows = n_local_rows / block_size;
+    const PetscInt        n_local_rows = row_end - row_begin;
+    const PetscInt        n_block_rows = n_local_rows / block_size;
     std::vector<PetscInt> marker_columns;
     std::vector<double>   markers;
     PetscInt              n_diagonal_values = 0, n_off_diagonal_values = 0;
@@ -164,10 +166,10 @@ namespace indentsim::linalg
       for (std::size_t q = 0; q < map.size(); ++q)
         {
           const auto marker = static_cast<std::int64_t>(values[q]);
-          map[q] = marker == 0                  ? -1 :
-                   marker <= n_diagonal_values ? static_cast<std::int32_t>(marker - 1) :
-                                                  static_cast<std::int32_t>(
-                                                    -2 - (marker - 1 - n_diagonal_values));
+          map[q] = marker == 0 ? -1
+                   : marker <= n_diagonal_values
+                       ? static_cast<std::int32_t>(marker - 1)
+                       : static_cast<std::int32_t>(-2 - (marker - 1 - n_diagonal_values));
         }
       check(MatSeqBAIJRestoreArray(block, &values), "MatSeqBAIJRestoreArray");
     };
@@ -181,8 +183,7 @@ namespace indentsim::linalg
           ++seen[k >= 0 ? k : n_diagonal_values + (-2 - k)];
     if (std::any_of(seen.begin(), seen.end(), [](unsigned char s) { return s != 1; }))
       throw std::runtime_error("BlockMatrixCopy: the block copy does not hold the pattern");
-    check(PetscObjectGetId(reinterpret_cast<PetscObject>(source), &source_id_),
-          "PetscObjectGetId");
+    check(PetscObjectGetId(reinterpret_cast<PetscObject>(source), &source_id_), "PetscObjectGetId");
     check(MatGetNonzeroState(source, &source_nonzero_state_), "MatGetNonzeroState");
   }
 
@@ -197,8 +198,7 @@ namespace indentsim::linalg
     MPI_Comm communicator;
     check(PetscObjectGetComm(reinterpret_cast<PetscObject>(source), &communicator),
           "PetscObjectGetComm");
-    int must_build = copy_ == nullptr || id != source_id_ ||
-                     nonzero_state != source_nonzero_state_;
+    int must_build = copy_ == nullptr || id != source_id_ || nonzero_state != source_nonzero_state_;
     MPI_Allreduce(MPI_IN_PLACE, &must_build, 1, MPI_INT, MPI_MAX, communicator);
     if (must_build)
       build(source);

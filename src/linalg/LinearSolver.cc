@@ -50,10 +50,11 @@ namespace indentsim::linalg
       return;
     const std::string text(setting);
     const auto        colon = text.rfind(':');
-    const long every = colon == std::string::npos ? 1 : std::atol(text.c_str() + colon + 1);
+    const long        every = colon == std::string::npos ? 1 : std::atol(text.c_str() + colon + 1);
     if (every <= 0 || (n_solves_ - 1) % every != 0)
       return;
-    const std::string file = text.substr(0, colon) + "/system_" + std::to_string(n_solves_ - 1) + ".bin";
+    const std::string file =
+        text.substr(0, colon) + "/system_" + std::to_string(n_solves_ - 1) + ".bin";
     PetscViewer viewer;
     check(PetscViewerBinaryOpen(communicator_, file.c_str(), FILE_MODE_WRITE, &viewer),
           "PetscViewerBinaryOpen");
@@ -79,7 +80,7 @@ namespace indentsim::linalg
   }
 
   LinearSolver::Kind LinearSolver::choose_kind(const io::Choice<io::LinearSolverChoice> &setting,
-                                               const unsigned long n_dofs)
+                                               const unsigned long                       n_dofs)
   {
     if (setting == io::LinearSolverChoice::direct)
       return Kind::direct;
@@ -93,7 +94,8 @@ namespace indentsim::linalg
 
   LinearSolver::LinearSolver(const MPI_Comm communicator)
     : communicator_(communicator)
-  {}
+  {
+  }
 
   LinearSolver::~LinearSolver()
   {
@@ -206,9 +208,9 @@ namespace indentsim::linalg
   }
 
   LinearSolver::Result LinearSolver::solve(const PETScWrappers::MPI::SparseMatrix &matrix,
-                                   PETScWrappers::MPI::Vector             &x,
-                                   const PETScWrappers::MPI::Vector       &rhs,
-                                   const double                            relative_tolerance)
+                                           PETScWrappers::MPI::Vector             &x,
+                                           const PETScWrappers::MPI::Vector       &rhs,
+                                           const double relative_tolerance)
   {
     if (rhs.l2_norm() == 0.0)
       {
@@ -260,9 +262,9 @@ namespace indentsim::linalg
     // With nodal blocks, the Krylov method and the smoothers apply a BAIJ copy of the matrix
     // (BlockMatrixCopy.h: 38 % less time per solve on j2_48); ML builds its hierarchy from the
     // AIJ matrix itself.
-    const Mat applied = (kind_ == Kind::iterative && nodal_blocks_) ?
-                          block_copy_.update(petsc_matrix) :
-                          petsc_matrix;
+    const Mat applied = (kind_ == Kind::iterative && nodal_blocks_)
+                            ? block_copy_.update(petsc_matrix)
+                            : petsc_matrix;
     check(KSPSetOperators(ksp_, applied, petsc_matrix), "KSPSetOperators");
     const bool rebuilt = kind_ == Kind::direct || rebuild_preconditioner_;
     if (kind_ == Kind::iterative)
@@ -278,14 +280,13 @@ namespace indentsim::linalg
       const auto start = std::chrono::steady_clock::now();
       check(KSPSetUp(ksp_), "KSPSetUp");
       result.setup_seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       ++result.preconditioner_setups;
     };
     if (rebuilt)
       set_up();
     const auto run = [&]() {
-      check(KSPSolve(ksp_, static_cast<const Vec &>(rhs), static_cast<const Vec &>(x)),
-            "KSPSolve");
+      check(KSPSolve(ksp_, static_cast<const Vec &>(rhs), static_cast<const Vec &>(x)), "KSPSolve");
       KSPConvergedReason reason;
       check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
       return reason;
@@ -330,7 +331,7 @@ namespace indentsim::linalg
       }
     else if (kind_ == Kind::iterative)
       stale_iterations_ +=
-        std::max(0.0, static_cast<double>(iterations) - iterations_per_decade_ * decades);
+          std::max(0.0, static_cast<double>(iterations) - iterations_per_decade_ * decades);
     rebuild_preconditioner_ = stale_iterations_ >= setup_cost_in_iterations;
     iterations = total_iterations;
     result.converged = reason > 0;

@@ -60,7 +60,8 @@ namespace indentsim::linalg
     // 60k DOFs; `solver.linear_solver: iterative` selects AMG.
     static constexpr unsigned long iterative_threshold_dofs = 60000;
     // The kind `setting` (solver.linear_solver: auto | direct | iterative) selects for a system of n_dofs unknowns.
-    static Kind choose_kind(const io::Choice<io::LinearSolverChoice> &setting, unsigned long n_dofs);
+    static Kind choose_kind(const io::Choice<io::LinearSolverChoice> &setting,
+                            unsigned long                             n_dofs);
 
     // Sets the OpenMP threads of MUMPS and the threads of OpenBLAS to one, unless the user set
     // OMP_NUM_THREADS or OPENBLAS_NUM_THREADS. Our threads are TBB's (assembly) and MPI ranks;
@@ -80,18 +81,17 @@ namespace indentsim::linalg
     struct Result
     {
       bool         converged = false;
-      unsigned int iterations = 0; // Krylov iterations (1 for direct)
-      std::string  reason;         // PETSc's converged/diverged reason
+      unsigned int iterations = 0;            // Krylov iterations (1 for direct)
+      std::string  reason;                    // PETSc's converged/diverged reason
       unsigned int preconditioner_setups = 0; // AMG builds or LU factorizations in this solve
       double       setup_seconds = 0;         // their wall time [s] (part of the solve's)
     };
     // Solves matrix x = rhs (x is overwritten) to relative residual `relative_tolerance`
     // (iterative) or exactly (direct). A solve that does not converge (zero pivot, iteration
     // limit) is reported in the result; the caller cuts the load step back.
-    Result       solve(const dealii::PETScWrappers::MPI::SparseMatrix &matrix,
-                       dealii::PETScWrappers::MPI::Vector             &x,
-                       const dealii::PETScWrappers::MPI::Vector       &rhs,
-                       double                                          relative_tolerance);
+    Result solve(const dealii::PETScWrappers::MPI::SparseMatrix &matrix,
+                 dealii::PETScWrappers::MPI::Vector             &x,
+                 const dealii::PETScWrappers::MPI::Vector &rhs, double relative_tolerance);
 
     // The price of an AMG build in Krylov iterations of the same system: ML's setup took as
     // long as 30-40 iterations on the paper's systems (bench_linear_solver, and the setup and
@@ -115,11 +115,11 @@ namespace indentsim::linalg
     KSP                                             ksp_ = nullptr;
     Mat                                             operator_ = nullptr; // the matrix of ksp_
     std::vector<dealii::PETScWrappers::MPI::Vector> rigid_body_modes_;   // orthonormal
-    bool   nodal_blocks_ = false;          // the unknowns come in 3 x 3 nodal blocks
+    bool            nodal_blocks_ = false; // the unknowns come in 3 x 3 nodal blocks
     BlockMatrixCopy block_copy_;           // the matrix the iterative solver applies (blocks)
-    bool   rebuild_preconditioner_ = true;
-    double iterations_per_decade_ = 0; // of the first solve after the last build
-    double stale_iterations_ = 0;      // iterations beyond that rate since the build
-    unsigned long n_solves_ = 0;              // solves so far (INDENTSIM_DUMP_LINEAR_SYSTEMS)
+    bool            rebuild_preconditioner_ = true;
+    double          iterations_per_decade_ = 0; // of the first solve after the last build
+    double          stale_iterations_ = 0;      // iterations beyond that rate since the build
+    unsigned long   n_solves_ = 0;              // solves so far (INDENTSIM_DUMP_LINEAR_SYSTEMS)
   };
 } // namespace indentsim::linalg

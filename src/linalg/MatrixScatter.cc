@@ -36,9 +36,9 @@ namespace indentsim::linalg
     };
   } // namespace
 
-  void MatrixScatter::build(const DoFHandler<3>                           &dof_handler,
-                            const AffineConstraints<double>               &constraints,
-                            const PETScWrappers::MPI::SparseMatrix        &matrix)
+  void MatrixScatter::build(const DoFHandler<3>                    &dof_handler,
+                            const AffineConstraints<double>        &constraints,
+                            const PETScWrappers::MPI::SparseMatrix &matrix)
   {
     release_communicator();
     plan_.assign(dof_handler.get_triangulation().n_active_cells(), CellPlan());
@@ -97,7 +97,7 @@ namespace indentsim::linalg
 
     // Entries of other ranks' rows go to slots of a send buffer, in the order first met here;
     // they are renumbered by destination after the cell loop.
-    int n_ranks = 1, this_rank = 0;
+    int      n_ranks = 1, this_rank = 0;
     MPI_Comm matrix_communicator = MPI_COMM_SELF;
     check(PetscObjectGetComm(reinterpret_cast<PetscObject>(global), &matrix_communicator),
           "PetscObjectGetComm");
@@ -109,13 +109,13 @@ namespace indentsim::linalg
     std::vector<int>                                       slot_owner;
     std::vector<std::pair<PetscInt, PetscInt>>             slot_entry;
     const std::uint64_t n_local = static_cast<std::uint64_t>(n_diagonal) + n_off;
-    const auto slot = [&](const PetscInt row, const PetscInt column) -> long {
+    const auto          slot = [&](const PetscInt row, const PetscInt column) -> long {
       const auto [it, inserted] =
-        slot_of_entry.try_emplace({row, column}, static_cast<std::uint32_t>(slot_entry.size()));
+          slot_of_entry.try_emplace({row, column}, static_cast<std::uint32_t>(slot_entry.size()));
       if (inserted)
         {
           slot_owner.push_back(static_cast<int>(
-            std::upper_bound(row_ranges, row_ranges + n_ranks + 1, row) - row_ranges - 1));
+              std::upper_bound(row_ranges, row_ranges + n_ranks + 1, row) - row_ranges - 1));
           slot_entry.emplace_back(row, column);
         }
       return static_cast<long>(n_local + it->second);
@@ -133,17 +133,17 @@ namespace indentsim::linalg
       if (it == end || *it != column)
         return -1;
       const long position =
-        o.find(row - row_begin, static_cast<PetscInt>(it - off_diagonal_columns));
+          o.find(row - row_begin, static_cast<PetscInt>(it - off_diagonal_columns));
       return position >= 0 ? position + n_diagonal : -1;
     };
 
     using Targets = std::vector<std::pair<types::global_dof_index, double>>;
-    const unsigned int                   n = n_cell_dofs_;
-    std::vector<types::global_dof_index> dofs(n);
-    std::vector<Targets>                 targets(n);
-    std::vector<std::uint32_t>           cell_positions;
+    const unsigned int                                  n = n_cell_dofs_;
+    std::vector<types::global_dof_index>                dofs(n);
+    std::vector<Targets>                                targets(n);
+    std::vector<std::uint32_t>                          cell_positions;
     std::vector<std::pair<unsigned int, std::uint32_t>> cell_diagonals;
-    unsigned long                        n_owned = 0, n_fast = 0;
+    unsigned long                                       n_owned = 0, n_fast = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
@@ -175,14 +175,14 @@ namespace indentsim::linalg
                 for (const auto &[column, column_weight] : targets[j])
                   {
                     const long position =
-                      find(static_cast<PetscInt>(row), static_cast<PetscInt>(column));
+                        find(static_cast<PetscInt>(row), static_cast<PetscInt>(column));
                     representable = representable && position >= 0;
                     cell_positions.push_back(static_cast<std::uint32_t>(position));
                   }
             if (constraints.is_constrained(dofs[i]))
               {
                 const long position =
-                  find(static_cast<PetscInt>(dofs[i]), static_cast<PetscInt>(dofs[i]));
+                    find(static_cast<PetscInt>(dofs[i]), static_cast<PetscInt>(dofs[i]));
                 representable = representable && position >= 0;
                 cell_diagonals.emplace_back(i, static_cast<std::uint32_t>(position));
               }
@@ -274,11 +274,11 @@ namespace indentsim::linalg
     MPI_Allreduce(MPI_IN_PLACE, &all_found, 1, MPI_INT, MPI_MIN, communicator_);
     if (!all_found)
       throw std::runtime_error(
-        "MatrixScatter: another rank adds to entries that are not in the sparsity pattern" +
-        (missing.first >= 0 ? " (row " + std::to_string(missing.first) + ", column " +
-                                std::to_string(missing.second) + " on rank " +
-                                std::to_string(this_rank) + ")" :
-                              std::string()));
+          "MatrixScatter: another rank adds to entries that are not in the sparsity pattern" +
+          (missing.first >= 0
+               ? " (row " + std::to_string(missing.first) + ", column " +
+                     std::to_string(missing.second) + " on rank " + std::to_string(this_rank) + ")"
+               : std::string()));
 
     check(MatRestoreRowIJ(diagonal, 0, PETSC_FALSE, PETSC_FALSE, &d.n_rows, &d.row_start,
                           &d.columns, &done),
@@ -310,9 +310,7 @@ namespace indentsim::linalg
       }
   }
 
-  void MatrixScatter::exchange(const void        *send,
-                               void              *receive,
-                               const int          width,
+  void MatrixScatter::exchange(const void *send, void *receive, const int width,
                                const MPI_Datatype type) const
   {
     int type_size = 0;
@@ -334,14 +332,16 @@ namespace indentsim::linalg
     std::fill(send_values_.begin(), send_values_.end(), 0.0);
     if (communicator_ == MPI_COMM_NULL)
       return; // not built for an MPIAIJ matrix
-    check(MatMPIAIJGetSeqAIJ(matrix.petsc_matrix(), &diagonal_block_, &off_diagonal_block_, nullptr),
-          "MatMPIAIJGetSeqAIJ");
+    check(
+        MatMPIAIJGetSeqAIJ(matrix.petsc_matrix(), &diagonal_block_, &off_diagonal_block_, nullptr),
+        "MatMPIAIJGetSeqAIJ");
     check(MatSeqAIJGetArray(diagonal_block_, &diagonal_values_), "MatSeqAIJGetArray");
     check(MatSeqAIJGetArray(off_diagonal_block_, &off_diagonal_values_), "MatSeqAIJGetArray");
     open_ = true;
   }
 
-  void MatrixScatter::add(const unsigned int active_cell_index, const FullMatrix<double> &cell_matrix)
+  void MatrixScatter::add(const unsigned int        active_cell_index,
+                          const FullMatrix<double> &cell_matrix)
   {
     const CellPlan      &plan = plan_[active_cell_index];
     const std::uint32_t *position = positions_.data() + plan.positions;
@@ -355,7 +355,7 @@ namespace indentsim::linalg
       }
     // Constrained DoFs: entry (i, j) goes to every (row target of i, column target of j) with
     // the product of their weights.
-    const std::uint8_t *count = counts_.data() + plan.targets;
+    const std::uint8_t            *count = counts_.data() + plan.targets;
     std::array<const double *, 64> weights{};
     AssertThrow(n <= weights.size(), dealii::ExcInternalError());
     const double *w = weights_.data() + plan.weights;

@@ -47,8 +47,8 @@ namespace indentsim::linalg
     // once, with its final sparsity pattern; PETSc MPIAIJ), and the exchange plan of the
     // entries in other ranks' rows. Collective over the matrix's communicator; throws
     // std::runtime_error on every rank if a rank's pattern lacks an entry another one sends.
-    void build(const dealii::DoFHandler<3>                   &dof_handler,
-               const dealii::AffineConstraints<double>       &constraints,
+    void build(const dealii::DoFHandler<3>                    &dof_handler,
+               const dealii::AffineConstraints<double>        &constraints,
                const dealii::PETScWrappers::MPI::SparseMatrix &matrix);
 
     // True if `cell` (active cell index) takes the fast path.
@@ -74,15 +74,15 @@ namespace indentsim::linalg
       long positions = -1; // first of the cell's positions in positions_; -1: slow path
       long targets = -1;   // first of its n_cell_dofs_ target counts and their weights in
                            // counts_ / weights_; -1: no constrained DoF (one target each)
-      long weights = -1;
-      long diagonals = -1; // first (local DoF, position) of its constrained rows' diagonals
+      long         weights = -1;
+      long         diagonals = -1; // first (local DoF, position) of its constrained rows' diagonals
       unsigned int n_diagonals = 0;
     };
     double &value(std::uint32_t position)
     {
-      return position < n_diagonal_ ? diagonal_values_[position] :
-             position < n_local_    ? off_diagonal_values_[position - n_diagonal_] :
-                                      send_values_[position - n_local_];
+      return position < n_diagonal_ ? diagonal_values_[position]
+             : position < n_local_  ? off_diagonal_values_[position - n_diagonal_]
+                                    : send_values_[position - n_local_];
     }
     void release_communicator();
     // Sends slots [send_offsets_[k], send_offsets_[k + 1]) of `send` (width values of `type`
@@ -93,23 +93,23 @@ namespace indentsim::linalg
     std::vector<CellPlan>      plan_;      // per active cell
     std::vector<std::uint32_t> positions_; // unconstrained cell: n x n; constrained cell: for
                                            // each row target of each DoF, each column target
-    std::vector<std::uint8_t>  counts_;    // targets per DoF of constrained cells (0: support)
-    std::vector<double>        weights_;   // the targets' weights
+    std::vector<std::uint8_t> counts_;     // targets per DoF of constrained cells (0: support)
+    std::vector<double>       weights_;    // the targets' weights
     std::vector<std::pair<unsigned int, std::uint32_t>> diagonals_;
-    std::uint32_t n_diagonal_ = 0;         // nonzeros of the diagonal block
-    std::uint32_t n_local_ = 0;            // of both blocks; positions from here are send slots
+    std::uint32_t n_diagonal_ = 0; // nonzeros of the diagonal block
+    std::uint32_t n_local_ = 0;    // of both blocks; positions from here are send slots
 
     // Interface entries: slots [send_offsets_[k], send_offsets_[k + 1]) go to send_ranks_[k];
     // values from receive_ranks_[k] arrive in receive_values_ and are added at
     // receive_positions_ (positions in this rank's blocks).
     MPI_Comm                   communicator_ = MPI_COMM_NULL; // a duplicate, own tag space
-    bool                       open_ = false; // between begin() and end()
+    bool                       open_ = false;                 // between begin() and end()
     std::vector<int>           send_ranks_, receive_ranks_;
     std::vector<std::size_t>   send_offsets_, receive_offsets_;
     std::vector<double>        send_values_, receive_values_;
     std::vector<std::uint32_t> receive_positions_;
-    unsigned int  n_cell_dofs_ = 0;
-    double        fast_fraction_ = 0;
+    unsigned int               n_cell_dofs_ = 0;
+    double                     fast_fraction_ = 0;
 
     Mat          diagonal_block_ = nullptr, off_diagonal_block_ = nullptr;
     PetscScalar *diagonal_values_ = nullptr, *off_diagonal_values_ = nullptr;

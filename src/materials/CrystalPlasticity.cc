@@ -3,5 +3,6 @@
 
 namespace indentsim::materials
 {
-  template class CrystalPlasticityModel<CubicElasticity, RegularizedSchmidFlow, ExtendedVoceHardening>;
+  template class CrystalPlasticityModel<CubicElasticity, RegularizedSchmidFlow,
+                                        ExtendedVoceHardening>;
 } // namespace indentsim::materials

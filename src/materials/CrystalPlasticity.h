@@ -17,7 +17,8 @@
 
 namespace indentsim::materials
 {
-  extern template class CrystalPlasticityModel<CubicElasticity, RegularizedSchmidFlow, ExtendedVoceHardening>;
+  extern template class CrystalPlasticityModel<CubicElasticity, RegularizedSchmidFlow,
+                                               ExtendedVoceHardening>;
 
   class CrystalPlasticity
     : public CrystalPlasticityModel<CubicElasticity, RegularizedSchmidFlow, ExtendedVoceHardening>
@@ -25,12 +26,12 @@ namespace indentsim::materials
   public:
     // Throws std::invalid_argument for a non-positive-definite stiffness, tau0 <= 0,
     // negative hardening parameters, tau1 = 0 with theta0 > 0, q < 0 or n < 1.
-    CrystalPlasticity(const SlipSystems           &slip_systems,
-                      const CubicElasticity       &elasticity,
-                      const ExtendedVoceHardening &hardening,
-                      double                       yield_exponent_n)
-      : CrystalPlasticityModel(slip_systems, elasticity, RegularizedSchmidFlow{yield_exponent_n}, hardening)
-    {}
+    CrystalPlasticity(const SlipSystems &slip_systems, const CubicElasticity &elasticity,
+                      const ExtendedVoceHardening &hardening, double yield_exponent_n)
+      : CrystalPlasticityModel(slip_systems, elasticity, RegularizedSchmidFlow{yield_exponent_n},
+                               hardening)
+    {
+    }
 
     double yield_exponent() const { return flow_rule().n; }
   };

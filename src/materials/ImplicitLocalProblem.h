@@ -29,7 +29,7 @@ namespace indentsim::materials
   struct LocalNewtonSettings
   {
     unsigned int max_iterations = 25;
-    double       tolerance = 1e-14;          // on the max-norm of the residual
+    double       tolerance = 1e-14; // on the max-norm of the residual
     // When round-off stops any descent (the line search finds no decrease), a residual below
     // this looser bound is still accepted as converged.
     double       stagnation_tolerance = 1e-11;
@@ -42,7 +42,7 @@ namespace indentsim::materials
     unsigned int n_iterations = 0;
     double       residual_norm = 0.0; // max-norm at exit
     // solve_with_jacobian only: the Jacobian it returns was evaluated at the returned x.
-    bool         jacobian_at_solution = false;
+    bool jacobian_at_solution = false;
   };
 
   namespace internal
@@ -117,8 +117,7 @@ namespace indentsim::materials
     // Euclidean residual norm (the full step is taken whenever it reduces the residual, so
     // convergence stays quadratic near the solution).
     template <typename ResidualFunction>
-    static LocalNewtonResult solve(const ResidualFunction    &residual,
-                                   const Parameters          &p,
+    static LocalNewtonResult solve(const ResidualFunction &residual, const Parameters &p,
                                    Unknowns                  &x,
                                    const LocalNewtonSettings &settings = LocalNewtonSettings())
     {
@@ -127,26 +126,24 @@ namespace indentsim::materials
       std::array<ADNumber, n_parameters> p_ad;
       for (int a = 0; a < n_parameters; ++a)
         p_ad[a] = ADNumber(p[a]);
-      const auto evaluate =
-        [&](const Unknowns &x_trial,
-            Unknowns       &R,
-            std::array<std::array<double, n_unknowns>, n_unknowns> *dR_dx) {
-          if (!dR_dx)
-            {
-              residual(x_trial, p, R);
-              return;
-            }
-          std::array<ADNumber, n_unknowns> x_ad, R_ad;
-          for (int i = 0; i < n_unknowns; ++i)
-            x_ad[i] = ADNumber(n_unknowns, i, x_trial[i]);
-          residual(x_ad, p_ad, R_ad);
-          for (int i = 0; i < n_unknowns; ++i)
-            {
-              R[i] = R_ad[i].val();
-              for (int j = 0; j < n_unknowns; ++j)
-                (*dR_dx)[i][j] = R_ad[i].dx(j);
-            }
-        };
+      const auto evaluate = [&](const Unknowns &x_trial, Unknowns &R,
+                                std::array<std::array<double, n_unknowns>, n_unknowns> *dR_dx) {
+        if (!dR_dx)
+          {
+            residual(x_trial, p, R);
+            return;
+          }
+        std::array<ADNumber, n_unknowns> x_ad, R_ad;
+        for (int i = 0; i < n_unknowns; ++i)
+          x_ad[i] = ADNumber(n_unknowns, i, x_trial[i]);
+        residual(x_ad, p_ad, R_ad);
+        for (int i = 0; i < n_unknowns; ++i)
+          {
+            R[i] = R_ad[i].val();
+            for (int j = 0; j < n_unknowns; ++j)
+              (*dR_dx)[i][j] = R_ad[i].dx(j);
+          }
+      };
       std::array<std::array<double, n_unknowns>, n_unknowns> jacobian;
       return solve_with_jacobian(evaluate, x, jacobian, settings);
     }
@@ -162,8 +159,7 @@ namespace indentsim::materials
     // always at the returned x.
     template <typename Evaluate>
     static LocalNewtonResult
-    solve_with_jacobian(Evaluate                                               &evaluate,
-                        Unknowns                                               &x,
+    solve_with_jacobian(Evaluate &evaluate, Unknowns &x,
                         std::array<std::array<double, n_unknowns>, n_unknowns> &jacobian,
                         const LocalNewtonSettings &settings = LocalNewtonSettings())
     {
@@ -241,10 +237,8 @@ namespace indentsim::materials
     // respect to x and p together, then one LU solve with n_parameters right-hand sides).
     // Returns false if dR/dx is singular.
     template <typename ResidualFunction>
-    static bool sensitivity(const ResidualFunction &residual,
-                            const Parameters       &p,
-                            const Unknowns         &x,
-                            Sensitivity            &dx_dp)
+    static bool sensitivity(const ResidualFunction &residual, const Parameters &p,
+                            const Unknowns &x, Sensitivity &dx_dp)
     {
       constexpr int n_total = n_unknowns + n_parameters;
       using ADNumber = Sacado::Fad::SFad<double, n_total>;
@@ -273,8 +267,7 @@ namespace indentsim::materials
     // iterations.
     template <typename ADNumber>
     static std::array<ADNumber, n_unknowns>
-    linearized_solution(const Unknowns                           &x,
-                        const Sensitivity                        &dx_dp,
+    linearized_solution(const Unknowns &x, const Sensitivity &dx_dp,
                         const std::array<ADNumber, n_parameters> &p_ad)
     {
       std::array<ADNumber, n_unknowns> x_ad;

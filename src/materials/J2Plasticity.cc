@@ -1,8 +1,8 @@
+#include "materials/J2Plasticity.h"
+#include "materials/ImplicitLocalProblem.h"
+#include "materials/TensorFunctions.h"
 #include <cstdio>
 #include <cstdlib>
-#include "materials/ImplicitLocalProblem.h"
-#include "materials/J2Plasticity.h"
-#include "materials/TensorFunctions.h"
 
 #include <Sacado.hpp>
 
@@ -54,23 +54,21 @@ namespace indentsim::materials
         for (unsigned int k = 0; k < 6; ++k)
           two_dev_eps_e.access_raw_entry(k) = 2.0 * (k < 3 ? x[k] - mean_eps_e : x[k]);
         const auto dev_b_e =
-          scaled(exp(2.0 * mean_eps_e), deviator_symmetric(expm1_symmetric(two_dev_eps_e)));
+            scaled(exp(2.0 * mean_eps_e), deviator_symmetric(expm1_symmetric(two_dev_eps_e)));
         const Number norm_dev_b_e = norm_symmetric(dev_b_e);
         const Number flow_factor = (sqrt_3_2 * x[delta_gamma_index]) / norm_dev_b_e;
         for (unsigned int k = 0; k < 6; ++k)
           R[k] = x[k] - p[k] + flow_factor * dev_b_e.access_raw_entry(k);
         const Number equivalent_stress_over_mu =
-          cauchy ? Number(sqrt_3_2 * norm_dev_b_e / p[J_index]) : Number(sqrt_3_2 * norm_dev_b_e);
+            cauchy ? Number(sqrt_3_2 * norm_dev_b_e / p[J_index]) : Number(sqrt_3_2 * norm_dev_b_e);
         R[delta_gamma_index] = equivalent_stress_over_mu -
                                (yield_stress_n + hardening_modulus * x[delta_gamma_index]) / mu;
       }
     };
   } // namespace
 
-  J2Plasticity::J2Plasticity(const double             young_modulus,
-                             const double             poisson_ratio,
-                             const double             yield_stress,
-                             const double             hardening_modulus,
+  J2Plasticity::J2Plasticity(const double young_modulus, const double poisson_ratio,
+                             const double yield_stress, const double hardening_modulus,
                              const YieldStressMeasure yield_stress_measure)
     : elasticity(young_modulus, poisson_ratio)
     , yield_stress(yield_stress)
@@ -82,8 +80,8 @@ namespace indentsim::materials
                                   " GPa; it must be positive and finite");
     if (!(hardening_modulus >= 0.0) || !std::isfinite(hardening_modulus))
       throw std::invalid_argument(
-        "J2Plasticity: hardening_modulus = " + std::to_string(hardening_modulus) +
-        " GPa; it must be non-negative and finite");
+          "J2Plasticity: hardening_modulus = " + std::to_string(hardening_modulus) +
+          " GPa; it must be non-negative and finite");
   }
 
   void J2Plasticity::initial_state(std::span<double> state) const
@@ -102,8 +100,8 @@ namespace indentsim::materials
     return C_p_inverse;
   }
 
-  double
-  J2Plasticity::yield_function(const Tensor<2, 3> &tau, const double J, const double gamma_p) const
+  double J2Plasticity::yield_function(const Tensor<2, 3> &tau, const double J,
+                                      const double gamma_p) const
   {
     const double mean = (tau[0][0] + tau[1][1] + tau[2][2]) / 3.0;
     double       norm_squared = 0.0;
@@ -111,15 +109,13 @@ namespace indentsim::materials
       for (unsigned int j = 0; j < 3; ++j)
         norm_squared += std::pow(tau[i][j] - (i == j ? mean : 0.0), 2);
     const double sigma_HMH =
-      sqrt_3_2 * std::sqrt(norm_squared) / (measure == YieldStressMeasure::cauchy ? J : 1.0);
+        sqrt_3_2 * std::sqrt(norm_squared) / (measure == YieldStressMeasure::cauchy ? J : 1.0);
     return sigma_HMH - flow_stress(gamma_p);
   }
 
-  UpdateStatus J2Plasticity::update(const Tensor<2, 3>     &F,
-                                    std::span<const double> state_old,
-                                    MaterialPointResponse  &response,
-                                    std::span<double>       state_new,
-                                    const bool              compute_tangent) const
+  UpdateStatus J2Plasticity::update(const Tensor<2, 3> &F, std::span<const double> state_old,
+                                    MaterialPointResponse &response, std::span<double> state_new,
+                                    const bool compute_tangent) const
   {
     Assert(state_old.size() == n_state, dealii::ExcDimensionMismatch(state_old.size(), n_state));
     Assert(state_new.size() == n_state, dealii::ExcDimensionMismatch(state_new.size(), n_state));
@@ -140,7 +136,7 @@ namespace indentsim::materials
     const dealii::SymmetricTensor<2, 3> dev_b_e_trial = deviator_symmetric(b_e_trial);
     const double                        norm_dev_b_e_trial = norm_symmetric(dev_b_e_trial);
     const double                        trial_yield_function =
-      sqrt_3_2 * mu * norm_dev_b_e_trial / (cauchy ? J : 1.0) - yield_stress_n;
+        sqrt_3_2 * mu * norm_dev_b_e_trial / (cauchy ? J : 1.0) - yield_stress_n;
 
     if (trial_yield_function <= 0.0)
       {
@@ -192,11 +188,11 @@ namespace indentsim::materials
         dev_eps_trial.access_raw_entry(k) = parameters[k] - (k < 3 ? mean : 0.0);
       const double norm_dev = norm_symmetric(dev_eps_trial);
       const double delta_gamma_0 =
-        std::max(sqrt_3_2 * 2.0 * mu * norm_dev / J_m - yield_stress_n, 0.0) /
-        (3.0 * mu / J_m + hardening_modulus);
+          std::max(sqrt_3_2 * 2.0 * mu * norm_dev / J_m - yield_stress_n, 0.0) /
+          (3.0 * mu / J_m + hardening_modulus);
       for (unsigned int k = 0; k < 6; ++k)
         unknowns[k] =
-          parameters[k] - delta_gamma_0 * sqrt_3_2 * dev_eps_trial.access_raw_entry(k) / norm_dev;
+            parameters[k] - delta_gamma_0 * sqrt_3_2 * dev_eps_trial.access_raw_entry(k) / norm_dev;
       unknowns[delta_gamma_index] = delta_gamma_0;
     };
     const auto set_trial_guess = [&]() {
@@ -221,7 +217,7 @@ namespace indentsim::materials
         else
           set_trial_guess();
         const LocalNewtonResult newton =
-          ReturnMapping::solve(residual, parameters, unknowns, settings);
+            ReturnMapping::solve(residual, parameters, unknowns, settings);
         // Delta gamma > 0 is guaranteed for f^tr > 0 (KKT); anything else is a spurious root.
         converged = newton.converged && unknowns[delta_gamma_index] > 0.0;
         // A trial state on the yield surface to round-off returns Delta gamma = 0 (+- round-off):

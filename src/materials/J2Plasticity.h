@@ -45,9 +45,7 @@ namespace indentsim::materials
 
     // E, nu as NeoHookean; yield_stress sigma_y0 > 0 and hardening_modulus H >= 0 [GPa].
     // Throws std::invalid_argument on invalid values.
-    J2Plasticity(double             young_modulus,
-                 double             poisson_ratio,
-                 double             yield_stress,
+    J2Plasticity(double young_modulus, double poisson_ratio, double yield_stress,
                  double             hardening_modulus,
                  YieldStressMeasure yield_stress_measure = YieldStressMeasure::cauchy);
 
@@ -56,11 +54,9 @@ namespace indentsim::materials
     // C_p^-1 = I, gamma_p = 0.
     void initial_state(std::span<double> state) const override;
 
-    UpdateStatus update(const Tensor<2, 3>     &F,
-                        std::span<const double> state_old,
-                        MaterialPointResponse  &response,
-                        std::span<double>       state_new,
-                        bool                    compute_tangent = true) const override;
+    UpdateStatus update(const Tensor<2, 3> &F, std::span<const double> state_old,
+                        MaterialPointResponse &response, std::span<double> state_new,
+                        bool compute_tangent = true) const override;
 
     double equivalent_plastic_strain(std::span<const double> state) const override
     {
@@ -72,10 +68,7 @@ namespace indentsim::materials
 
     // Symmetric for the Kirchhoff measure only: the Cauchy measure's 1/J couples the volume
     // change into the return (tested).
-    bool symmetric_tangent() const override
-    {
-      return measure == YieldStressMeasure::kirchhoff;
-    }
+    bool symmetric_tangent() const override { return measure == YieldStressMeasure::kirchhoff; }
 
     // A return mapping (about 9 us with its tangent) against an elastic point (about 5 us).
     double relative_plastic_cost() const override { return 3.0; }

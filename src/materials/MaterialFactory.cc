@@ -1,6 +1,6 @@
+#include "materials/MaterialFactory.h"
 #include "materials/CrystalPlasticity.h"
 #include "materials/J2Plasticity.h"
-#include "materials/MaterialFactory.h"
 #include "materials/NeoHookean.h"
 #include "materials/crystal/Orientation.h"
 
@@ -24,20 +24,18 @@ namespace indentsim::materials
           throw std::invalid_argument("material.yield_stress_measure = \"" +
                                       to_string(parameters.yield_stress_measure) +
                                       "\" is not supported; allowed: cauchy, kirchhoff");
-        return std::make_unique<J2Plasticity>(parameters.young_modulus,
-                                              parameters.poisson_ratio,
-                                              parameters.yield_stress,
-                                              parameters.hardening_modulus,
+        return std::make_unique<J2Plasticity>(parameters.young_modulus, parameters.poisson_ratio,
+                                              parameters.yield_stress, parameters.hardening_modulus,
                                               measure);
       }
 
     if (parameters.model == io::ModelKind::crystal)
       return std::make_unique<CrystalPlasticity>(
-        slip_systems(to_string(parameters.lattice)),
-        CubicElasticity{parameters.C11, parameters.C12, parameters.C44},
-        ExtendedVoceHardening{
-          parameters.tau0, parameters.tau1, parameters.theta0, parameters.theta1, parameters.q},
-        parameters.yield_exponent_n);
+          slip_systems(to_string(parameters.lattice)),
+          CubicElasticity{parameters.C11, parameters.C12, parameters.C44},
+          ExtendedVoceHardening{parameters.tau0, parameters.tau1, parameters.theta0,
+                                parameters.theta1, parameters.q},
+          parameters.yield_exponent_n);
 
     throw std::invalid_argument("material.model = \"" + to_string(parameters.model) +
                                 "\" is not supported; allowed: neo_hookean, j2, crystal");

@@ -18,8 +18,8 @@ namespace indentsim::materials
   enum class UpdateStatus
   {
     success,
-    invalid_deformation,  // det F <= 0 or not finite
-    local_newton_failed   // return mapping did not converge
+    invalid_deformation, // det F <= 0 or not finite
+    local_newton_failed  // return mapping did not converge
   };
 
   std::string to_string(UpdateStatus status);
@@ -27,9 +27,9 @@ namespace indentsim::materials
   // Output of one material-point update (total-Lagrangian form).
   struct MaterialPointResponse
   {
-    Tensor<2, 3> P;      // first Piola-Kirchhoff stress [GPa]
-    Tensor<4, 3> dP_dF;  // consistent (algorithmic) tangent dP/dF [GPa]
-    Tensor<2, 3> tau;    // Kirchhoff stress tau = P F^T [GPa]
+    Tensor<2, 3> P;     // first Piola-Kirchhoff stress [GPa]
+    Tensor<4, 3> dP_dF; // consistent (algorithmic) tangent dP/dF [GPa]
+    Tensor<2, 3> tau;   // Kirchhoff stress tau = P F^T [GPa]
   };
 
   class MaterialModel
@@ -63,11 +63,9 @@ namespace indentsim::materials
     // the same to the local tolerance whatever the hint holds, and an unusable hint is ignored.
     // When `compute_tangent` is false the tangent member of `response` is left untouched (used
     // for stress recovery and output).
-    virtual UpdateStatus update(const Tensor<2, 3>           &F,
-                                std::span<const double>       state_old,
-                                MaterialPointResponse        &response,
-                                std::span<double>             state_new,
-                                bool                          compute_tangent = true) const = 0;
+    virtual UpdateStatus update(const Tensor<2, 3> &F, std::span<const double> state_old,
+                                MaterialPointResponse &response, std::span<double> state_new,
+                                bool compute_tangent = true) const = 0;
 
     // Equivalent (accumulated) plastic strain stored in a state, for output; 0 for elastic models.
     virtual double equivalent_plastic_strain(std::span<const double> state) const = 0;

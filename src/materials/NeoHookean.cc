@@ -64,9 +64,8 @@ namespace indentsim::materials
 
   void NeoHookean::elastic_response(const Tensor<2, 3>                  &F,
                                     const dealii::SymmetricTensor<2, 3> &C_p_inverse,
-                                    const double                         J_minus_one,
-                                    MaterialPointResponse               &response,
-                                    const bool                           compute_tangent) const
+                                    const double J_minus_one, MaterialPointResponse &response,
+                                    const bool compute_tangent) const
   {
     const Tensor<2, 3> F_inverse = inverse_3x3(F);
     const double       J = 1.0 + J_minus_one;
@@ -111,11 +110,9 @@ namespace indentsim::materials
                                                c_2 * F_inverse[J_index][i] * F_inverse[L][k];
   }
 
-  UpdateStatus NeoHookean::update(const Tensor<2, 3> &F,
-                                  std::span<const double> /*state_old*/,
-                                  MaterialPointResponse &response,
-                                  std::span<double> /*state_new*/,
-                                  const bool compute_tangent) const
+  UpdateStatus NeoHookean::update(const Tensor<2, 3>    &F, std::span<const double> /*state_old*/,
+                                  MaterialPointResponse &response, std::span<double> /*state_new*/,
+                                  const bool             compute_tangent) const
   {
     double J_minus_one = 0.0;
     if (!admissible_deformation(F, J_minus_one))

@@ -26,11 +26,9 @@ namespace indentsim::materials
     unsigned int n_state_variables() const override { return 0; }
     void         initial_state(std::span<double> /*state*/) const override {}
 
-    UpdateStatus update(const Tensor<2, 3>     &F,
-                        std::span<const double> state_old,
-                        MaterialPointResponse  &response,
-                        std::span<double>       state_new,
-                        bool                    compute_tangent = true) const override;
+    UpdateStatus update(const Tensor<2, 3> &F, std::span<const double> state_old,
+                        MaterialPointResponse &response, std::span<double> state_new,
+                        bool compute_tangent = true) const override;
 
     double equivalent_plastic_strain(std::span<const double> /*state*/) const override
     {
@@ -57,11 +55,9 @@ namespace indentsim::materials
     //   dP_iJ/dF_kL = mu delta_ik C_p^-1_LJ + (mu - lambda/2 (J^2 - 1)) F^-1_Li F^-1_Jk
     //                 + lambda J^2 F^-1_Ji F^-1_Lk.
     // The caller has checked J = 1 + J_minus_one > 0. No allocation.
-    void elastic_response(const Tensor<2, 3>                  &F,
-                          const dealii::SymmetricTensor<2, 3> &C_p_inverse,
-                          double                               J_minus_one,
-                          MaterialPointResponse               &response,
-                          bool                                 compute_tangent) const;
+    void elastic_response(const Tensor<2, 3> &F, const dealii::SymmetricTensor<2, 3> &C_p_inverse,
+                          double J_minus_one, MaterialPointResponse &response,
+                          bool compute_tangent) const;
 
   private:
     double mu;     // shear modulus [GPa]

@@ -129,10 +129,8 @@ namespace indentsim::materials
   // alpha A + beta B
   template <typename Number, typename Scalar1, typename Scalar2>
   inline dealii::SymmetricTensor<2, 3, Number>
-  linear_combination(const Scalar1                               &alpha,
-                     const dealii::SymmetricTensor<2, 3, Number> &A,
-                     const Scalar2                               &beta,
-                     const dealii::SymmetricTensor<2, 3, Number> &B)
+  linear_combination(const Scalar1 &alpha, const dealii::SymmetricTensor<2, 3, Number> &A,
+                     const Scalar2 &beta, const dealii::SymmetricTensor<2, 3, Number> &B)
   {
     dealii::SymmetricTensor<2, 3, Number> C;
     for (unsigned int k = 0; k < 6; ++k)
@@ -213,7 +211,7 @@ namespace indentsim::materials
     C.access_raw_entry(4) = d * f - b * e;
     C.access_raw_entry(5) = d * e - a * f;
     const Number det =
-      a * C.access_raw_entry(0) + d * C.access_raw_entry(3) + e * C.access_raw_entry(4);
+        a * C.access_raw_entry(0) + d * C.access_raw_entry(3) + e * C.access_raw_entry(4);
     const Number inverse_det = 1.0 / det;
     for (unsigned int k = 0; k < 6; ++k)
       C.access_raw_entry(k) *= inverse_det;
@@ -235,10 +233,10 @@ namespace indentsim::materials
         const unsigned int i = (k < 3 ? k : (k == 5 ? 1 : 0));
         const unsigned int j = (k < 3 ? k : (k == 3 ? 1 : 2));
         Number             sum =
-          A.access_raw_entry(symmetric_index[i][0]) * B.access_raw_entry(symmetric_index[0][j]);
+            A.access_raw_entry(symmetric_index[i][0]) * B.access_raw_entry(symmetric_index[0][j]);
         for (unsigned int m = 1; m < 3; ++m)
           sum +=
-            A.access_raw_entry(symmetric_index[i][m]) * B.access_raw_entry(symmetric_index[m][j]);
+              A.access_raw_entry(symmetric_index[i][m]) * B.access_raw_entry(symmetric_index[m][j]);
         if (k >= 3)
           {
             // (B A)_ij = (A B)_ji
@@ -337,10 +335,9 @@ namespace indentsim::materials
     // Even and odd parts V, U of the numerator of the [m/m] Pade approximant of exp(X):
     // r_m(X) = q_m(X)^-1 p_m(X) with p_m = V + U, q_m = V - U. Costs floor(m/2) + 1 products.
     template <typename Number>
-    void pade_exp_parts(const dealii::SymmetricTensor<2, 3, Number> &X,
-                        const unsigned int                           m,
-                        dealii::SymmetricTensor<2, 3, Number>       &V,
-                        dealii::SymmetricTensor<2, 3, Number>       &U)
+    void pade_exp_parts(const dealii::SymmetricTensor<2, 3, Number> &X, const unsigned int m,
+                        dealii::SymmetricTensor<2, 3, Number> &V,
+                        dealii::SymmetricTensor<2, 3, Number> &U)
     {
       Assert(m >= 3 && m <= 7, dealii::ExcIndexRange(m, 3, 8));
       // c_j = (2m - j)! m! / ((2m)! j! (m - j)!), built by the recursion c_j/c_{j-1}.
@@ -365,8 +362,8 @@ namespace indentsim::materials
 
     // Pade degree m and number of squarings s for exp(X): the smallest m with |X| <= theta_m,
     // else m = 7 and X scaled by 2^-s.
-    inline void
-    exp_degree_and_squarings(const double norm_X, unsigned int &degree, unsigned int &n_squarings)
+    inline void exp_degree_and_squarings(const double norm_X, unsigned int &degree,
+                                         unsigned int &n_squarings)
     {
       degree = 7;
       n_squarings = 0;
@@ -379,7 +376,7 @@ namespace indentsim::materials
       // A non-finite argument just propagates to the result; beyond 2^64 exp overflows anyway.
       if (std::isfinite(norm_X))
         n_squarings = static_cast<unsigned int>(
-          std::min(64.0, std::ceil(std::log2(norm_X / exp_pade_theta[4]))));
+            std::min(64.0, std::ceil(std::log2(norm_X / exp_pade_theta[4]))));
     }
 
     // Gauss-Legendre / Pade approximation of log(I + X) for small X.
@@ -441,8 +438,7 @@ namespace indentsim::materials
     const Number mean = trace_symmetric(A) / 3.0;
     auto         X = plus_identity(A, -mean);
     unsigned int degree, n_squarings;
-    internal::exp_degree_and_squarings(std::sqrt(scalar_value(norm_squared_symmetric(X))),
-                                       degree,
+    internal::exp_degree_and_squarings(std::sqrt(scalar_value(norm_squared_symmetric(X))), degree,
                                        n_squarings);
     if (n_squarings > 0)
       X = scaled(std::ldexp(1.0, -static_cast<int>(n_squarings)), X);
@@ -465,15 +461,14 @@ namespace indentsim::materials
   expm1_symmetric(const dealii::SymmetricTensor<2, 3, Number> &A)
   {
     unsigned int degree, n_squarings;
-    internal::exp_degree_and_squarings(std::sqrt(scalar_value(norm_squared_symmetric(A))),
-                                       degree,
+    internal::exp_degree_and_squarings(std::sqrt(scalar_value(norm_squared_symmetric(A))), degree,
                                        n_squarings);
     const auto X = n_squarings > 0 ? scaled(std::ldexp(1.0, -static_cast<int>(n_squarings)), A) : A;
 
     dealii::SymmetricTensor<2, 3, Number> V, U;
     internal::pade_exp_parts(X, degree, V, U);
     auto E =
-      commuting_product(inverse_symmetric(linear_combination(1.0, V, -1.0, U)), scaled(2.0, U));
+        commuting_product(inverse_symmetric(linear_combination(1.0, V, -1.0, U)), scaled(2.0, U));
     for (unsigned int s = 0; s < n_squarings; ++s)
       E = commuting_product(E, plus_identity(E, 2.0));
     return E;
@@ -510,7 +505,7 @@ namespace indentsim::materials
           break;
         }
     const auto L =
-      internal::pade_log_one_plus(plus_identity(A_k, -1.0), internal::log_pade_rules[rule]);
+        internal::pade_log_one_plus(plus_identity(A_k, -1.0), internal::log_pade_rules[rule]);
     return plus_identity(scaled(std::ldexp(1.0, static_cast<int>(n_roots)), L), log_scale);
   }
 } // namespace indentsim::materials

@@ -62,10 +62,10 @@ namespace indentsim::mesh
     // Spacing along x or y: refined region cells of size `coarse` (approximately in y when the
     // region is not square), graded cells outside.
     auto lateral_spacing = [&](const double half_length, const double half_refined) {
-      const unsigned int n_half = std::max(1, int(std::lround(half_refined / coarse)));
-      std::vector<double> inner(n_half, half_refined / n_half);
+      const unsigned int        n_half = std::max(1, int(std::lround(half_refined / coarse)));
+      std::vector<double>       inner(n_half, half_refined / n_half);
       const std::vector<double> outer =
-        graded_spacing(half_length - half_refined, half_refined / n_half, grading);
+          graded_spacing(half_length - half_refined, half_refined / n_half, grading);
       std::vector<double> half_spacing(inner);
       half_spacing.insert(half_spacing.end(), outer.begin(), outer.end());
       if (info.quarter)
@@ -76,16 +76,16 @@ namespace indentsim::mesh
     };
 
     const std::vector<double> x_spacing =
-      lateral_spacing(specimen.size[0] / 2, specimen.refined_region[0] / 2);
+        lateral_spacing(specimen.size[0] / 2, specimen.refined_region[0] / 2);
     const std::vector<double> y_spacing =
-      lateral_spacing(specimen.size[1] / 2, specimen.refined_region[1] / 2);
+        lateral_spacing(specimen.size[1] / 2, specimen.refined_region[1] / 2);
 
     // Depth: the refined region's depth in whole layers of about `coarse`, graded below.
-    const double       depth = specimen.refined_region[2];
-    const unsigned int n_layers = std::max(1, int(std::lround(depth / coarse)));
-    std::vector<double> z_spacing_top(n_layers, depth / n_layers);
+    const double              depth = specimen.refined_region[2];
+    const unsigned int        n_layers = std::max(1, int(std::lround(depth / coarse)));
+    std::vector<double>       z_spacing_top(n_layers, depth / n_layers);
     const std::vector<double> below =
-      graded_spacing(specimen.size[2] - depth, depth / n_layers, grading);
+        graded_spacing(specimen.size[2] - depth, depth / n_layers, grading);
     // subdivided_hyper_rectangle orders cells from p1 (bottom) to p2 (top).
     std::vector<double> z_spacing(below.rbegin(), below.rend());
     z_spacing.insert(z_spacing.end(), z_spacing_top.begin(), z_spacing_top.end());
@@ -94,12 +94,9 @@ namespace indentsim::mesh
     info.refined_depth = depth;
 
     const Point<3> p1(info.quarter ? 0. : -specimen.size[0] / 2,
-                      info.quarter ? 0. : -specimen.size[1] / 2,
-                      -specimen.size[2]);
+                      info.quarter ? 0. : -specimen.size[1] / 2, -specimen.size[2]);
     const Point<3> p2(specimen.size[0] / 2, specimen.size[1] / 2, 0.);
-    GridGenerator::subdivided_hyper_rectangle(triangulation,
-                                              {x_spacing, y_spacing, z_spacing},
-                                              p1,
+    GridGenerator::subdivided_hyper_rectangle(triangulation, {x_spacing, y_spacing, z_spacing}, p1,
                                               p2,
                                               /*colorize=*/true);
 

@@ -33,11 +33,8 @@ namespace indentsim::nonlinear
       }
   }
 
-  double solve_with_cutbacks(const LoadingProgramme                             &programme,
-                             const Segment                                      &segment,
-                             IncrementControl                                   &control,
-                             const double                                        value,
-                             const unsigned int                                  step,
+  double solve_with_cutbacks(const LoadingProgramme &programme, const Segment &segment,
+                             IncrementControl &control, const double value, const unsigned int step,
                              const unsigned int                                  max_cutbacks,
                              const std::function<IncrementStatus(double, bool)> &solve,
                              const std::function<void()>                        &reject,

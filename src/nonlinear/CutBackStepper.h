@@ -42,9 +42,9 @@ namespace indentsim::nonlinear
   // What the stepper reports while it retries (for the console and run.log).
   struct RetryEvent
   {
-    unsigned int    step;          // the step being attempted (1-based)
-    double          value;         // its target control value
-    IncrementStatus status;        // why it failed
+    unsigned int    step;               // the step being attempted (1-based)
+    double          value;              // its target control value
+    IncrementStatus status;             // why it failed
     bool            from_extrapolation; // true: retried from the converged state next
     double          next_increment;     // otherwise: the increment after the cut-back
   };
@@ -54,11 +54,8 @@ namespace indentsim::nonlinear
   // above (`reject` restores the converged state after each failure). Returns the control value
   // reached and counts the cut-backs into `cutbacks`. Throws std::runtime_error naming the
   // target when the hold fails or max_cutbacks halvings do not help.
-  double solve_with_cutbacks(const LoadingProgramme                             &programme,
-                             const Segment                                      &segment,
-                             IncrementControl                                   &control,
-                             double                                              value,
-                             unsigned int                                        step,
+  double solve_with_cutbacks(const LoadingProgramme &programme, const Segment &segment,
+                             IncrementControl &control, double value, unsigned int step,
                              unsigned int                                        max_cutbacks,
                              const std::function<IncrementStatus(double, bool)> &solve,
                              const std::function<void()>                        &reject,

@@ -12,9 +12,9 @@ namespace indentsim::nonlinear
     material_failure,       // a material point returned a failure status
     contact_search_failure, // the closest-point projection onto the indenter failed
     newton_diverged,
-    linear_solver_failure,  // the linear solver of a Newton iteration did not converge
+    linear_solver_failure, // the linear solver of a Newton iteration did not converge
     too_many_iterations,
-    too_many_augmentations  // augmented-Lagrangian passes exhausted
+    too_many_augmentations // augmented-Lagrangian passes exhausted
   };
 
   std::string to_string(IncrementStatus status);

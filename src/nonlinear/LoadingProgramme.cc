@@ -20,12 +20,12 @@ namespace indentsim::nonlinear
   {
     switch (kind)
       {
-        case SegmentKind::load:
-          return "load";
-        case SegmentKind::hold:
-          return "hold";
-        case SegmentKind::unload:
-          return "unload";
+      case SegmentKind::load:
+        return "load";
+      case SegmentKind::hold:
+        return "hold";
+      case SegmentKind::unload:
+        return "unload";
       }
     return "?";
   }
@@ -34,9 +34,9 @@ namespace indentsim::nonlinear
   {
     unsigned int unload_steps = 0;
     if (loading.unload)
-      unload_steps = !is_force_control(loading) && loading.unload_points > 0 ?
-                       loading.unload_points + 1 :
-                       uniform_unload_steps(loading);
+      unload_steps = !is_force_control(loading) && loading.unload_points > 0
+                         ? loading.unload_points + 1
+                         : uniform_unload_steps(loading);
     return loading.cycles * (loading.steps + loading.hold_steps + unload_steps);
   }
 
@@ -56,7 +56,7 @@ namespace indentsim::nonlinear
           segments.push_back({SegmentKind::hold, maximum, loading.hold_steps, cycle});
         if (loading.unload)
           segments.push_back(
-            {SegmentKind::unload, unload_target, uniform_unload_steps(loading), cycle});
+              {SegmentKind::unload, unload_target, uniform_unload_steps(loading), cycle});
       }
   }
 

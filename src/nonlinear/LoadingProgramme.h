@@ -35,11 +35,11 @@ namespace indentsim::nonlinear
     double               maximum; // max_depth [um] or, under force control, max_force [mN]
     std::vector<Segment> segments;
     // The steps the programme takes without cut-backs (for the ETA).
-    unsigned int         expected_steps;
+    unsigned int expected_steps;
     // Depth-controlled unloading is paced by force (unload_points > 0): see paced_increment.
-    bool                 paced(const Segment &segment) const;
+    bool paced(const Segment &segment) const;
     // " um" or " mN": the unit of the control value in messages.
-    const char          *unit() const { return force_control ? " mN" : " um"; }
+    const char *unit() const { return force_control ? " mN" : " um"; }
 
   private:
     unsigned int unload_points_;

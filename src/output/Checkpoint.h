@@ -73,7 +73,7 @@ namespace indentsim::output::checkpoint
     std::vector<T> vector()
     {
       static_assert(std::is_trivially_copyable_v<T>);
-      const auto     n = value<std::uint64_t>();
+      const auto n = value<std::uint64_t>();
       if (n > (std::uint64_t(1) << 40) / sizeof(T))
         fail();
       std::vector<T> v(n);
@@ -84,10 +84,10 @@ namespace indentsim::output::checkpoint
     const std::string &path() const { return path_; }
 
   private:
-    void          check();
+    void              check();
     [[noreturn]] void fail();
-    std::string   path_;
-    std::ifstream in_;
+    std::string       path_;
+    std::ifstream     in_;
   };
 
   // SIGINT and SIGTERM set a flag (and restore the default action, so that a second Ctrl-C

@@ -41,8 +41,8 @@ namespace indentsim::output
          << r.n_active_nodes << ',' << r.n_stick_nodes << ',' << r.n_slip_nodes << ','
          << r.max_pressure << ',' << std::setprecision(4) << r.max_penetration << ','
          << r.newton_iterations << ',' << r.augmentations << ',' << r.cutbacks << ','
-         << std::setprecision(10) << r.bottom_reaction << ',' << std::setprecision(4)
-         << r.wall_time << '\n'
+         << std::setprecision(10) << r.bottom_reaction << ',' << std::setprecision(4) << r.wall_time
+         << '\n'
          << std::flush;
   }
 

@@ -43,10 +43,10 @@ namespace indentsim::output
   struct ProgressLine
   {
     const nonlinear::StepRecord &record;
-    bool                         show_cycle;    // the programme has several cycles
-    const double                *force_target;  // force control: the step's target [mN]
-    bool                         show_stick;    // friction: the sticking nodes
-    double                       eta;           // [s]
+    bool                         show_cycle;   // the programme has several cycles
+    const double                *force_target; // force control: the step's target [mN]
+    bool                         show_stick;   // friction: the sticking nodes
+    double                       eta;          // [s]
   };
   std::ostream &operator<<(std::ostream &out, const ProgressLine &line);
 } // namespace indentsim::output

@@ -19,10 +19,8 @@ namespace indentsim::output
     return static_cast<double>(usage.ru_maxrss) / 1024.0; // Linux: kilobytes
   }
 
-  void write_run_summary(const std::string   &path,
-                         const RunDescription &d,
-                         const RunStatistics  &s,
-                         const MPI_Comm        communicator)
+  void write_run_summary(const std::string &path, const RunDescription &d, const RunStatistics &s,
+                         const MPI_Comm communicator)
   {
     const double memory = peak_memory_mib();
     const double memory_max = dealii::Utilities::MPI::max(memory, communicator);

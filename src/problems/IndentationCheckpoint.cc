@@ -154,15 +154,15 @@ namespace indentsim::problems
     const std::string  directory = checkpoint_directory();
     const std::string  path = checkpoint::rank_file(directory, rank);
 
-    std::string              error;
-    std::uint32_t            step = 0;
-    std::vector<double>      converged, previous, state, contact_state;
-    double                   depth_converged = 0, depth_previous = 0, force_converged = 0,
-                             force_previous = 0, force_scale = 0;
-    bool                     has_previous = false;
-    std::vector<StepRecord>  records;
+    std::string         error;
+    std::uint32_t       step = 0;
+    std::vector<double> converged, previous, state, contact_state;
+    double depth_converged = 0, depth_previous = 0, force_converged = 0, force_previous = 0,
+           force_scale = 0;
+    bool                                        has_previous = false;
+    std::vector<StepRecord>                     records;
     std::vector<std::pair<double, std::string>> vtu_records;
-    RunStatistics            statistics;
+    RunStatistics                               statistics;
     try
       {
         if (!std::filesystem::exists(path))
@@ -178,24 +178,26 @@ namespace indentsim::problems
                                    std::to_string(version) + ", this indentsim reads format " +
                                    std::to_string(checkpoint::format_version));
         if (const auto ranks = in.value<std::uint32_t>(); ranks != n_ranks)
-          throw std::runtime_error("the checkpoint in '" + directory + "' was written by " +
-                                   std::to_string(ranks) + " MPI rank(s), this run has " +
-                                   std::to_string(n_ranks) + "; resume with the same number (mpirun -np " +
-                                   std::to_string(ranks) + ")");
+          throw std::runtime_error(
+              "the checkpoint in '" + directory + "' was written by " + std::to_string(ranks) +
+              " MPI rank(s), this run has " + std::to_string(n_ranks) +
+              "; resume with the same number (mpirun -np " + std::to_string(ranks) + ")");
         if (in.value<std::uint32_t>() != rank)
           throw std::runtime_error("'" + path + "' belongs to another rank");
         if (in.value<std::uint64_t>() != case_fingerprint())
           throw std::runtime_error(
-            "the checkpoint in '" + directory + "' belongs to a different case: the resolved case "
-            "(apart from output.directory and output.checkpoint_interval_s) differs from the one "
-            "of the stopped run; resume with the unchanged case file, or start afresh with "
-            "--overwrite");
+              "the checkpoint in '" + directory +
+              "' belongs to a different case: the resolved case "
+              "(apart from output.directory and output.checkpoint_interval_s) differs from the one "
+              "of the stopped run; resume with the unchanged case file, or start afresh with "
+              "--overwrite");
         step = in.value<std::uint32_t>();
         if (const auto n_owned = in.value<std::uint64_t>(); n_owned != locally_owned_.n_elements())
           throw std::runtime_error("the checkpoint '" + path + "' holds " +
                                    std::to_string(n_owned) + " DoFs of this rank, the mesh has " +
                                    std::to_string(locally_owned_.n_elements()));
-        if (const auto n_state = in.value<std::uint64_t>(); n_state != history_.converged_values().size())
+        if (const auto n_state = in.value<std::uint64_t>();
+            n_state != history_.converged_values().size())
           throw std::runtime_error("the checkpoint '" + path + "' holds " +
                                    std::to_string(n_state) +
                                    " material state values on this rank, the mesh needs " +
@@ -211,7 +213,8 @@ namespace indentsim::problems
         state = in.vector<double>();
         contact_state = in.vector<double>();
         if (converged.size() != locally_owned_.n_elements() ||
-            previous.size() != locally_owned_.n_elements() || state.size() != history_.converged_values().size())
+            previous.size() != locally_owned_.n_elements() ||
+            state.size() != history_.converged_values().size())
           throw std::runtime_error("'" + path + "' is inconsistent (vector sizes)");
 
         loop = in.value<LoopState>();

@@ -48,7 +48,7 @@ namespace indentsim::problems
     double       depth;
     const bool   force_control;
     const double model_force_target; // the force target of the model (quarter: a quarter) [mN]
-    PETScWrappers::MPI::Vector                   residual_derivative, force_gradient, coupled_update;
+    PETScWrappers::MPI::Vector residual_derivative, force_gradient, coupled_update;
     contact::NodeToSurfaceContact::DepthCoupling coupling;
     double depth_start_of_step; // h at the start of the Newton step (line search)
     double depth_update = 0;
@@ -62,8 +62,8 @@ namespace indentsim::problems
     unsigned int               pass = 0;
     // The element part of residual_ and matrix_ belongs to solution_ and was assembled with the
     // matrix: a pass that starts right after an augmentation replaces the contact part only.
-    bool           element_system_current = false;
-    AssemblyResult last_assembly;
+    bool            element_system_current = false;
+    AssemblyResult  last_assembly;
     IncrementStatus failure = IncrementStatus::converged; // why the increment failed
   };
 
@@ -71,10 +71,10 @@ namespace indentsim::problems
   struct IndentationProblem::NewtonPass
   {
     static constexpr double min_alpha = 1. / 16;
-    double previous_norm = std::numeric_limits<double>::infinity();
-    double alpha = 1;     // line-search step length of the last update
-    bool   frozen = false; // the active set is frozen (it cycled)
-    double pass_start_norm = 0; // |R| at the first iterate of this pass
+    double                  previous_norm = std::numeric_limits<double>::infinity();
+    double                  alpha = 1;           // line-search step length of the last update
+    bool                    frozen = false;      // the active set is frozen (it cycled)
+    double                  pass_start_norm = 0; // |R| at the first iterate of this pass
     // |R| at the last two iterates of this pass (for the prediction below): the last one,
     // whether it was the predictor, and the one before if a full Newton step joined them.
     double norm_one_back = 0, norm_two_back = 0;
@@ -106,8 +106,7 @@ namespace indentsim::problems
     }
   } // namespace
 
-  IncrementStatus IndentationProblem::solve_increment(const double                depth_start,
-                                                      StepRecord                 &record,
+  IncrementStatus IndentationProblem::solve_increment(const double depth_start, StepRecord &record,
                                                       const bool                  extrapolate,
                                                       const std::optional<double> target_force)
   {
@@ -145,11 +144,10 @@ namespace indentsim::problems
             return IncrementStatus::converged;
           }
         const double multiplier_change = contact_->augment();
-        pcout_ << "      pass " << increment.pass << "  augmented: penetration "
-               << std::scientific << std::setprecision(2) << summary.max_penetration
-               << " um, active gap " << summary.max_active_gap
-               << " um, largest multiplier change " << multiplier_change << " mN"
-               << std::defaultfloat << std::endl;
+        pcout_ << "      pass " << increment.pass << "  augmented: penetration " << std::scientific
+               << std::setprecision(2) << summary.max_penetration << " um, active gap "
+               << summary.max_active_gap << " um, largest multiplier change " << multiplier_change
+               << " mN" << std::defaultfloat << std::endl;
         ++record.augmentations;
         ++statistics_.augmentations;
       }
@@ -177,20 +175,21 @@ namespace indentsim::problems
 
   // One iterate of a pass: evaluate it, then a line-search step back, a convergence or
   // augmentation decision, or the Newton update to the next iterate.
-  IndentationProblem::IterateOutcome IndentationProblem::newton_iteration(
-    NewtonIncrement &increment, NewtonPass &pass, const unsigned int it, StepRecord &record)
+  IndentationProblem::IterateOutcome
+  IndentationProblem::newton_iteration(NewtonIncrement &increment, NewtonPass &pass,
+                                       const unsigned int it, StepRecord &record)
   {
     const bool   failed = evaluate_iterate(increment, pass, it);
-    const double norm = failed ? std::numeric_limits<double>::infinity() :
-                                 std::hypot(residual_.l2_norm(), pass.force_error);
+    const double norm = failed ? std::numeric_limits<double>::infinity()
+                               : std::hypot(residual_.l2_norm(), pass.force_error);
     // Newton with a backtracking line search on the residual norm: a full step that fails in a
     // material point or raises the residual (typically an active-set change of the contact) is
     // shortened, down to 1/16; contact chattering and large trial strains are damped instead
     // of cutting the whole increment back.
     if (it > 0 && pass.alpha > NewtonPass::min_alpha && !(norm <= pass.previous_norm))
       {
-        pass.alpha =
-          nonlinear::line_search_step(pass.alpha, pass.previous_norm, norm, NewtonPass::min_alpha);
+        pass.alpha = nonlinear::line_search_step(pass.alpha, pass.previous_norm, norm,
+                                                 NewtonPass::min_alpha);
         if (pass.alpha <= NewtonPass::min_alpha && !pass.frozen)
           {
             // The semi-smooth iteration cycles between active sets: freeze the set of the
@@ -211,8 +210,8 @@ namespace indentsim::problems
         if (!pass.search_failed)
           pcout_ << "      material point: " << materials::to_string(pass.assembly.status)
                  << std::endl;
-        increment.failure = pass.search_failed ? IncrementStatus::contact_search_failure :
-                                                 IncrementStatus::material_failure;
+        increment.failure = pass.search_failed ? IncrementStatus::contact_search_failure
+                                               : IncrementStatus::material_failure;
         return IterateOutcome::failed;
       }
     record.bottom_reaction = pass.assembly.bottom_reaction;
@@ -220,10 +219,10 @@ namespace indentsim::problems
     if (it > 0 && pass.alpha == 1 && pass.norm_one_back > 0)
       newton_reduction_.at(increment.pass, it) = norm / pass.norm_one_back;
     if (increment.pass == 0)
-      increment.reference =
-        std::max({increment.reference, norm, case_.solver.absolute_tolerance});
-    pcout_ << "      pass " << increment.pass << " it " << std::setw(2) << it << "  |R| = "
-           << std::scientific << std::setprecision(3) << norm << " mN" << std::defaultfloat;
+      increment.reference = std::max({increment.reference, norm, case_.solver.absolute_tolerance});
+    pcout_ << "      pass " << increment.pass << " it " << std::setw(2) << it
+           << "  |R| = " << std::scientific << std::setprecision(3) << norm << " mN"
+           << std::defaultfloat;
     if (statistics_.linear_solves > 0 && it > 0 &&
         linear_solver_.kind() == linalg::LinearSolver::Kind::iterative)
       pcout_ << "  (last linear solve: " << increment.last_linear_iterations << " iterations)";
@@ -285,20 +284,20 @@ namespace indentsim::problems
     if (!pass.predictor && !increment.force_control && !pass.frozen && pass.alpha == 1 &&
         pass.norm_one_back > 0)
       {
-        const double end_threshold = pass_end_threshold(case_, increment.reference,
-                                                        increment.pass, pass.pass_start_norm);
+        const double end_threshold =
+            pass_end_threshold(case_, increment.reference, increment.pass, pass.pass_start_norm);
         const double predicted = nonlinear::predicted_residual(
-          pass.norm_one_back, pass.norm_two_back, newton_reduction_.at(increment.pass, it));
+            pass.norm_one_back, pass.norm_two_back, newton_reduction_.at(increment.pass, it));
         pass.matrix_assembled = !(predicted <= 0.5 * end_threshold);
       }
     {
       const output::RunStatistics::Scope contact_timer(statistics_.contact);
-      const bool searched = contact_->evaluate(
-        solution_,
-        increment.depth,
-        pass.predictor ? ActiveSet::predictor : (pass.frozen ? ActiveSet::frozen : ActiveSet::free));
+      const bool                         searched =
+          contact_->evaluate(solution_, increment.depth,
+                             pass.predictor ? ActiveSet::predictor
+                                            : (pass.frozen ? ActiveSet::frozen : ActiveSet::free));
       pass.search_failed =
-        Utilities::MPI::max(static_cast<unsigned int>(!searched), communicator_) > 0;
+          Utilities::MPI::max(static_cast<unsigned int>(!searched), communicator_) > 0;
     }
     // An iterate predicted to end its pass while the contact conditions are not met yet ends
     // it by an augmentation: its matrix serves the next pass's first iterate (below), at the
@@ -306,7 +305,7 @@ namespace indentsim::problems
     if (!pass.matrix_assembled && !pass.search_failed &&
         increment.pass < case_.contact.max_augmentations)
       pass.matrix_assembled =
-        !contact_->summary().conditions_met(case_.contact.penetration_tolerance);
+          !contact_->summary().conditions_met(case_.contact.penetration_tolerance);
     if (increment.force_control)
       {
         increment.residual_derivative = 0;
@@ -315,16 +314,16 @@ namespace indentsim::problems
       }
     const bool contact_only = increment.pass > 0 && it == 0 && increment.element_system_current &&
                               !pass.search_failed && reassemble_contact();
-    pass.assembly =
-      pass.search_failed ? AssemblyResult{} :
-      contact_only       ? increment.last_assembly :
-                           assemble(pass.matrix_assembled,
-                                    increment.force_control ? &increment.coupling : nullptr);
+    pass.assembly = pass.search_failed ? AssemblyResult{}
+                    : contact_only
+                        ? increment.last_assembly
+                        : assemble(pass.matrix_assembled,
+                                   increment.force_control ? &increment.coupling : nullptr);
     increment.element_system_current = !increment.force_control && pass.matrix_assembled &&
                                        pass.assembly.status == materials::UpdateStatus::success;
     increment.last_assembly = pass.assembly;
     const bool failed =
-      pass.search_failed || pass.assembly.status != materials::UpdateStatus::success;
+        pass.search_failed || pass.assembly.status != materials::UpdateStatus::success;
     // Force control adds the force equation F(u, h) - F* = 0 to the residual [mN].
     pass.force_error = 0;
     if (increment.force_control)
@@ -333,7 +332,7 @@ namespace indentsim::problems
         increment.residual_derivative.compress(VectorOperation::add);
         increment.force_gradient.compress(VectorOperation::add);
         increment.coupling.force_derivative =
-          Utilities::MPI::sum(increment.coupling.force_derivative, communicator_);
+            Utilities::MPI::sum(increment.coupling.force_derivative, communicator_);
         if (!failed)
           pass.force_error = contact_->summary().force_z - increment.model_force_target;
       }
@@ -342,8 +341,9 @@ namespace indentsim::problems
 
   // Ends the pass when it may: an inexact augmentation, or convergence (with a frozen active
   // set, only if the set is consistent). Empty: the iterate takes a Newton update.
-  std::optional<IndentationProblem::IterateOutcome> IndentationProblem::check_convergence(
-    NewtonIncrement &increment, NewtonPass &pass, const unsigned int it, const double norm)
+  std::optional<IndentationProblem::IterateOutcome>
+  IndentationProblem::check_convergence(NewtonIncrement &increment, NewtonPass &pass,
+                                        const unsigned int it, const double norm)
   {
     // Inexact augmentation: a pass that is not the last need not converge to the final
     // tolerance. Once Newton has cut this pass's residual by 1e-3 (its quadratic phase), or once
@@ -359,7 +359,8 @@ namespace indentsim::problems
         const double tolerance = 2 * case_.contact.penetration_tolerance;
         if (!contact_->summary().conditions_met(tolerance))
           {
-            log_iterate(pcout_, increment.pass, it, "inexact pass: augmented before full convergence");
+            log_iterate(pcout_, increment.pass, it,
+                        "inexact pass: augmented before full convergence");
             return IterateOutcome::augment_early;
           }
       }
@@ -394,13 +395,13 @@ namespace indentsim::problems
     residual_ *= -1.0;
     // Under force control, where the same tolerance serves the bordered solve, no floor.
     const double oversolving_floor =
-      increment.force_control ?
-        0.0 :
-        1e-2 *
-          pass_end_threshold(case_, increment.reference, increment.pass, pass.pass_start_norm) /
-          norm;
+        increment.force_control ? 0.0
+                                : 1e-2 *
+                                      pass_end_threshold(case_, increment.reference, increment.pass,
+                                                         pass.pass_start_norm) /
+                                      norm;
     const double tolerance =
-      nonlinear::linear_tolerance(norm, increment.reference, oversolving_floor);
+        nonlinear::linear_tolerance(norm, increment.reference, oversolving_floor);
     const auto solve = [&](PETScWrappers::MPI::Vector &x, const PETScWrappers::MPI::Vector &b) {
       linalg::LinearSolver::Result linear;
       {
@@ -429,12 +430,12 @@ namespace indentsim::problems
                                  increment.force_gradient * increment.coupled_update;
         if (stiffness > 1e-12 * std::max(1.0, std::abs(increment.model_force_target)))
           increment.depth_update =
-            -(pass.force_error + increment.force_gradient * increment.du) / stiffness;
+              -(pass.force_error + increment.force_gradient * increment.du) / stiffness;
         else
           // No contact stiffness (no node touches the indenter): move the indenter onto the
           // nearest node, and a little beyond, to make contact.
           increment.depth_update =
-            std::max(contact_->min_gap(), 0.0) + 0.01 * mesh_info_.contact_element_size;
+              std::max(contact_->min_gap(), 0.0) + 0.01 * mesh_info_.contact_element_size;
         increment.du.add(increment.depth_update, increment.coupled_update);
       }
     constraints_all_.distribute(increment.du);

@@ -18,8 +18,8 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <cstdlib>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 
@@ -34,36 +34,33 @@ namespace indentsim::problems
                                                Vector<float>              &plastic_strain,
                                                std::vector<Vector<float>> &cauchy)
   {
-    for_each_cell_stress([&](const auto                      &cell,
-                             const std::vector<Tensor<2, 3>> &sigma,
-                             const std::span<const double>    state) {
-        const unsigned int index = cell->active_cell_index();
-        Tensor<2, 3>       mean;
-        double             mises = 0, eps_p = 0;
-        const unsigned int n_q_points = history_.n_q_points(), n_state = history_.n_state();
-        for (unsigned int q = 0; q < n_q_points; ++q)
-          {
-            mean += sigma[q] / n_q_points;
-            const Tensor<2, 3> s = sigma[q] - trace(sigma[q]) / 3. * unit_symmetric_tensor<3>();
-            mises += std::sqrt(1.5 * scalar_product(s, s)) / n_q_points;
-            eps_p +=
-              material_->equivalent_plastic_strain(state.subspan(q * n_state, n_state)) /
-              n_q_points;
-          }
-        von_mises[index] = mises;
-        plastic_strain[index] = eps_p;
-        unsigned int k = 0;
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int j = i; j < 3; ++j)
-            cauchy[k++][index] = mean[i][j];
+    for_each_cell_stress([&](const auto &cell, const std::vector<Tensor<2, 3>> &sigma,
+                             const std::span<const double> state) {
+      const unsigned int index = cell->active_cell_index();
+      Tensor<2, 3>       mean;
+      double             mises = 0, eps_p = 0;
+      const unsigned int n_q_points = history_.n_q_points(), n_state = history_.n_state();
+      for (unsigned int q = 0; q < n_q_points; ++q)
+        {
+          mean += sigma[q] / n_q_points;
+          const Tensor<2, 3> s = sigma[q] - trace(sigma[q]) / 3. * unit_symmetric_tensor<3>();
+          mises += std::sqrt(1.5 * scalar_product(s, s)) / n_q_points;
+          eps_p += material_->equivalent_plastic_strain(state.subspan(q * n_state, n_state)) /
+                   n_q_points;
+        }
+      von_mises[index] = mises;
+      plastic_strain[index] = eps_p;
+      unsigned int k = 0;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = i; j < 3; ++j)
+          cauchy[k++][index] = mean[i][j];
     });
   }
 
   void IndentationProblem::write_vtu(const unsigned int index)
   {
     const unsigned int n_cells_local = triangulation_.n_active_cells();
-    Vector<float>      von_mises(n_cells_local), plastic_strain(n_cells_local),
-      subdomain(n_cells_local);
+    Vector<float> von_mises(n_cells_local), plastic_strain(n_cells_local), subdomain(n_cells_local);
     std::vector<Vector<float>> cauchy(6, Vector<float>(n_cells_local));
     compute_cell_fields(von_mises, plastic_strain, cauchy);
     for (const auto &cell : triangulation_.active_cell_iterators())
@@ -78,7 +75,7 @@ namespace indentsim::problems
     const IndexSet owned = scalar_dofs.locally_owned_dofs();
     const IndexSet relevant = DoFTools::extract_locally_relevant_dofs(scalar_dofs);
     const auto nodal_field = [&](const std::function<double(const contact::ContactNode &)> &value) {
-      PETScWrappers::MPI::Vector field(owned, communicator_);
+      PETScWrappers::MPI::Vector                field(owned, communicator_);
       std::map<types::global_dof_index, double> value_by_dof; // vector dof x -> value
       for (const auto &node : contact_->nodes())
         value_by_dof[node.dofs[0]] = value(node);
@@ -86,7 +83,7 @@ namespace indentsim::problems
         if (cell->is_locally_owned())
           {
             const typename DoFHandler<3>::active_cell_iterator scalar_cell(
-              &triangulation_, cell->level(), cell->index(), &scalar_dofs);
+                &triangulation_, cell->level(), cell->index(), &scalar_dofs);
             for (const unsigned int v : cell->vertex_indices())
               {
                 const auto it = value_by_dof.find(cell->vertex_dof_index(v, 0));
@@ -102,22 +99,20 @@ namespace indentsim::problems
       return to_thread_readable(ghosted, owned, relevant, communicator_);
     };
     const GhostedVector pressure_readable =
-      nodal_field([](const contact::ContactNode &node) { return node.pressure; });
+        nodal_field([](const contact::ContactNode &node) { return node.pressure; });
     const GhostedVector status_readable = nodal_field(
-      [](const contact::ContactNode &node) { return static_cast<double>(node.status); });
+        [](const contact::ContactNode &node) { return static_cast<double>(node.status); });
     const GhostedVector traction_readable =
-      nodal_field([](const contact::ContactNode &node) { return node.traction.norm(); });
+        nodal_field([](const contact::ContactNode &node) { return node.traction.norm(); });
     const GhostedVector u =
-      to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
+        to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
 
     DataOut<3> data_out;
     data_out.attach_dof_handler(dof_handler_);
     const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
-      3, DataComponentInterpretation::component_is_part_of_vector);
-    data_out.add_data_vector(u,
-                             std::vector<std::string>(3, "displacement_um"),
-                             DataOut<3>::type_dof_data,
-                             vector_field);
+        3, DataComponentInterpretation::component_is_part_of_vector);
+    data_out.add_data_vector(u, std::vector<std::string>(3, "displacement_um"),
+                             DataOut<3>::type_dof_data, vector_field);
     data_out.add_data_vector(scalar_dofs, pressure_readable, "contact_pressure_GPa");
     data_out.add_data_vector(scalar_dofs, status_readable, "contact_status");
     data_out.add_data_vector(scalar_dofs, traction_readable, "friction_traction_GPa");
@@ -133,7 +128,7 @@ namespace indentsim::problems
     const MappingQEulerian<3, GhostedVector> deformed(1, dof_handler_, u);
     data_out.build_patches(deformed, 1);
     const std::string pvtu = data_out.write_vtu_with_pvtu_record(
-      output_directory_ + "/", "specimen", index, communicator_, 4, 8);
+        output_directory_ + "/", "specimen", index, communicator_, 4, 8);
     // PVD time = output index: depth is not monotonic over load and unload.
     vtu_records_.emplace_back(index, pvtu);
     if (Utilities::MPI::this_mpi_process(communicator_) == 0)
@@ -162,7 +157,7 @@ namespace indentsim::problems
                   local.push_back(solution_(face->vertex_dof_index(v, d)));
               }
     const std::vector<std::vector<double>> gathered =
-      Utilities::MPI::gather(communicator_, local, 0);
+        Utilities::MPI::gather(communicator_, local, 0);
 
     std::vector<pileup::SurfaceQuad> surface;
     for (const std::vector<double> &values : gathered)
@@ -191,17 +186,17 @@ namespace indentsim::problems
         parameters.contact_radius = contact_radius;
         pileup_results_.push_back(pileup::analyse(snapshot.surface, snapshot.stage, parameters));
         const pileup::PileUpResult &result = pileup_results_.back();
-        std::ofstream grid(output_directory_ + "/" +
-                           (snapshot.stage == "max_depth" ? files::pileup_max_depth_csv :
-                                                            files::pileup_unloaded_csv));
+        std::ofstream               grid(output_directory_ + "/" +
+                                         (snapshot.stage == "max_depth" ? files::pileup_max_depth_csv
+                                                                        : files::pileup_unloaded_csv));
         pileup::write_grid_csv(grid, result.grid);
         pcout_ << std::defaultfloat << std::setprecision(4) << "Pile-up (" << result.stage
                << ", depth " << result.depth << " um): max height " << result.max_pileup
                << " um at r = " << result.max_pileup_radius << " um, azimuth "
                << result.max_pileup_azimuth_deg << " deg; analysis radius "
-               << result.analysis_radius << " um, dominant fold "
-               << result.spectrum.dominant_fold << ", symmetry fold beyond the mesh imprint "
-               << result.spectrum.symmetry_fold << std::endl;
+               << result.analysis_radius << " um, dominant fold " << result.spectrum.dominant_fold
+               << ", symmetry fold beyond the mesh imprint " << result.spectrum.symmetry_fold
+               << std::endl;
       }
     if (pileup_results_.empty())
       return;

@@ -1,11 +1,11 @@
 #include "problems/IndentationProblem.h"
 
-#include "indenter/IndenterFactory.h"
 #include "case/CaseFile.h"
+#include "fem/FiniteStrainElement.h"
+#include "indenter/IndenterFactory.h"
 #include "io/Version.h"
 #include "materials/MaterialFactory.h"
 #include "output/Checkpoint.h"
-#include "fem/FiniteStrainElement.h"
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/multithread_info.h>
@@ -24,10 +24,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <numbers>
 #include <filesystem>
 #include <iomanip>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -37,22 +37,20 @@ namespace indentsim::problems
   using namespace dealii;
   using fem::CellContribution;
   using fem::CellWorkspace;
-  using fem::GhostedVector;
-  using fem::to_thread_readable;
   using fem::copy_to_thread_readable;
-  using fem::run_on_owned_cells;
   using fem::element_residual_and_tangent;
+  using fem::GhostedVector;
+  using fem::run_on_owned_cells;
+  using fem::to_thread_readable;
   using linalg::LinearSolver;
   using output::RunStatistics;
 
-  IndentationProblem::IndentationProblem(const io::Case &the_case,
-                                         const MPI_Comm  communicator,
-                                         const bool      verbose)
+  IndentationProblem::IndentationProblem(const io::Case &the_case, const MPI_Comm communicator,
+                                         const bool verbose)
     : case_(the_case)
     , communicator_(communicator)
     , pcout_(std::cout, verbose && Utilities::MPI::this_mpi_process(communicator) == 0)
-    , triangulation_(communicator,
-                     Triangulation<3>::limit_level_difference_at_vertices,
+    , triangulation_(communicator, Triangulation<3>::limit_level_difference_at_vertices,
                      parallel::distributed::Triangulation<3>::default_setting)
     , fe_(FE_Q<3>(1), 3)
     , dof_handler_(triangulation_)
@@ -60,7 +58,8 @@ namespace indentsim::problems
     , indenter_(indenter::create_indenter(the_case.indenter))
     , use_f_bar_(the_case.specimen.f_bar)
     , linear_solver_(communicator)
-  {}
+  {
+  }
 
   IndentationProblem::~IndentationProblem()
   {
@@ -75,8 +74,8 @@ namespace indentsim::problems
   {
     return dof_handler_.n_dofs();
   }
-  unsigned int IndentationProblem::count_owned_constraints(
-    const AffineConstraints<double> &constraints) const
+  unsigned int
+  IndentationProblem::count_owned_constraints(const AffineConstraints<double> &constraints) const
   {
     unsigned int local = 0;
     for (const auto &line : constraints.get_lines())
@@ -108,15 +107,15 @@ namespace indentsim::problems
     constraints_all_.reinit(locally_relevant_);
     constraints_all_.merge(constraints_hanging_);
     const Functions::ZeroFunction<3> zero(3);
-    VectorTools::interpolate_boundary_values(
-      dof_handler_, mesh::boundary::bottom, zero, constraints_all_);
+    VectorTools::interpolate_boundary_values(dof_handler_, mesh::boundary::bottom, zero,
+                                             constraints_all_);
     if (mesh_info_.quarter)
       {
         const FEValuesExtractors::Scalar ux(0), uy(1);
-        VectorTools::interpolate_boundary_values(
-          dof_handler_, mesh::boundary::x_min, zero, constraints_all_, fe_.component_mask(ux));
-        VectorTools::interpolate_boundary_values(
-          dof_handler_, mesh::boundary::y_min, zero, constraints_all_, fe_.component_mask(uy));
+        VectorTools::interpolate_boundary_values(dof_handler_, mesh::boundary::x_min, zero,
+                                                 constraints_all_, fe_.component_mask(ux));
+        VectorTools::interpolate_boundary_values(dof_handler_, mesh::boundary::y_min, zero,
+                                                 constraints_all_, fe_.component_mask(uy));
       }
     // The surface node under the apex stays on the indentation axis (u_x = u_y = 0; in the
     // quarter model the symmetry planes impose it already). Node-to-surface contact only keeps
@@ -149,7 +148,8 @@ namespace indentsim::problems
 
     DynamicSparsityPattern dsp(locally_relevant_);
     DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_all_, false);
-    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_, communicator_, locally_relevant_);
+    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_, communicator_,
+                                               locally_relevant_);
     matrix_.reinit(locally_owned_, locally_owned_, dsp, communicator_);
     matrix_.compress(VectorOperation::insert); // final pattern, off-diagonal columns compressed
     scatter_.build(dof_handler_, constraints_all_, matrix_);
@@ -163,31 +163,26 @@ namespace indentsim::problems
     history_.reinit(triangulation_.n_active_cells(), 8, material_->n_state_variables());
     // A single crystal: one lattice orientation everywhere (isotropic models ignore it).
     const dealii::Tensor<2, 3> orientation =
-      materials::create_orientation(case_.material.orientation);
+        materials::create_orientation(case_.material.orientation);
     for (std::size_t i = 0; i < history_.n_points(); ++i)
       material_->oriented_initial_state(history_.converged_point(i), orientation);
     history_.converged_changed();
 
-    const double penalty = case_.contact.penalty > 0 ?
-                             case_.contact.penalty :
-                             30. * material_->reference_modulus() /
-                               mesh_info_.contact_element_size;
-    contact_ = std::make_unique<contact::NodeToSurfaceContact>(
-      *indenter_, penalty, case_.contact.friction_coefficient);
+    const double penalty = case_.contact.penalty > 0 ? case_.contact.penalty
+                                                     : 30. * material_->reference_modulus() /
+                                                           mesh_info_.contact_element_size;
+    contact_ = std::make_unique<contact::NodeToSurfaceContact>(*indenter_, penalty,
+                                                               case_.contact.friction_coefficient);
     contact_->set_predictor_activation_depth(case_.contact.penetration_tolerance);
-    contact_->setup(dof_handler_,
-                    constraints_hanging_,
-                    mesh::boundary::top,
-                    mesh_info_.refined_half_x,
-                    mesh_info_.refined_half_y,
-                    communicator_);
+    contact_->setup(dof_handler_, constraints_hanging_, mesh::boundary::top,
+                    mesh_info_.refined_half_x, mesh_info_.refined_half_y, communicator_);
 
     linear_solver_.setup(dof_handler_,
                          LinearSolver::choose_kind(case_.solver.linear_solver, n_dofs()),
                          material_->symmetric_tangent() && contact_->symmetric_tangent());
 
-    pcout_ << "Mesh: " << n_cells() << " cells, " << n_dofs() << " DOFs, "
-           << n_constrained_dofs() << " constrained DOFs (hanging nodes and supports), "
+    pcout_ << "Mesh: " << n_cells() << " cells, " << n_dofs() << " DOFs, " << n_constrained_dofs()
+           << " constrained DOFs (hanging nodes and supports), "
            << "contact element size " << mesh_info_.contact_element_size << " um, "
            << Utilities::MPI::n_mpi_processes(communicator_) << " MPI rank(s)\n"
            << "Contact: penalty " << penalty << " GPa/um, contact-surface area "
@@ -210,13 +205,13 @@ namespace indentsim::problems
     // units of 1000, p4est's integer weights), and p4est repartitions the cells in its
     // space-filling-curve order. The partition changes no result beyond round-off.
     const double a_c =
-      std::sqrt(indenter_->projected_area(case_.loading.max_depth) / std::numbers::pi);
+        std::sqrt(indenter_->projected_area(case_.loading.max_depth) / std::numbers::pi);
     const double radius = 2.5 * a_c;
     const auto   weight = [radius, extra_cost](
-                          const parallel::distributed::Triangulation<3>::cell_iterator &cell,
-                          const parallel::distributed::Triangulation<3>::CellStatus) {
-      return static_cast<unsigned int>(
-        1000 * (1.0 + (cell->center().norm() < radius ? extra_cost : 0.0)));
+                            const parallel::distributed::Triangulation<3>::cell_iterator &cell,
+                            const parallel::distributed::Triangulation<3>::CellStatus) {
+      return static_cast<unsigned int>(1000 *
+                                       (1.0 + (cell->center().norm() < radius ? extra_cost : 0.0)));
     };
     auto connection = triangulation_.signals.weight.connect(weight);
     triangulation_.repartition();
@@ -239,19 +234,13 @@ namespace indentsim::problems
 
     copy_to_thread_readable(solution_, solution_readable_);
     const GhostedVector &u = solution_readable_;
-    const auto worker = [&](const DoFHandler<3>::active_cell_iterator &cell,
-                            CellWorkspace                             &workspace,
-                            CellContribution                          &contribution) {
+    const auto           worker = [&](const DoFHandler<3>::active_cell_iterator &cell,
+                            CellWorkspace &workspace, CellContribution &contribution) {
       workspace.reinit(cell, u);
-      contribution.status = element_residual_and_tangent(*material_,
-                                                         use_f_bar_,
-                                                         workspace.u_local,
-                                                         history_.converged(cell),
-                                                         history_.current(cell),
-                                                         workspace.scratch,
-                                                         contribution.vector,
-                                                         with_matrix ? &contribution.matrix :
-                                                                       nullptr);
+      contribution.status = element_residual_and_tangent(
+                    *material_, use_f_bar_, workspace.u_local, history_.converged(cell),
+                    history_.current(cell), workspace.scratch, contribution.vector,
+          with_matrix ? &contribution.matrix : nullptr);
       cell->get_dof_indices(contribution.dof_indices);
       contribution.cell_index = cell->active_cell_index();
       // Bottom reaction: the internal force at the supported nodes (z components).
@@ -271,16 +260,14 @@ namespace indentsim::problems
       if (with_matrix && scatter_.is_fast(contribution.cell_index))
         {
           scatter_.add(contribution.cell_index, contribution.matrix);
-          constraints_all_.distribute_local_to_global(contribution.vector,
-                                                      contribution.dof_indices,
+          constraints_all_.distribute_local_to_global(contribution.vector, contribution.dof_indices,
                                                       residual_);
         }
       else if (with_matrix)
-        constraints_all_.distribute_local_to_global(
-          contribution.matrix, contribution.vector, contribution.dof_indices, matrix_, residual_);
+        constraints_all_.distribute_local_to_global(contribution.matrix, contribution.vector,
+                                                    contribution.dof_indices, matrix_, residual_);
       else
-        constraints_all_.distribute_local_to_global(contribution.vector,
-                                                    contribution.dof_indices,
+        constraints_all_.distribute_local_to_global(contribution.vector, contribution.dof_indices,
                                                     residual_);
       local_reaction += contribution.sums[0];
     };
@@ -306,7 +293,8 @@ namespace indentsim::problems
     // locally owned cells, summed over ranks, is the total reaction.
     result.bottom_reaction = Utilities::MPI::sum(local_reaction, communicator_);
     const unsigned int failed = Utilities::MPI::max(
-      static_cast<unsigned int>(result.status != materials::UpdateStatus::success), communicator_);
+        static_cast<unsigned int>(result.status != materials::UpdateStatus::success),
+        communicator_);
     if (failed && result.status == materials::UpdateStatus::success)
       result.status = materials::UpdateStatus::local_newton_failed;
     return result;
@@ -342,10 +330,11 @@ namespace indentsim::problems
     // to twice their depth step, when they moved the same way; at a reversal (plastic loading to
     // elastic unloading) the last slope says nothing, and the Newton update finds the depth.
     const bool same_direction =
-      (target_force - force_converged_) * (force_converged_ - force_previous_) > 0;
+        (target_force - force_converged_) * (force_converged_ - force_previous_) > 0;
     if (has_previous_ && same_direction)
       {
-        const double slope = (depth_converged_ - depth_previous_) / (force_converged_ - force_previous_);
+        const double slope =
+            (depth_converged_ - depth_previous_) / (force_converged_ - force_previous_);
         const double step = slope * (target_force - force_converged_);
         const double limit = 2 * std::abs(depth_converged_ - depth_previous_);
         if (std::isfinite(step))
@@ -362,7 +351,7 @@ namespace indentsim::problems
     for (const contact::ContactNode &node : contact_->nodes())
       {
         indicator(node.dofs[0]) =
-          node.active ? node.pressure : node.lambda - contact_->penalty() * node.gap;
+            node.active ? node.pressure : node.lambda - contact_->penalty() * node.gap;
         indicator(node.dofs[1]) = 1;
       }
     indicator.compress(VectorOperation::insert);
@@ -423,29 +412,22 @@ namespace indentsim::problems
   }
 
   void IndentationProblem::for_each_cell_stress(
-    const std::function<void(const DoFHandler<3>::active_cell_iterator &,
-                             const std::vector<Tensor<2, 3>> &,
-                             std::span<const double>)> &visit)
+      const std::function<void(const DoFHandler<3>::active_cell_iterator &,
+                               const std::vector<Tensor<2, 3>> &, std::span<const double>)> &visit)
   {
     CellWorkspace             workspace(fe_, history_.n_q_points());
     std::vector<Tensor<2, 3>> cauchy(history_.n_q_points());
     std::vector<double>       state(history_.cell_length());
     const GhostedVector       u =
-      to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
+        to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
     for (const auto &cell : dof_handler_.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
           continue;
         workspace.reinit(cell, u);
-        element_residual_and_tangent(*material_,
-                                     use_f_bar_,
-                                     workspace.u_local,
-                                     history_.converged(cell),
-                                     state,
-                                     workspace.scratch,
-                                     workspace.r_local,
-                                     nullptr,
-                                     &cauchy);
+        element_residual_and_tangent(*material_, use_f_bar_, workspace.u_local,
+                                     history_.converged(cell), state, workspace.scratch,
+                                     workspace.r_local, nullptr, &cauchy);
         visit(cell, cauchy, state);
       }
   }

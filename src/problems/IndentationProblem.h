@@ -11,13 +11,13 @@
 #pragma once
 
 #include "analysis/PileUp.h"
+#include "case/Case.h"
 #include "contact/ContactArea.h"
 #include "contact/NodeToSurfaceContact.h"
 #include "fem/CellWorkspace.h"
 #include "fem/FiniteStrainElement.h"
 #include "fem/QuadraturePointHistory.h"
 #include "indenter/IndenterSurface.h"
-#include "case/Case.h"
 #include "linalg/LinearSolver.h"
 #include "linalg/MatrixScatter.h"
 #include "materials/MaterialModel.h"
@@ -105,13 +105,13 @@ namespace indentsim::problems
       return pileup_results_;
     }
 
-    unsigned int           n_cells() const;
-    unsigned int           n_dofs() const;
-    unsigned int           n_constrained_dofs() const;
-    unsigned int           n_hanging_node_constraints() const;
-    const mesh::MeshInfo  &mesh_info() const { return mesh_info_; }
-    double                 symmetry_factor() const { return mesh_info_.quarter ? 4.0 : 1.0; }
-    const dealii::DoFHandler<3>              &dof_handler() const { return dof_handler_; }
+    unsigned int                 n_cells() const;
+    unsigned int                 n_dofs() const;
+    unsigned int                 n_constrained_dofs() const;
+    unsigned int                 n_hanging_node_constraints() const;
+    const mesh::MeshInfo        &mesh_info() const { return mesh_info_; }
+    double                       symmetry_factor() const { return mesh_info_.quarter ? 4.0 : 1.0; }
+    const dealii::DoFHandler<3> &dof_handler() const { return dof_handler_; }
     const dealii::PETScWrappers::MPI::Vector &solution() const { return solution_; }
 
   private:
@@ -137,7 +137,8 @@ namespace indentsim::problems
     void balance_plastic_zone();
     void make_constraints();
     // Number of constrained dofs owned by this rank, summed over ranks.
-    unsigned int count_owned_constraints(const dealii::AffineConstraints<double> &constraints) const;
+    unsigned int
+    count_owned_constraints(const dealii::AffineConstraints<double> &constraints) const;
 
     // The augmented-Lagrangian Newton of one increment, in steps (IndentationNewton.cc).
     struct NewtonIncrement;
@@ -147,13 +148,11 @@ namespace indentsim::problems
     IterateOutcome newton_iteration(NewtonIncrement &increment, NewtonPass &pass, unsigned int it,
                                     StepRecord &record);
     bool           evaluate_iterate(NewtonIncrement &increment, NewtonPass &pass, unsigned int it);
-    std::optional<IterateOutcome> check_convergence(NewtonIncrement &increment,
-                                                    NewtonPass &pass, unsigned int it,
-                                                    double norm);
-    nonlinear::IncrementStatus newton_update(NewtonIncrement &increment, NewtonPass &pass,
-                                             double norm);
-    void fill_converged_record(double depth, StepRecord &record);
-
+    std::optional<IterateOutcome> check_convergence(NewtonIncrement &increment, NewtonPass &pass,
+                                                    unsigned int it, double norm);
+    nonlinear::IncrementStatus    newton_update(NewtonIncrement &increment, NewtonPass &pass,
+                                                double norm);
+    void                          fill_converged_record(double depth, StepRecord &record);
 
     // Projected contact area and radius of the model (not symmetry-multiplied) from the
     // interpolated contact indicator (contact/ContactArea.h).
@@ -162,9 +161,9 @@ namespace indentsim::problems
     // Evaluates every locally owned cell at the current displacement from the converged state
     // (no tangent) and passes the Cauchy stress and the updated state of its quadrature points.
     void for_each_cell_stress(
-      const std::function<void(const dealii::DoFHandler<3>::active_cell_iterator &,
-                               const std::vector<dealii::Tensor<2, 3>> &,
-                               std::span<const double>)> &visit);
+        const std::function<void(const dealii::DoFHandler<3>::active_cell_iterator &,
+                                 const std::vector<dealii::Tensor<2, 3>> &,
+                                 std::span<const double>)> &visit);
 
     // Outputs of the run (IndentationOutput.cc).
     void write_vtu(unsigned int index);
@@ -177,7 +176,7 @@ namespace indentsim::problems
     std::vector<analysis::pileup::SurfaceQuad> gather_top_surface() const;
     struct SurfaceSnapshot
     {
-      std::string                                stage; // "max_depth" | "unloaded"
+      std::string                                stage;     // "max_depth" | "unloaded"
       double                                     depth = 0; // [um]
       std::vector<analysis::pileup::SurfaceQuad> surface;
     };
@@ -191,12 +190,12 @@ namespace indentsim::problems
     // checkpoints store it byte for byte.
     struct LoopState
     {
-      unsigned int                segment = 0;         // index into the programme
-      bool                        in_segment = false;  // false: `segment` starts afresh
+      unsigned int                segment = 0;          // index into the programme
+      bool                        in_segment = false;   // false: `segment` starts afresh
       double                      value = 0, depth = 0; // control value (depth or force) and depth
       nonlinear::IncrementControl control;
       unsigned int                step = 0, total_newton = 0, vtu_index = 0;
-      double max_force = 0, contact_radius_at_max = 0, value_at_max = 0;
+      double                      max_force = 0, contact_radius_at_max = 0, value_at_max = 0;
       double wall_time = 0; // of the run so far, the parts before a resume included [s]
     };
     // The run through the loading programme, in steps (IndentationRun.cc).
@@ -219,16 +218,16 @@ namespace indentsim::problems
     std::uint64_t case_fingerprint() const;
     std::string   checkpoint_directory() const;
 
-    const io::Case                                  &case_;
-    MPI_Comm                                         communicator_;
-    dealii::ConditionalOStream                       pcout_;
+    const io::Case                                 &case_;
+    MPI_Comm                                        communicator_;
+    dealii::ConditionalOStream                      pcout_;
     dealii::parallel::distributed::Triangulation<3> triangulation_;
-    mesh::MeshInfo                                   mesh_info_;
-    dealii::FESystem<3>                              fe_;
-    dealii::DoFHandler<3>                            dof_handler_;
-    dealii::IndexSet                                 locally_owned_, locally_relevant_;
-    dealii::AffineConstraints<double>                constraints_hanging_;
-    dealii::AffineConstraints<double>                constraints_all_; // Dirichlet and hanging nodes
+    mesh::MeshInfo                                  mesh_info_;
+    dealii::FESystem<3>                             fe_;
+    dealii::DoFHandler<3>                           dof_handler_;
+    dealii::IndexSet                                locally_owned_, locally_relevant_;
+    dealii::AffineConstraints<double>               constraints_hanging_;
+    dealii::AffineConstraints<double>               constraints_all_; // Dirichlet and hanging nodes
 
     std::unique_ptr<materials::MaterialModel>      material_;
     std::unique_ptr<indenter::IndenterSurface>     indenter_;
@@ -242,12 +241,12 @@ namespace indentsim::problems
     // The converged solution before it (owned) and the depths of both: the predictor of the
     // next increment extrapolates linearly from them.
     dealii::PETScWrappers::MPI::Vector solution_previous_;
-    double depth_converged_ = 0, depth_previous_ = 0, depth_trial_ = 0;
+    double                             depth_converged_ = 0, depth_previous_ = 0, depth_trial_ = 0;
     // Indenter force (whole indent) of the last two converged increments [mN].
     double force_converged_ = 0, force_previous_ = 0, force_trial_ = 0;
     // |indenter force| of the model [mN] at the last converged and at the trial state.
-    double converged_force_scale_ = 0, trial_force_scale_ = 0;
-    bool   has_previous_ = false;
+    double                             converged_force_scale_ = 0, trial_force_scale_ = 0;
+    bool                               has_previous_ = false;
     dealii::PETScWrappers::MPI::Vector residual_; // owned
 
     // Material states of the quadrature points, converged and current.
@@ -257,13 +256,13 @@ namespace indentsim::problems
     linalg::MatrixScatter scatter_; // fast path of the matrix assembly
     // Residual reductions of the Newton iterations in the last increment that reached them:
     // steers which iterates assemble their residual first; no effect on results.
-    nonlinear::ResidualReductions newton_reduction_;
-    output::RunStatistics                              statistics_;
-    std::vector<StepRecord>                            records_;
-    std::vector<analysis::pileup::PileUpResult>        pileup_results_;
-    std::vector<std::pair<double, std::string>>        vtu_records_; // (output index, pvtu file)
-    std::string                                        output_directory_;
-    std::optional<unsigned int>                        stop_after_step_;
-    dealii::Timer                                      wall_timer_;
+    nonlinear::ResidualReductions               newton_reduction_;
+    output::RunStatistics                       statistics_;
+    std::vector<StepRecord>                     records_;
+    std::vector<analysis::pileup::PileUpResult> pileup_results_;
+    std::vector<std::pair<double, std::string>> vtu_records_; // (output index, pvtu file)
+    std::string                                 output_directory_;
+    std::optional<unsigned int>                 stop_after_step_;
+    dealii::Timer                               wall_timer_;
   };
 } // namespace indentsim::problems

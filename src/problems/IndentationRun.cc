@@ -31,7 +31,8 @@ namespace indentsim::problems
     RunContext(const io::Case &the_case, const Timer &timer)
       : programme(the_case.loading)
       , timer(timer)
-    {}
+    {
+    }
 
     const nonlinear::LoadingProgramme programme;
     LoopState                         loop;
@@ -99,9 +100,8 @@ namespace indentsim::problems
     if (resume)
       read_checkpoint(context.loop, context.snapshots);
     if (Utilities::MPI::this_mpi_process(communicator_) == 0)
-      context.recorder.open(output_directory_,
-                            {n_cells(), n_dofs(), n_constrained,
-                             Utilities::MPI::n_mpi_processes(communicator_)});
+      context.recorder.open(output_directory_, {n_cells(), n_dofs(), n_constrained,
+                                                Utilities::MPI::n_mpi_processes(communicator_)});
     wall_timer_.restart();
     context.wall_offset = context.loop.wall_time;
     if (resume)
@@ -163,14 +163,13 @@ namespace indentsim::problems
   {
     LoopState                         &loop = context.loop;
     const nonlinear::LoadingProgramme &programme = context.programme;
-    loop.control.increment =
-      std::min(loop.control.increment, programme.maximum / segment.steps);
+    loop.control.increment = std::min(loop.control.increment, programme.maximum / segment.steps);
     const double depth_before = loop.depth, force_before = records_.back().force;
     StepRecord   record;
     const auto   solve = [&](const double target, const bool extrapolate) {
-      return programme.force_control ?
-               solve_increment(depth_guess_for_force(target), record, extrapolate, target) :
-               solve_increment(target, record, extrapolate);
+      return programme.force_control
+                   ? solve_increment(depth_guess_for_force(target), record, extrapolate, target)
+                   : solve_increment(target, record, extrapolate);
     };
     const auto report = [&](const nonlinear::RetryEvent &event) {
       pcout_ << "    step " << event.step << " to " << event.value << programme.unit() << ": "
@@ -189,18 +188,17 @@ namespace indentsim::problems
       context.recorder.log_note(note.str());
     };
     unsigned int cutbacks = 0;
-    loop.value = nonlinear::solve_with_cutbacks(programme, segment, loop.control, loop.value,
-                                                loop.step, case_.loading.max_cutbacks, solve,
-                                                [this]() { reject_increment(); }, report,
-                                                cutbacks);
+    loop.value = nonlinear::solve_with_cutbacks(
+        programme, segment, loop.control, loop.value, loop.step, case_.loading.max_cutbacks, solve,
+        [this]() { reject_increment(); }, report, cutbacks);
     loop.depth = record.depth;
     if (programme.force_control && loop.depth > case_.loading.max_depth)
       throw std::runtime_error(
-        "force control: the indenter reached the depth " + std::to_string(loop.depth) +
-        " um at the force " + std::to_string(record.force) +
-        " mN, beyond loading.max_depth = " + std::to_string(case_.loading.max_depth) +
-        " um, the depth the mesh is designed for; lower loading.max_force or raise "
-        "loading.max_depth with specimen.refined_region");
+          "force control: the indenter reached the depth " + std::to_string(loop.depth) +
+          " um at the force " + std::to_string(record.force) +
+          " mN, beyond loading.max_depth = " + std::to_string(case_.loading.max_depth) +
+          " um, the depth the mesh is designed for; lower loading.max_force or raise "
+          "loading.max_depth with specimen.refined_region");
     record.cutbacks = cutbacks;
     complete_step(context, segment, record, depth_before, force_before);
   }
@@ -222,16 +220,15 @@ namespace indentsim::problems
     records_.push_back(record);
     loop.max_force = std::max(loop.max_force, record.force);
 
-    const bool reached =
-      segment.kind == SegmentKind::hold ?
-        loop.control.segment_steps >= segment.steps :
-        std::abs(loop.value - segment.target) <= 1e-12 * programme.maximum;
+    const bool reached = segment.kind == SegmentKind::hold
+                             ? loop.control.segment_steps >= segment.steps
+                             : std::abs(loop.value - segment.target) <= 1e-12 * programme.maximum;
     // Depth-controlled unloading ends when contact is lost or the force has fallen below 0.1 %
     // of its maximum (the last node leaving the indenter makes the active set toggle; nothing
     // measurable happens below that force).
-    const bool lost = segment.kind == SegmentKind::unload && !programme.force_control &&
-                      (record.n_active_nodes == 0 || loop.depth <= 0 ||
-                       record.force <= 1e-3 * loop.max_force);
+    const bool lost =
+        segment.kind == SegmentKind::unload && !programme.force_control &&
+        (record.n_active_nodes == 0 || loop.depth <= 0 || record.force <= 1e-3 * loop.max_force);
     const bool segment_done = reached || lost;
     const bool at_max = segment_done && segment.kind == SegmentKind::load;
     const bool finished = segment_done && loop.segment + 1 == programme.segments.size();
@@ -292,7 +289,7 @@ namespace indentsim::problems
     const bool   stop_local = output::checkpoint::StopRequest::requested() ||
                             (context.stop_after && loop.step >= *context.stop_after);
     const bool due_local =
-      interval > 0 && wall_timer_.wall_time() - context.last_checkpoint >= interval;
+        interval > 0 && wall_timer_.wall_time() - context.last_checkpoint >= interval;
     const unsigned int stop = Utilities::MPI::max(stop_local ? 1u : 0u, communicator_);
     const unsigned int due = Utilities::MPI::max(due_local ? 1u : 0u, communicator_);
     if (stop || due)
@@ -305,11 +302,11 @@ namespace indentsim::problems
     if (!stop)
       return false;
     const std::string case_name =
-      case_.source_file.empty() ? std::string("CASE.yaml") : case_.source_file;
+        case_.source_file.empty() ? std::string("CASE.yaml") : case_.source_file;
     pcout_ << "stopped at step " << loop.step << " (depth " << std::setprecision(6) << loop.depth
            << " um); resume with: indentsim run " << case_name << " --resume" << std::endl;
-    context.recorder.log_note("stopped at step " + std::to_string(loop.step) +
-                              "; checkpoint in " + checkpoint_directory());
+    context.recorder.log_note("stopped at step " + std::to_string(loop.step) + "; checkpoint in " +
+                              checkpoint_directory());
     return true;
   }
 
@@ -353,9 +350,9 @@ namespace indentsim::problems
     description.threads = MultithreadInfo::n_threads();
     description.final_value = loop.value_at_max;
     description.final_value_name =
-      context.programme.force_control ? "depth_at_max_force_um" : "force_at_max_depth_mN";
-    output::write_run_summary(output_directory_ + "/" + io::output_files::run_summary,
-                              description, statistics_, communicator_);
+        context.programme.force_control ? "depth_at_max_force_um" : "force_at_max_depth_mN";
+    output::write_run_summary(output_directory_ + "/" + io::output_files::run_summary, description,
+                              statistics_, communicator_);
     // A finished run needs no checkpoint (an earlier one, if any, is removed).
     MPI_Barrier(communicator_);
     if (root)

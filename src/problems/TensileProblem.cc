@@ -5,8 +5,8 @@
 #include "materials/MaterialFactory.h"
 #include "materials/crystal/Orientation.h"
 
-#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/function.h>
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -32,14 +32,14 @@ namespace indentsim::problems
   using namespace dealii;
   using fem::CellContribution;
   using fem::CellWorkspace;
-  using fem::GhostedVector;
-  using fem::to_thread_readable;
-  using fem::run_on_owned_cells;
   using fem::element_residual_and_tangent;
+  using fem::GhostedVector;
+  using fem::run_on_owned_cells;
+  using fem::to_thread_readable;
   using linalg::LinearSolver;
   using nonlinear::IncrementStatus;
-  using output::RunStatistics;
   using output::RunDescription;
+  using output::RunStatistics;
   using output::write_run_summary;
 
   namespace
@@ -53,7 +53,7 @@ namespace indentsim::problems
     std::string format_duration(const double seconds)
     {
       std::ostringstream s;
-      const long total = std::lround(seconds);
+      const long         total = std::lround(seconds);
       s << total / 60 << "m" << std::setw(2) << std::setfill('0') << total % 60 << "s";
       return s.str();
     }
@@ -66,16 +66,15 @@ namespace indentsim::problems
 
     void write_csv_row(std::ostream &out, const TensileRecord &r)
     {
-      out << r.step << ',' << std::setprecision(12) << r.log_strain << ',' << r.true_stress
-          << ',' << r.engineering_strain << ',' << r.force << ',' << r.newton_iterations << ','
+      out << r.step << ',' << std::setprecision(12) << r.log_strain << ',' << r.true_stress << ','
+          << r.engineering_strain << ',' << r.force << ',' << r.newton_iterations << ','
           << r.cutbacks << ',' << std::setprecision(4) << r.wall_time << '\n'
           << std::flush;
     }
   } // namespace
 
-  TensileProblem::TensileProblem(const io::Case &the_case,
-                                 const MPI_Comm  communicator,
-                                 const bool      verbose)
+  TensileProblem::TensileProblem(const io::Case &the_case, const MPI_Comm communicator,
+                                 const bool verbose)
     : case_(the_case)
     , communicator_(communicator)
     , pcout_(std::cout, verbose && Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -87,7 +86,8 @@ namespace indentsim::problems
     , linear_solver_(communicator)
     , n_per_side_(the_case.specimen.elements_per_side)
     , edge_length_(the_case.specimen.elements_per_side) // elements of 1 um
-  {}
+  {
+  }
 
   TensileProblem::~TensileProblem()
   {
@@ -129,9 +129,9 @@ namespace indentsim::problems
     SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_, communicator_,
                                                locally_relevant_);
     matrix_.reinit(locally_owned_, locally_owned_, dsp, communicator_);
-    linear_solver_.setup(dof_handler_,
-                         LinearSolver::choose_kind(case_.solver.linear_solver, dof_handler_.n_dofs()),
-                         material_->symmetric_tangent());
+    linear_solver_.setup(
+        dof_handler_, LinearSolver::choose_kind(case_.solver.linear_solver, dof_handler_.n_dofs()),
+        material_->symmetric_tangent());
     solution_.reinit(locally_owned_, locally_relevant_, communicator_);
     solution_converged_.reinit(locally_owned_, locally_relevant_, communicator_);
     rhs_.reinit(locally_owned_, communicator_);
@@ -139,13 +139,13 @@ namespace indentsim::problems
 
     // Orientations: one for the whole cube, or one random orientation per element numbered by
     // the element's position, so that every MPI partition sees the same polycrystal.
-    const auto        &specimen = case_.specimen;
-    const bool         per_element = (specimen.grains == io::Grains::per_element);
-    const unsigned int n_cells_total = n_per_side_ * n_per_side_ * n_per_side_;
+    const auto                     &specimen = case_.specimen;
+    const bool                      per_element = (specimen.grains == io::Grains::per_element);
+    const unsigned int              n_cells_total = n_per_side_ * n_per_side_ * n_per_side_;
     const std::vector<Tensor<2, 3>> orientations =
-      per_element ?
-        materials::random_orientations(n_cells_total, specimen.seed) :
-        std::vector<Tensor<2, 3>>{materials::create_orientation(case_.material.orientation)};
+        per_element
+            ? materials::random_orientations(n_cells_total, specimen.seed)
+            : std::vector<Tensor<2, 3>>{materials::create_orientation(case_.material.orientation)};
 
     history_.reinit(triangulation_.n_active_cells(), 8, material_->n_state_variables());
     const unsigned int n_q_points = history_.n_q_points(), n_state = history_.n_state();
@@ -162,22 +162,22 @@ namespace indentsim::problems
         }
     history_.converged_changed();
 
-    pcout_ << "Tensile cube (" << case_.material.model << "): " << n_per_side_ << "^3 = "
-           << n_cells() << " elements of 1 um, edge " << edge_length_ << " um, " << n_dofs()
-           << " DOFs, grains " << specimen.grains
+    pcout_ << "Tensile cube (" << case_.material.model << "): " << n_per_side_
+           << "^3 = " << n_cells() << " elements of 1 um, edge " << edge_length_ << " um, "
+           << n_dofs() << " DOFs, grains " << specimen.grains
            << (per_element ? " (seed " + std::to_string(specimen.seed) + ")" : std::string())
            << ", F-bar " << (use_f_bar_ ? "on" : "off") << ", "
            << Utilities::MPI::n_mpi_processes(communicator_) << " MPI rank(s)" << std::endl;
   }
 
   void TensileProblem::make_dirichlet_constraints(const double               top_increment,
-                                                AffineConstraints<double> &constraints) const
+                                                  AffineConstraints<double> &constraints) const
   {
     constraints.clear();
     constraints.reinit(locally_relevant_);
     const Functions::ZeroFunction<3>     zero(3);
     const Functions::ConstantFunction<3> top(std::vector<double>{0., 0., top_increment});
-    const auto component = [this](const unsigned int c) {
+    const auto                           component = [this](const unsigned int c) {
       return fe_.component_mask(FEValuesExtractors::Scalar(c));
     };
     VectorTools::interpolate_boundary_values(dof_handler_, face::x_min, zero, constraints,
@@ -202,20 +202,14 @@ namespace indentsim::problems
     matrix_ = 0;
     rhs_ = 0;
     const GhostedVector u =
-      to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
+        to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
     const auto worker = [&](const DoFHandler<3>::active_cell_iterator &cell,
-                            CellWorkspace                             &workspace,
-                            CellContribution                          &contribution) {
+                            CellWorkspace &workspace, CellContribution &contribution) {
       workspace.reinit(cell, u);
       Vector<double> &r_local = contribution.vector;
-      contribution.status = element_residual_and_tangent(*material_,
-                                                         use_f_bar_,
-                                                         workspace.u_local,
-                                                         history_.converged(cell),
-                                                         history_.current(cell),
-                                                         workspace.scratch,
-                                                         r_local,
-                                                         &contribution.matrix);
+      contribution.status = element_residual_and_tangent(
+          *material_, use_f_bar_, workspace.u_local, history_.converged(cell),
+          history_.current(cell), workspace.scratch, r_local, &contribution.matrix);
       if (contribution.status != materials::UpdateStatus::success)
         return;
       // The top face is held in z, so the internal force at its z dofs is the reaction.
@@ -241,8 +235,8 @@ namespace indentsim::problems
           result.status = contribution.status;
           return; // every rank must still reach the collective calls below
         }
-      constraints.distribute_local_to_global(
-        contribution.matrix, contribution.vector, contribution.dof_indices, matrix_, rhs_);
+      constraints.distribute_local_to_global(contribution.matrix, contribution.vector,
+                                             contribution.dof_indices, matrix_, rhs_);
       local_force += contribution.sums[0];
       local_volume += contribution.sums[1];
     };
@@ -256,7 +250,8 @@ namespace indentsim::problems
     result.top_force = Utilities::MPI::sum(local_force, communicator_);
     result.volume = Utilities::MPI::sum(local_volume, communicator_);
     const unsigned int failed = Utilities::MPI::max(
-      static_cast<unsigned int>(result.status != materials::UpdateStatus::success), communicator_);
+        static_cast<unsigned int>(result.status != materials::UpdateStatus::success),
+        communicator_);
     if (failed && result.status == materials::UpdateStatus::success)
       result.status = materials::UpdateStatus::local_newton_failed; // failed on another rank
     return result;
@@ -271,14 +266,13 @@ namespace indentsim::problems
     return std::sqrt(Utilities::MPI::sum(local, communicator_));
   }
 
-  IncrementStatus TensileProblem::solve_increment(const double    u_top,
-                                                                  unsigned int   &iterations,
-                                                                  AssemblyResult &result)
+  IncrementStatus TensileProblem::solve_increment(const double u_top, unsigned int &iterations,
+                                                  AssemblyResult &result)
   {
     make_dirichlet_constraints(u_top - u_top_converged_, constraints_increment_);
 
-    const auto &tolerances = case_.solver;
-    double      reference = tolerances.absolute_tolerance;
+    const auto                &tolerances = case_.solver;
+    double                     reference = tolerances.absolute_tolerance;
     PETScWrappers::MPI::Vector du(locally_owned_, communicator_);
     PETScWrappers::MPI::Vector u_owned(locally_owned_, communicator_);
     iterations = 0;
@@ -286,7 +280,7 @@ namespace indentsim::problems
       {
         // Iteration 0 applies the increment (inhomogeneous), the others correct (homogeneous).
         const AffineConstraints<double> &constraints =
-          it == 0 ? constraints_increment_ : constraints_homogeneous_;
+            it == 0 ? constraints_increment_ : constraints_homogeneous_;
         const AssemblyResult assembly = assemble(constraints);
         if (assembly.status != materials::UpdateStatus::success)
           {
@@ -315,8 +309,8 @@ namespace indentsim::problems
         LinearSolver::Result linear;
         {
           const RunStatistics::Scope timer(statistics_.linear_solve);
-          linear = linear_solver_.solve(
-            matrix_, du, rhs_, std::clamp(0.1 * norm / reference, 1e-10, 1e-4));
+          linear = linear_solver_.solve(matrix_, du, rhs_,
+                                        std::clamp(0.1 * norm / reference, 1e-10, 1e-4));
         }
         statistics_.add_linear_solve(linear.iterations, linear.preconditioner_setups,
                                      linear.setup_seconds);
@@ -347,14 +341,13 @@ namespace indentsim::problems
     solution_ = solution_converged_;
   }
 
-  void TensileProblem::run(const std::string &output_directory,
-                           const std::string &csv_file_name,
-                           const bool         write_paraview_file)
+  void TensileProblem::run(const std::string &output_directory, const std::string &csv_file_name,
+                           const bool write_paraview_file)
   {
-    const bool    root = Utilities::MPI::this_mpi_process(communicator_) == 0;
-    const auto   &loading = case_.loading;
+    const bool        root = Utilities::MPI::this_mpi_process(communicator_) == 0;
+    const auto       &loading = case_.loading;
     const std::string model = io::to_string(case_.material.model);
-    std::ofstream csv, log;
+    std::ofstream     csv, log;
     if (root && !output_directory.empty())
       {
         csv.open(output_directory + "/" + csv_file_name);
@@ -391,10 +384,10 @@ namespace indentsim::problems
         while (strain < target)
           {
             const double next =
-              (strain + increment >= target * (1 - 1e-14)) ? target : strain + increment;
+                (strain + increment >= target * (1 - 1e-14)) ? target : strain + increment;
             unsigned int          iterations = 0;
             const IncrementStatus status =
-              solve_increment(edge_length_ * std::expm1(next), iterations, converged);
+                solve_increment(edge_length_ * std::expm1(next), iterations, converged);
             record.newton_iterations += iterations;
             if (status == IncrementStatus::converged)
               {
@@ -414,9 +407,9 @@ namespace indentsim::problems
               log << "# step " << step << ": " << to_string(status)
                   << ", increment of log strain cut back to " << increment / 2 << '\n';
             if (halvings > loading.max_cutbacks)
-              throw std::runtime_error(
-                "tensile increment to log strain " + std::to_string(next) + " failed after " +
-                std::to_string(loading.max_cutbacks) + " cut-backs (" + to_string(status) + ")");
+              throw std::runtime_error("tensile increment to log strain " + std::to_string(next) +
+                                       " failed after " + std::to_string(loading.max_cutbacks) +
+                                       " cut-backs (" + to_string(status) + ")");
             increment /= 2;
           }
 
@@ -437,25 +430,24 @@ namespace indentsim::problems
 
         const double eta = record.wall_time / step * (loading.steps - step);
         pcout_ << "[" << model << "] step " << std::setw(3) << step << "/" << loading.steps
-               << "  log strain " << std::setprecision(6) << record.log_strain
-               << "  true stress " << record.true_stress << " GPa  force " << record.force
-               << " mN  Newton " << record.newton_iterations << "  cut " << record.cutbacks
-               << "  wall " << format_duration(record.wall_time) << "  ETA ~"
-               << format_duration(eta) << std::endl;
+               << "  log strain " << std::setprecision(6) << record.log_strain << "  true stress "
+               << record.true_stress << " GPa  force " << record.force << " mN  Newton "
+               << record.newton_iterations << "  cut " << record.cutbacks << "  wall "
+               << format_duration(record.wall_time) << "  ETA ~" << format_duration(eta)
+               << std::endl;
         if (csv.is_open())
           write_csv_row(csv, record);
         if (log.is_open())
           log << step << ' ' << std::setprecision(10) << record.log_strain << ' '
-              << record.true_stress << ' ' << record.force << ' ' << record.newton_iterations
-              << ' ' << record.cutbacks << ' ' << std::setprecision(4) << record.wall_time
-              << std::endl;
+              << record.true_stress << ' ' << record.force << ' ' << record.newton_iterations << ' '
+              << record.cutbacks << ' ' << std::setprecision(4) << record.wall_time << std::endl;
       }
     pcout_ << "[" << model << "] finished: " << loading.steps << " steps, " << total_newton
            << " Newton iterations, wall time " << format_duration(wall_timer_.wall_time())
            << std::endl;
     if (log.is_open())
-      log << "# finished: " << loading.steps << " steps, " << total_newton
-          << " Newton iterations, " << wall_timer_.wall_time() << " s\n";
+      log << "# finished: " << loading.steps << " steps, " << total_newton << " Newton iterations, "
+          << wall_timer_.wall_time() << " s\n";
     if (write_paraview_file && !output_directory.empty())
       {
         const RunStatistics::Scope timer(statistics_.output);
@@ -483,13 +475,13 @@ namespace indentsim::problems
   {
     const unsigned int n_cells_local = triangulation_.n_active_cells();
     Vector<float> sigma_zz(n_cells_local), von_mises(n_cells_local), plastic_strain(n_cells_local),
-      grain(n_cells_local), rank(n_cells_local);
+        grain(n_cells_local), rank(n_cells_local);
     const unsigned int        n_q_points = history_.n_q_points(), n_state = history_.n_state();
     CellWorkspace             workspace(fe_, n_q_points);
     std::vector<Tensor<2, 3>> cauchy(n_q_points);
     std::vector<double>       state(history_.cell_length());
     const GhostedVector       u =
-      to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
+        to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
     for (const auto &cell : dof_handler_.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
@@ -506,9 +498,9 @@ namespace indentsim::problems
             sigma_zz[index_of_cell] += cauchy[q][2][2] / n_q_points;
             von_mises[index_of_cell] += std::sqrt(1.5 * scalar_product(s, s)) / n_q_points;
             plastic_strain[index_of_cell] +=
-              material_->equivalent_plastic_strain(
-                std::span<const double>(state).subspan(q * n_state, n_state)) /
-              n_q_points;
+                material_->equivalent_plastic_strain(
+                    std::span<const double>(state).subspan(q * n_state, n_state)) /
+                n_q_points;
           }
         grain[index_of_cell] = grain_of_cell_[index_of_cell];
         rank[index_of_cell] = triangulation_.locally_owned_subdomain();
@@ -517,7 +509,7 @@ namespace indentsim::problems
     DataOut<3> data_out;
     data_out.attach_dof_handler(dof_handler_);
     const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
-      3, DataComponentInterpretation::component_is_part_of_vector);
+        3, DataComponentInterpretation::component_is_part_of_vector);
     data_out.add_data_vector(u, std::vector<std::string>(3, "displacement_um"),
                              DataOut<3>::type_dof_data, vector_field);
     data_out.add_data_vector(sigma_zz, "cauchy_zz_GPa");

@@ -22,12 +22,12 @@
 #pragma once
 
 #include "case/Case.h"
-#include "materials/MaterialModel.h"
 #include "fem/CellWorkspace.h"
 #include "fem/FiniteStrainElement.h"
 #include "fem/QuadraturePointHistory.h"
-#include "nonlinear/IncrementStatus.h"
 #include "linalg/LinearSolver.h"
+#include "materials/MaterialModel.h"
+#include "nonlinear/IncrementStatus.h"
 #include "output/RunStatistics.h"
 
 #include <deal.II/base/conditional_ostream.h>
@@ -75,16 +75,15 @@ namespace indentsim::problems
     // state goes to specimen_NNNN.pvtu (NNNN = last step); a run writing stress_strain.csv also
     // writes run_summary.json (RunStatistics.h). Throws std::runtime_error if an
     // increment fails after loading.max_cutbacks halvings.
-    void run(const std::string &output_directory,
-             const std::string &csv_file_name,
-             bool               write_paraview_file);
+    void run(const std::string &output_directory, const std::string &csv_file_name,
+             bool write_paraview_file);
 
     const std::vector<TensileRecord> &records() const { return records_; }
     // Counters and phase times of this problem so far (the contact phase stays 0).
     const output::RunStatistics &statistics() const { return statistics_; }
-    unsigned int                      n_cells() const;
-    unsigned int                      n_dofs() const;
-    double                            edge_length() const { return edge_length_; } // L [um]
+    unsigned int                 n_cells() const;
+    unsigned int                 n_dofs() const;
+    double                       edge_length() const { return edge_length_; } // L [um]
 
     // Index i + n j + n^2 k of the element whose centre lies in [i, i+1) x [j, j+1) x [k, k+1)
     // (um): the grain number, independent of the MPI partition.
@@ -107,9 +106,10 @@ namespace indentsim::problems
     double free_residual_norm(const dealii::AffineConstraints<double> &constraints) const;
 
     // Newton from the last converged state to top displacement `u_top` [um].
-    nonlinear::IncrementStatus solve_increment(double u_top, unsigned int &iterations, AssemblyResult &result);
-    void            accept_increment();
-    void            reject_increment();
+    nonlinear::IncrementStatus solve_increment(double u_top, unsigned int &iterations,
+                                               AssemblyResult &result);
+    void                       accept_increment();
+    void                       reject_increment();
 
     void write_paraview(const std::string &output_directory, unsigned int index);
 
@@ -129,7 +129,7 @@ namespace indentsim::problems
     double                                    edge_length_;
 
     dealii::PETScWrappers::MPI::SparseMatrix matrix_;
-    linalg::LinearSolver                             linear_solver_;
+    linalg::LinearSolver                     linear_solver_;
     dealii::PETScWrappers::MPI::Vector       solution_;           // ghosted
     dealii::PETScWrappers::MPI::Vector       solution_converged_; // ghosted
     dealii::PETScWrappers::MPI::Vector       rhs_;                // owned
@@ -137,10 +137,10 @@ namespace indentsim::problems
     // Material states of the quadrature points; grain number per cell.
     fem::QuadraturePointHistory history_;
     std::vector<unsigned int>   grain_of_cell_;
-    double                    u_top_converged_ = 0; // [um]
+    double                      u_top_converged_ = 0; // [um]
 
     std::vector<TensileRecord> records_;
-    output::RunStatistics              statistics_;
+    output::RunStatistics      statistics_;
     dealii::Timer              wall_timer_;
   };
 } // namespace indentsim::problems

@@ -21,12 +21,9 @@ namespace indentsim::study
     namespace fs = std::filesystem;
 
     const std::vector<std::string> top_level_keys = {"output", "report", "cases"};
-    const std::vector<std::string> report_keys = {"title",
-                                                  "depth_at_force_mN",
-                                                  "tensile_strains",
-                                                  "paper_max_depth_um",
-                                                  "paper_forces_mN",
-                                                  "paper_note"};
+    const std::vector<std::string> report_keys = {"title",           "depth_at_force_mN",
+                                                  "tensile_strains", "paper_max_depth_um",
+                                                  "paper_forces_mN", "paper_note"};
     const std::vector<std::string> case_keys = {"name", "base", "overrides", "group", "label"};
     const std::vector<std::string> mesh_groups = {"mesh_j2", "mesh_crystal"};
 
@@ -80,7 +77,8 @@ namespace indentsim::study
       StudyReader(std::string source_name, std::string output_override)
         : source(std::move(source_name))
         , output_override(std::move(output_override))
-      {}
+      {
+      }
 
       Study read(const YAML::Node &root)
       {
@@ -89,9 +87,8 @@ namespace indentsim::study
         if (!root.IsDefined() || root.IsNull())
           fail(-1, "the study file is empty; expected the keys " + join(top_level_keys));
         if (!root.IsMap())
-          fail(line_of(root),
-               "a study file is a mapping of the keys " + join(top_level_keys) + ", got '" +
-                 flow_text(root) + "'");
+          fail(line_of(root), "a study file is a mapping of the keys " + join(top_level_keys) +
+                                  ", got '" + flow_text(root) + "'");
         check_keys(root, "", top_level_keys);
 
         std::string output = "results/study_" + fs::path(source).stem().string();
@@ -113,8 +110,8 @@ namespace indentsim::study
         if (!cases.IsSequence() || cases.size() == 0)
           fail(line_of(cases),
                "cases = " + flow_text(cases) +
-                 ": expected a non-empty list of cases, each a mapping with the keys " +
-                 join(case_keys) + " (name and base required)");
+                   ": expected a non-empty list of cases, each a mapping with the keys " +
+                   join(case_keys) + " (name and base required)");
         for (std::size_t i = 0; i < cases.size(); ++i)
           study.cases.push_back(read_case(cases[i], i, study.output_directory));
 
@@ -132,9 +129,8 @@ namespace indentsim::study
                              message);
       }
 
-      void check_keys(const YAML::Node                &map,
-                      const std::string               &where,
-                      const std::vector<std::string>  &allowed) const
+      void check_keys(const YAML::Node &map, const std::string &where,
+                      const std::vector<std::string> &allowed) const
       {
         std::set<std::string> seen;
         for (const auto &entry : map)
@@ -144,7 +140,7 @@ namespace indentsim::study
             if (!entry.first.IsScalar())
               fail(line_of(entry.first),
                    "key '" + flow_text(entry.first) + "' is not a plain name; allowed keys" +
-                     (where.empty() ? "" : " in '" + where + "'") + ": " + join(allowed));
+                       (where.empty() ? "" : " in '" + where + "'") + ": " + join(allowed));
             if (!seen.insert(key).second)
               fail(line_of(entry.first), "duplicate key '" + shown + "'; give each key once");
             if (contains(allowed, key))
@@ -152,9 +148,10 @@ namespace indentsim::study
             const std::string guess = io::closest_name(key, allowed);
             fail(line_of(entry.first),
                  "unknown key '" + shown + "'" +
-                   (guess.empty() ? std::string(".") : "; did you mean '" + guess + "'?") +
-                   " Allowed keys" + (where.empty() ? " at the top level" : " in '" + where + "'") +
-                   ": " + join(allowed) + ".");
+                     (guess.empty() ? std::string(".") : "; did you mean '" + guess + "'?") +
+                     " Allowed keys" +
+                     (where.empty() ? " at the top level" : " in '" + where + "'") + ": " +
+                     join(allowed) + ".");
           }
       }
 
@@ -200,37 +197,35 @@ namespace indentsim::study
         if (!node.IsDefined() || node.IsNull())
           return;
         if (!node.IsMap())
-          fail(line_of(node),
-               "report = " + flow_text(node) + ": expected a mapping of the keys " +
-                 join(report_keys));
+          fail(line_of(node), "report = " + flow_text(node) + ": expected a mapping of the keys " +
+                                  join(report_keys));
         check_keys(node, "report", report_keys);
         if (const YAML::Node n = node["title"]; n.IsDefined())
           report.title = read_word(n, "report.title", "a title (text)");
         if (const YAML::Node n = node["paper_note"]; n.IsDefined())
           report.paper_note = read_word(n, "report.paper_note", "a note (text)");
         if (const YAML::Node n = node["depth_at_force_mN"]; n.IsDefined())
-          report.depth_at_force_mN =
-            read_positive(n, "report.depth_at_force_mN", "a force in mN");
+          report.depth_at_force_mN = read_positive(n, "report.depth_at_force_mN", "a force in mN");
         if (const YAML::Node n = node["paper_max_depth_um"]; n.IsDefined())
           report.paper_max_depth_um =
-            read_positive(n, "report.paper_max_depth_um", "a depth in um");
+              read_positive(n, "report.paper_max_depth_um", "a depth in um");
         if (const YAML::Node n = node["tensile_strains"]; n.IsDefined())
           {
             if (!n.IsSequence() || n.size() == 0)
               fail(line_of(n), "report.tensile_strains = " + flow_text(n) +
-                                 ": expected a list of logarithmic strains, e.g. [0.02, 0.05]");
+                                   ": expected a list of logarithmic strains, e.g. [0.02, 0.05]");
             report.tensile_strains.clear();
             for (std::size_t i = 0; i < n.size(); ++i)
               report.tensile_strains.push_back(
-                read_positive(n[i], "report.tensile_strains[" + std::to_string(i) + "]",
-                              "a logarithmic strain"));
+                  read_positive(n[i], "report.tensile_strains[" + std::to_string(i) + "]",
+                                "a logarithmic strain"));
           }
         if (const YAML::Node n = node["paper_forces_mN"]; n.IsDefined())
           {
             const std::string path = "report.paper_forces_mN";
             if (!n.IsMap())
               fail(line_of(n), path + " = " + flow_text(n) +
-                                 ": expected {mesh_j2: {48: 821.2, ...}, mesh_crystal: {...}}");
+                                   ": expected {mesh_j2: {48: 821.2, ...}, mesh_crystal: {...}}");
             check_keys(n, path, mesh_groups);
             for (const auto &group : n)
               {
@@ -238,21 +233,21 @@ namespace indentsim::study
                 if (!group.second.IsMap())
                   fail(line_of(group.second),
                        group_path + " = " + flow_text(group.second) +
-                         ": expected {contact elements: force in mN, ...}, e.g. {48: 821.2}");
+                           ": expected {contact elements: force in mN, ...}, e.g. {48: 821.2}");
                 for (const auto &entry : group.second)
                   {
                     const std::string text = entry.first.IsScalar() ? entry.first.Scalar() : "";
                     unsigned int      elements = 0;
                     const auto        parsed =
-                      std::from_chars(text.data(), text.data() + text.size(), elements);
+                        std::from_chars(text.data(), text.data() + text.size(), elements);
                     if (parsed.ec != std::errc() || parsed.ptr != text.data() + text.size() ||
                         elements < 4 || elements % 4 != 0)
                       fail(line_of(entry.first),
                            group_path + ": key '" + flow_text(entry.first) +
-                             "': expected a number of contact elements (a positive multiple "
-                             "of 4, as specimen.contact_elements)");
+                               "': expected a number of contact elements (a positive multiple "
+                               "of 4, as specimen.contact_elements)");
                     report.paper_forces_mN[group.first.Scalar()][elements] =
-                      read_positive(entry.second, group_path + "." + text, "a force in mN");
+                        read_positive(entry.second, group_path + "." + text, "a force in mN");
                   }
               }
           }
@@ -264,8 +259,8 @@ namespace indentsim::study
         const std::string where = "cases[" + std::to_string(index) + "]";
         if (!node.IsMap())
           fail(line_of(node), where + " = " + flow_text(node) +
-                                ": expected a mapping with the keys " + join(case_keys) +
-                                " (name and base required)");
+                                  ": expected a mapping with the keys " + join(case_keys) +
+                                  " (name and base required)");
         check_keys(node, where, case_keys);
 
         StudyCase result;
@@ -279,12 +274,13 @@ namespace indentsim::study
         });
         if (!plain)
           fail(line_of(name), where + ".name = \"" + result.name +
-                                "\": only letters, digits, _ and - are allowed (it names a "
-                                "directory)");
+                                  "\": only letters, digits, _ and - are allowed (it names a "
+                                  "directory)");
         if (contains(known_groups, result.name))
           fail(line_of(name), where + ".name = " + result.name +
-                                ": a group's name; choose another (--only accepts both names "
-                                "and groups: " + join(known_groups) + ")");
+                                  ": a group's name; choose another (--only accepts both names "
+                                  "and groups: " +
+                                  join(known_groups) + ")");
         const std::string the_case = "case '" + result.name + "'";
 
         result.label = result.name;
@@ -305,10 +301,10 @@ namespace indentsim::study
                 if (!item.IsScalar() || !contains(known_groups, value))
                   {
                     const std::string guess = io::closest_name(value, known_groups);
-                    fail(line_of(item), the_case + ": group = " + value +
-                                          ": allowed groups: " + join(known_groups) +
-                                          (guess.empty() ? "" : " (did you mean '" + guess +
-                                                                  "'?)"));
+                    fail(line_of(item),
+                         the_case + ": group = " + value +
+                             ": allowed groups: " + join(known_groups) +
+                             (guess.empty() ? "" : " (did you mean '" + guess + "'?)"));
                   }
                 if (contains(result.groups, value))
                   fail(line_of(item), the_case + ": group " + value + " given twice");
@@ -321,7 +317,7 @@ namespace indentsim::study
           fail(result.line, the_case + ": missing key 'base', the case file the overrides "
                                        "apply to (relative to the study file)");
         const std::string base_as_written =
-          read_word(base, the_case + ": base", "a case file path (relative to the study file)");
+            read_word(base, the_case + ": base", "a case file path (relative to the study file)");
         fs::path base_path(base_as_written);
         if (base_path.is_relative())
           base_path = fs::path(source).parent_path() / base_path;
@@ -329,11 +325,11 @@ namespace indentsim::study
         std::error_code error;
         if (!fs::exists(result.base_file, error) || fs::is_directory(result.base_file, error))
           fail(line_of(base), the_case + ": base = " + base_as_written + ": no case file '" +
-                                result.base_file + "' (paths are relative to the study file)");
+                                  result.base_file + "' (paths are relative to the study file)");
         std::ifstream input(result.base_file);
         if (!input)
-          fail(line_of(base), the_case + ": base = " + base_as_written + ": '" +
-                                result.base_file + "' cannot be opened for reading");
+          fail(line_of(base), the_case + ": base = " + base_as_written + ": '" + result.base_file +
+                                  "' cannot be opened for reading");
         std::ostringstream base_text;
         base_text << input.rdbuf();
         YAML::Node base_root;
@@ -343,11 +339,11 @@ namespace indentsim::study
           }
         catch (const YAML::ParserException &e)
           {
-            throw StudyFileError(result.base_file +
-                                 (e.mark.is_null() ? std::string() :
-                                                     ":" + std::to_string(e.mark.line + 1)) +
-                                 ": YAML syntax error: " + e.msg + " (the base of " + the_case +
-                                 " in " + source + ")");
+            throw StudyFileError(
+                result.base_file +
+                (e.mark.is_null() ? std::string() : ":" + std::to_string(e.mark.line + 1)) +
+                ": YAML syntax error: " + e.msg + " (the base of " + the_case + " in " + source +
+                ")");
           }
 
         YAML::Node overrides = node["overrides"];
@@ -357,14 +353,13 @@ namespace indentsim::study
             if (!overrides.IsMap())
               fail(line_of(overrides),
                    the_case + ": overrides = " + flow_text(overrides) +
-                     ": expected a mapping merged onto the base case, e.g. {specimen: "
-                     "{contact_elements: 48}}");
+                       ": expected a mapping merged onto the base case, e.g. {specimen: "
+                       "{contact_elements: 48}}");
             const YAML::Node output = overrides["output"];
             if (output.IsDefined() && output.IsMap() && output["directory"].IsDefined())
               fail(line_of(output["directory"]),
-                   the_case + ": overrides.output.directory = " +
-                     flow_text(output["directory"]) +
-                     ": set by the study (<output>/cases/<name>-<key>); remove it");
+                   the_case + ": overrides.output.directory = " + flow_text(output["directory"]) +
+                       ": set by the study (<output>/cases/<name>-<key>); remove it");
             result.overrides_text = flow_text(overrides);
           }
         const YAML::Node merged = merge_overrides(base_root, overrides);
@@ -397,7 +392,7 @@ namespace indentsim::study
                 message = message.substr(position);
               }
             fail(result.line, the_case + " (base " + base_as_written + ", overrides " +
-                                result.overrides_text + "): " + message);
+                                  result.overrides_text + "): " + message);
           }
 
         const auto &test = result.resolved.test;
@@ -416,15 +411,15 @@ namespace indentsim::study
               needed = "material.model: crystal";
             if (!needed.empty())
               fail(result.line, the_case + ": group " + group + " needs " + needed +
-                                  "; this case has test: " + io::to_string(test) +
-                                  ", material.model: " + io::to_string(model));
+                                    "; this case has test: " + io::to_string(test) +
+                                    ", material.model: " + io::to_string(model));
           }
 
         result.resolved.source_file =
-          source + ", case '" + result.name + "' (base " + result.base_file + ")";
+            source + ", case '" + result.name + "' (base " + result.base_file + ")";
         result.key = case_key(result.resolved);
         result.directory =
-          (fs::path(output_directory) / "cases" / (result.name + "-" + result.key)).string();
+            (fs::path(output_directory) / "cases" / (result.name + "-" + result.key)).string();
         result.resolved.output.directory = result.directory;
         return result;
       }
@@ -436,13 +431,13 @@ namespace indentsim::study
           {
             if (const auto other = by_name.find(c.name); other != by_name.end())
               fail(c.line, "case name '" + c.name + "' given twice (first on line " +
-                             std::to_string(other->second->line + 1) + "); names are unique");
+                               std::to_string(other->second->line + 1) + "); names are unique");
             by_name[c.name] = &c;
             if (const auto other = by_key.find(c.key); other != by_key.end())
               fail(c.line, "case '" + c.name + "' resolves to the same case as '" +
-                             other->second->name + "' (line " +
-                             std::to_string(other->second->line + 1) + ", key " + c.key +
-                             "); give it once, with both groups (group: [a, b])");
+                               other->second->name + "' (line " +
+                               std::to_string(other->second->line + 1) + ", key " + c.key +
+                               "); give it once, with both groups (group: [a, b])");
             by_key[c.key] = &c;
           }
         for (const auto &group : mesh_groups)
@@ -453,10 +448,9 @@ namespace indentsim::study
                 {
                   const unsigned int n = c.resolved.specimen.contact_elements;
                   if (const auto other = by_mesh.find(n); other != by_mesh.end())
-                    fail(c.line, "cases '" + other->second + "' and '" + c.name +
-                                   "' of group " + group + " both have contact_elements " +
-                                   std::to_string(n) +
-                                   "; a mesh-convergence group has one case per mesh");
+                    fail(c.line, "cases '" + other->second + "' and '" + c.name + "' of group " +
+                                     group + " both have contact_elements " + std::to_string(n) +
+                                     "; a mesh-convergence group has one case per mesh");
                   by_mesh[n] = c.name;
                 }
           }
@@ -495,8 +489,7 @@ namespace indentsim::study
     return key;
   }
 
-  Study parse_study_yaml(const std::string &yaml_text,
-                         const std::string &source_name,
+  Study parse_study_yaml(const std::string &yaml_text, const std::string &source_name,
                          const std::string &output_override)
   {
     YAML::Node root;
@@ -506,10 +499,10 @@ namespace indentsim::study
       }
     catch (const YAML::ParserException &e)
       {
-        throw StudyFileError(source_name +
-                             (e.mark.is_null() ? std::string() :
-                                                 ":" + std::to_string(e.mark.line + 1)) +
-                             ": YAML syntax error: " + e.msg);
+        throw StudyFileError(
+            source_name +
+            (e.mark.is_null() ? std::string() : ":" + std::to_string(e.mark.line + 1)) +
+            ": YAML syntax error: " + e.msg);
       }
     try
       {
@@ -517,10 +510,10 @@ namespace indentsim::study
       }
     catch (const YAML::Exception &e)
       {
-        throw StudyFileError(source_name +
-                             (e.mark.is_null() ? std::string() :
-                                                 ":" + std::to_string(e.mark.line + 1)) +
-                             ": " + e.msg);
+        throw StudyFileError(
+            source_name +
+            (e.mark.is_null() ? std::string() : ":" + std::to_string(e.mark.line + 1)) + ": " +
+            e.msg);
       }
   }
 

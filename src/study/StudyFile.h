@@ -77,20 +77,20 @@ namespace indentsim::study
   struct StudyReportSettings
   {
     std::string         title = "indentsim study";
-    double              depth_at_force_mN = 0.;       // 0: not reported
+    double              depth_at_force_mN = 0.; // 0: not reported
     std::vector<double> tensile_strains = {0.02, 0.05, 0.1, 0.2};
-    double              paper_max_depth_um = 0.;      // 0: not stated
+    double              paper_max_depth_um = 0.; // 0: not stated
     // group (mesh_j2 | mesh_crystal) -> contact elements -> force at maximum depth [mN]
     std::map<std::string, std::map<unsigned int, double>> paper_forces_mN;
-    std::string         paper_note;
+    std::string                                           paper_note;
   };
 
   struct Study
   {
-    std::string             source_file;      // the study file as given
-    std::string             output_directory; // absolute
-    StudyReportSettings     report;
-    std::vector<StudyCase>  cases;
+    std::string            source_file;      // the study file as given
+    std::string            output_directory; // absolute
+    StudyReportSettings    report;
+    std::vector<StudyCase> cases;
   };
 
   // Reads and validates a study file and every case in it. `output_override` (the command
@@ -98,8 +98,7 @@ namespace indentsim::study
   Study read_study_file(const std::string &path, const std::string &output_override = "");
 
   // The same from YAML text; base paths are relative to the directory of `source_name`.
-  Study parse_study_yaml(const std::string &yaml_text,
-                         const std::string &source_name,
+  Study parse_study_yaml(const std::string &yaml_text, const std::string &source_name,
                          const std::string &output_override = "");
 
   // `overrides` merged onto a copy of `base` (see the rules above); neither is modified.

@@ -38,7 +38,10 @@ namespace indentsim::study
     using Clock = std::chrono::steady_clock;
 
     volatile std::sig_atomic_t stop_requested = 0;
-    extern "C" void            request_stop(int) { stop_requested = 1; }
+    extern "C" void            request_stop(int)
+    {
+      stop_requested = 1;
+    }
 
     std::string read_text(const fs::path &path)
     {
@@ -55,8 +58,8 @@ namespace indentsim::study
       const std::size_t found = text.find(quoted);
       if (found == std::string::npos)
         return std::nullopt;
-      const char *start = text.c_str() + found + quoted.size();
-      char       *end = nullptr;
+      const char  *start = text.c_str() + found + quoted.size();
+      char        *end = nullptr;
       const double value = std::strtod(start, &end);
       if (end == start)
         return std::nullopt;
@@ -116,9 +119,8 @@ namespace indentsim::study
 
     bool has_variable(const std::vector<std::string> &variables, const std::string &name)
     {
-      return std::any_of(variables.begin(), variables.end(), [&name](const std::string &v) {
-        return v.rfind(name + "=", 0) == 0;
-      });
+      return std::any_of(variables.begin(), variables.end(),
+                         [&name](const std::string &v) { return v.rfind(name + "=", 0) == 0; });
     }
 
     void set_default(std::vector<std::string> &variables, const std::string &name,
@@ -131,9 +133,8 @@ namespace indentsim::study
     // Starts `arguments` (searched on PATH) with `variables`; stdout and stderr go to `log`
     // (truncated) unless it is empty, stdin is /dev/null. Returns the pid, or -1 with `error`.
     pid_t spawn(const std::vector<std::string> &arguments,
-                const std::vector<std::string> &variables,
-                const std::string              &log,
-                std::string                    &error)
+                const std::vector<std::string> &variables, const std::string &log,
+                std::string &error)
     {
       posix_spawn_file_actions_t actions;
       posix_spawn_file_actions_init(&actions);
@@ -152,8 +153,7 @@ namespace indentsim::study
         envp.push_back(const_cast<char *>(variable.c_str()));
       envp.push_back(nullptr);
       pid_t     pid = -1;
-      const int code =
-        posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
+      const int code = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
       posix_spawn_file_actions_destroy(&actions);
       if (code != 0)
         {
@@ -175,9 +175,9 @@ namespace indentsim::study
 
     std::string last_lines(const fs::path &path, const std::size_t count)
     {
-      std::istringstream       in(read_text(path));
-      std::deque<std::string>  lines;
-      std::string              line;
+      std::istringstream      in(read_text(path));
+      std::deque<std::string> lines;
+      std::string             line;
       while (std::getline(in, line))
         {
           lines.push_back(line);
@@ -201,7 +201,7 @@ namespace indentsim::study
     std::string result_summary(const StudyCase &study_case)
     {
       const std::string summary =
-        read_text(fs::path(study_case.directory) / io::output_files::run_summary);
+          read_text(fs::path(study_case.directory) / io::output_files::run_summary);
       std::ostringstream out;
       out << std::setprecision(6);
       if (const auto force = json_number(summary, "force_at_max_depth_mN"))
@@ -218,14 +218,14 @@ namespace indentsim::study
   {
     switch (state)
       {
-        case CaseState::finished:
-          return "finished";
-        case CaseState::failed:
-          return "failed";
-        case CaseState::unfinished:
-          return "unfinished";
-        default:
-          return "not run";
+      case CaseState::finished:
+        return "finished";
+      case CaseState::failed:
+        return "failed";
+      case CaseState::unfinished:
+        return "unfinished";
+      default:
+        return "not run";
       }
   }
 
@@ -239,7 +239,7 @@ namespace indentsim::study
     if (!fs::exists(mark, error))
       return CaseState::unfinished;
     const std::string text = read_text(mark);
-    const bool completed = text.find("\"completed\": true") != std::string::npos;
+    const bool        completed = text.find("\"completed\": true") != std::string::npos;
     if (completed && fs::exists(directory / io::output_files::run_summary, error))
       return CaseState::finished;
     return completed ? CaseState::unfinished : CaseState::failed;
@@ -301,7 +301,7 @@ namespace indentsim::study
   bool StudyRunner::resumable(const StudyCase &study_case) const
   {
     const fs::path checkpoint =
-      fs::path(study_case.directory) / io::output_files::checkpoint_directory;
+        fs::path(study_case.directory) / io::output_files::checkpoint_directory;
     const auto rank_file = [&](const unsigned int rank) {
       return checkpoint / ("rank_" + std::to_string(rank) + ".bin");
     };
@@ -326,8 +326,8 @@ namespace indentsim::study
         else if (states[i] == CaseState::finished)
           action = "finished: skipped";
         else if (states[i] == CaseState::unfinished)
-          action = resumable(c) ? "interrupted: resumed from its checkpoint" :
-                                  "interrupted: rerun from the start";
+          action = resumable(c) ? "interrupted: resumed from its checkpoint"
+                                : "interrupted: rerun from the start";
         else if (states[i] == CaseState::failed)
           action = "failed before: rerun";
         else
@@ -394,7 +394,7 @@ namespace indentsim::study
     // Children: the starting environment, one BLAS thread, and the cores shared among the
     // cases running side by side (deal.II takes the smaller of this and its own count).
     std::vector<std::string> variables = start_variables;
-    const unsigned int cores = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned int       cores = std::max(1u, std::thread::hardware_concurrency());
     set_default(variables, "OMP_NUM_THREADS", "1");
     if (settings_.jobs > 1)
       set_default(variables, "DEAL_II_NUM_THREADS",
@@ -426,11 +426,10 @@ namespace indentsim::study
 
     const auto finish_case = [&](const Running &job, const int exit_code) {
       const StudyCase &c = study_.cases[job.index];
-      const double     seconds =
-        std::chrono::duration<double>(Clock::now() - job.start).count();
-      const fs::path directory(c.directory);
-      const bool     completed =
-        exit_code == 0 && fs::exists(directory / io::output_files::run_summary);
+      const double     seconds = std::chrono::duration<double>(Clock::now() - job.start).count();
+      const fs::path   directory(c.directory);
+      const bool       completed =
+          exit_code == 0 && fs::exists(directory / io::output_files::run_summary);
       std::ofstream mark(directory / study_files::case_mark);
       mark << "{\n"
            << "  \"units\": \"times in s\",\n"
@@ -454,9 +453,8 @@ namespace indentsim::study
         {
           ++n_failed;
           out_ << "[" << n_done << "/" << n_to_run << "] " << c.name << ": FAILED (exit code "
-               << exit_code
-               << (exit_code == 0 ? ", but no run_summary.json" : std::string()) << ") after "
-               << seconds_text(seconds) << "; console output in "
+               << exit_code << (exit_code == 0 ? ", but no run_summary.json" : std::string())
+               << ") after " << seconds_text(seconds) << "; console output in "
                << (directory / study_files::console_log).string() << ", last lines:\n"
                << last_lines(directory / study_files::console_log, 12);
         }
@@ -479,17 +477,17 @@ namespace indentsim::study
             const fs::path    directory(c.directory);
             fs::create_directories(directory, error);
             fs::remove(directory / study_files::case_mark, error);
-            Running job{index, -1, Clock::now()};
+            Running     job{index, -1, Clock::now()};
             std::string problem;
             try
               {
                 io::write_resolved_case(c.resolved, (directory / study_files::case_input).string());
                 const auto command = case_command(c);
-                out_ << "run  " << c.name << " (" << to_string(states[index]) << "): "
-                     << shell_words(command) << "\n"
+                out_ << "run  " << c.name << " (" << to_string(states[index])
+                     << "): " << shell_words(command) << "\n"
                      << std::flush;
-                job.pid = spawn(command, variables,
-                                (directory / study_files::console_log).string(), problem);
+                job.pid = spawn(command, variables, (directory / study_files::console_log).string(),
+                                problem);
               }
             catch (const std::exception &e)
               {
@@ -562,8 +560,7 @@ namespace indentsim::study
     const auto    &report = study_.report;
     out << "{\n"
         << "  \"units\": \"lengths um, forces mN, stresses GPa, times s\",\n"
-        << "  \"study_file\": " << json_string(fs::absolute(study_.source_file).string())
-        << ",\n"
+        << "  \"study_file\": " << json_string(fs::absolute(study_.source_file).string()) << ",\n"
         << "  \"output_directory\": " << json_string(study_.output_directory) << ",\n"
         << "  \"version\": " << json_string(std::string("indentsim ") + indentsim::version())
         << ",\n"
@@ -599,14 +596,15 @@ namespace indentsim::study
         const StudyCase &c = study_.cases[i];
         const io::Case  &resolved = c.resolved;
         const auto      &orientation = resolved.material.orientation;
-        const auto triple = [](const std::array<double, 3> &v) {
+        const auto       triple = [](const std::array<double, 3> &v) {
           return "[" + json_number_text(v[0]) + ", " + json_number_text(v[1]) + ", " +
                  json_number_text(v[2]) + "]";
         };
         out << "    {\"name\": " << json_string(c.name) << ", \"label\": " << json_string(c.label)
             << ", \"groups\": " << json_string_list(c.groups) << ",\n"
             << "     \"key\": " << json_string(c.key) << ", \"directory\": "
-            << json_string(fs::path(c.directory).lexically_relative(study_.output_directory).string())
+            << json_string(
+                   fs::path(c.directory).lexically_relative(study_.output_directory).string())
             << ", \"status\": " << json_string(to_string(states[i]))
             << ", \"ran_now\": " << (ran_now[i] ? "true" : "false") << ",\n"
             << "     \"base_file\": " << json_string(c.base_file)
@@ -621,10 +619,11 @@ namespace indentsim::study
             << ", \"control\": " << json_string(io::to_string(resolved.loading.control))
             << ", \"max_depth_um\": " << json_number_text(resolved.loading.max_depth) << ",\n"
             << "     \"orientation\": "
-            << (orientation.kind == io::OrientationKind::surface_normal ?
-                  "{\"surface_normal\": " + triple(orientation.surface_normal) +
-                    ", \"reference_direction\": " + triple(orientation.reference_direction) + "}" :
-                  "{\"euler_bunge_deg\": " + triple(orientation.euler_bunge_deg) + "}")
+            << (orientation.kind == io::OrientationKind::surface_normal
+                    ? "{\"surface_normal\": " + triple(orientation.surface_normal) +
+                          ", \"reference_direction\": " + triple(orientation.reference_direction) +
+                          "}"
+                    : "{\"euler_bunge_deg\": " + triple(orientation.euler_bunge_deg) + "}")
             << ", \"grains\": " << json_string(io::to_string(resolved.specimen.grains))
             << ", \"seed\": " << resolved.specimen.seed
             << ", \"elements_per_side\": " << resolved.specimen.elements_per_side

@@ -26,21 +26,21 @@ namespace indentsim::study
   // File names in a case directory besides the run's own outputs (io::output_files).
   namespace study_files
   {
-    inline constexpr const char *case_input = "case.yaml";       // what the process runs
-    inline constexpr const char *console_log = "console.log";    // its stdout and stderr
-    inline constexpr const char *case_mark = "study_case.json";  // "completed": true|false
-    inline constexpr const char *index = "study.json";           // in the study's output
-    inline constexpr const char *study_copy = "study.yaml";      // copy of the study file
-  } // namespace study_files
+    inline constexpr const char *case_input = "case.yaml";      // what the process runs
+    inline constexpr const char *console_log = "console.log";   // its stdout and stderr
+    inline constexpr const char *case_mark = "study_case.json"; // "completed": true|false
+    inline constexpr const char *index = "study.json";          // in the study's output
+    inline constexpr const char *study_copy = "study.yaml";     // copy of the study file
+  }                                                             // namespace study_files
 
   struct StudyRunSettings
   {
-    unsigned int             ranks = 1;      // MPI ranks per case (mpirun -np)
-    unsigned int             jobs = 1;       // cases run side by side
+    unsigned int             ranks = 1;       // MPI ranks per case (mpirun -np)
+    unsigned int             jobs = 1;        // cases run side by side
     bool                     dry_run = false; // list the cases and their state, run nothing
-    std::vector<std::string> only;           // case names or groups to run; empty: all
-    std::string              executable;     // indentsim binary for the cases ("": this one)
-    std::string              report_script;  // "": python/study_report.py of the source tree
+    std::vector<std::string> only;            // case names or groups to run; empty: all
+    std::string              executable;      // indentsim binary for the cases ("": this one)
+    std::string              report_script;   // "": python/study_report.py of the source tree
   };
 
   enum class CaseState
@@ -73,16 +73,15 @@ namespace indentsim::study
     int run();
 
   private:
-    const Study       &study_;
-    StudyRunSettings   settings_;
-    std::ostream      &out_;
-    std::vector<bool>  selected_; // per case of the study
+    const Study      &study_;
+    StudyRunSettings  settings_;
+    std::ostream     &out_;
+    std::vector<bool> selected_; // per case of the study
 
-    void print_plan(const std::vector<CaseState> &states) const;
+    void                     print_plan(const std::vector<CaseState> &states) const;
     std::vector<std::string> case_command(const StudyCase &study_case) const;
     bool                     resumable(const StudyCase &study_case) const;
-    void write_index(const std::vector<CaseState> &states,
-                     const std::vector<bool>      &ran_now) const;
+    void write_index(const std::vector<CaseState> &states, const std::vector<bool> &ran_now) const;
     int  write_report() const;
   };
 } // namespace indentsim::study

@@ -23,7 +23,6 @@ namespace
   }
 } // namespace
 
-
 // One rank and several ranks give the same curve to 1e-8 relative, with the contact and Newton
 // tolerances at 1e-8 (README, Performance: the partitions take different paths within the
 // tolerances; on this coarse case the extrapolated start of step 6 fails by a material point
@@ -96,7 +95,7 @@ TEST(Mpi, StoppedAndResumedRunEqualsUninterruptedRun)
   c.output.checkpoint_interval_s = 0;
   const bool  root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   std::string directory =
-    root ? test_files::scratch_directory("mpi_resume", "run").string() : std::string();
+      root ? test_files::scratch_directory("mpi_resume", "run").string() : std::string();
   directory = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, directory, 0);
   const std::string reference_dir = directory + "/reference", resumed_dir = directory + "/resumed";
   if (root)

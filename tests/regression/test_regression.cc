@@ -19,7 +19,8 @@ using namespace indentsim;
 
 namespace
 {
-  const std::string gold_file = std::string(INDENTSIM_TEST_DATA_DIR) + "/regression/gold/small_j2.csv";
+  const std::string gold_file =
+      std::string(INDENTSIM_TEST_DATA_DIR) + "/regression/gold/small_j2.csv";
 
   io::Case small_j2_load_unload_case()
   {
@@ -33,7 +34,7 @@ namespace
 // The small J2 load-unload curve (depth, force, active nodes) reproduces the gold file.
 TEST(Regression, SmallJ2IndentationMatchesGold)
 {
-  const io::Case c = small_j2_load_unload_case();
+  const io::Case               c = small_j2_load_unload_case();
   problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run("");

@@ -195,26 +195,26 @@ namespace indentsim::testing::reference
     // increments of the flow rule (eq. 15, directions normalised by Phi, see the header).
     struct SlipLawData
     {
-      double C11, C12, C44;
-      double n;
-      double tau0;
+      double                                      C11, C12, C44;
+      double                                      n;
+      double                                      tau0;
       const std::array<std::array<double, 3>, 3> *schmid; // n_slip Schmid tensors
     };
 
     template <int n_slip, typename Number>
     struct SlipResponse
     {
-      Matrix<Number>               S_e;
-      std::array<Number, n_slip>   ratio;       // tau^r / tau_c^r
-      Number                       Phi;
-      std::array<Number, n_slip>   delta_gamma; // Delta gamma^r
+      Matrix<Number>             S_e;
+      std::array<Number, n_slip> ratio; // tau^r / tau_c^r
+      Number                     Phi;
+      std::array<Number, n_slip> delta_gamma; // Delta gamma^r
     };
 
     template <int n_slip, typename Number>
-    void slip_response(const SlipLawData     &law,
-                       const Number          *E_e,          // 6, unrolled
-                       const Number          *tau_c_scaled, // n_slip, tau_c / tau0
-                       const Number          &lambda_scaled, // Delta lambda / tau0
+    void slip_response(const SlipLawData            &law,
+                       const Number                 *E_e,           // 6, unrolled
+                       const Number                 *tau_c_scaled,  // n_slip, tau_c / tau0
+                       const Number                 &lambda_scaled, // Delta lambda / tau0
                        SlipResponse<n_slip, Number> &out)
     {
       Matrix<Number> E;
@@ -263,8 +263,9 @@ namespace indentsim::testing::reference
             out.delta_gamma[r] = 0.0;
           return;
         }
-      const Number abs_largest = largest_value > 0 ? out.ratio[largest] : Number(-out.ratio[largest]);
-      Number       sum = 0.0;
+      const Number abs_largest =
+          largest_value > 0 ? out.ratio[largest] : Number(-out.ratio[largest]);
+      Number sum = 0.0;
       for (int r = 0; r < n_slip; ++r)
         {
           const Number relative = out.ratio[r] / abs_largest;
@@ -285,9 +286,8 @@ namespace indentsim::testing::reference
     //   k = theta0 / tau1, e_n = exp(-k Gamma_n), x = k dGamma, phi(x) = (1 - e^-x) / x;
     // Hbar -> h(Gamma_n) as dGamma -> 0 (phi by its series for small x).
     template <typename Number>
-    Number voce_secant_modulus(const ExtendedVoceHardening &law,
-                               const double                 Gamma_n,
-                               const Number                &delta_Gamma)
+    Number voce_secant_modulus(const ExtendedVoceHardening &law, const double Gamma_n,
+                               const Number &delta_Gamma)
     {
       using std::exp;
       if (law.theta0 == 0.0 || law.tau1 == 0.0)
@@ -360,12 +360,13 @@ namespace indentsim::testing::reference
 
         R[lambda_index] = (slip.Phi - 1.0) * (law.tau0 / law.C44);
 
-        Number delta_Gamma = 0.0;
+        Number                     delta_Gamma = 0.0;
         std::array<Number, n_slip> abs_delta_gamma;
         for (int r = 0; r < n_slip; ++r)
           {
-            abs_delta_gamma[r] =
-              scalar_value(slip.delta_gamma[r]) >= 0 ? slip.delta_gamma[r] : Number(-slip.delta_gamma[r]);
+            abs_delta_gamma[r] = scalar_value(slip.delta_gamma[r]) >= 0
+                                     ? slip.delta_gamma[r]
+                                     : Number(-slip.delta_gamma[r]);
             delta_Gamma += abs_delta_gamma[r];
           }
         const Number H_bar = voce_secant_modulus(*hardening, Gamma_n, delta_Gamma);
@@ -381,12 +382,9 @@ namespace indentsim::testing::reference
 
     // P = F_e S_e F_p^-T and its AD derivatives, with F_e = F F_p^-1.
     template <typename Number, typename NumberP>
-    void write_response(const Matrix<Number>  &F_e,
-                        const Matrix<Number>  &S_e,
-                        const Matrix<NumberP> &F_p_inverse,
-                        const Tensor<2, 3>    &F,
-                        MaterialPointResponse &response,
-                        const bool             with_tangent)
+    void write_response(const Matrix<Number> &F_e, const Matrix<Number> &S_e,
+                        const Matrix<NumberP> &F_p_inverse, const Tensor<2, 3> &F,
+                        MaterialPointResponse &response, const bool with_tangent)
     {
       const auto P = multiply_transposed_second(multiply(F_e, S_e), F_p_inverse);
       for (unsigned int i = 0; i < 3; ++i)
@@ -413,14 +411,11 @@ namespace indentsim::testing::reference
   using namespace internal;
 
   // CrystalPlasticity::update by forward AD, the model's data read through its accessors.
-  inline UpdateStatus update(const CrystalPlasticity &model,
-                             const Tensor<2, 3>      &F,
-                             std::span<const double>  state_old,
-                             MaterialPointResponse   &response,
-                             std::span<double>        state_new,
-                             const bool               compute_tangent)
+  inline UpdateStatus update(const CrystalPlasticity &model, const Tensor<2, 3> &F,
+                             std::span<const double> state_old, MaterialPointResponse &response,
+                             std::span<double> state_new, const bool compute_tangent)
   {
-    constexpr int n_slip = 12;
+    constexpr int                n_slip = 12;
     const CubicElasticity       &elasticity = model.elastic_constants();
     const ExtendedVoceHardening &hardening = model.hardening_law();
     const double                 n = model.yield_exponent();
@@ -441,12 +436,12 @@ namespace indentsim::testing::reference
     const Matrix<double> F_p_n_inverse = to_matrix(inverse_3x3(plastic_deformation(state_old)));
     const double        *tau_c_n = &state_old[9];
     const double         Gamma_n = state_old[9 + n_slip];
-    const SlipLawData    law{elasticity.C11, elasticity.C12, elasticity.C44, n, hardening.tau0,
-                          schmid.data()};
+    const SlipLawData    law{elasticity.C11, elasticity.C12, elasticity.C44, n,
+                          hardening.tau0, schmid.data()};
 
     // Elastic trial: C_e^tr = F_p,n^-T C F_p,n^-1 and E_e^tr.
-    const Matrix<double> F_e_trial = multiply(F_matrix, F_p_n_inverse);
-    const auto           C_e_trial = multiply_transposed_first(F_e_trial, F_e_trial);
+    const Matrix<double>              F_e_trial = multiply(F_matrix, F_p_n_inverse);
+    const auto                        C_e_trial = multiply_transposed_first(F_e_trial, F_e_trial);
     typename LocalProblem::Parameters parameters;
     std::array<double, 6>             E_trial;
     for (unsigned int k = 0; k < 6; ++k)
@@ -470,8 +465,8 @@ namespace indentsim::testing::reference
           for (unsigned int k = 0; k < 3; ++k)
             for (unsigned int L = 0; L < 3; ++L)
               F_ad[k][L] = ADNumberF(9, 3 * k + L, F[k][L]);
-          const auto F_e = multiply(F_ad, F_p_n_inverse);
-          const auto C_e = multiply_transposed_first(F_e, F_e);
+          const auto               F_e = multiply(F_ad, F_p_n_inverse);
+          const auto               C_e = multiply_transposed_first(F_e, F_e);
           std::array<ADNumberF, 6> E;
           for (unsigned int k = 0; k < 6; ++k)
             E[k] = 0.5 * (C_e[sym_i[k]][sym_j[k]] - (k < 3 ? 1.0 : 0.0));
@@ -494,9 +489,9 @@ namespace indentsim::testing::reference
       return elastic_step();
 
     // Plastic corrector: the local Newton from the elastic trial.
-    const Residual residual{law, &hardening, Gamma_n, tau_c_n};
+    const Residual                  residual{law, &hardening, Gamma_n, tau_c_n};
     typename LocalProblem::Unknowns unknowns;
-    double strain_scale = hardening.tau0 / elasticity.C44;
+    double                          strain_scale = hardening.tau0 / elasticity.C44;
     for (unsigned int k = 0; k < 6; ++k)
       strain_scale = std::max(strain_scale, std::abs(E_trial[k]));
     LocalNewtonSettings settings;
@@ -512,7 +507,7 @@ namespace indentsim::testing::reference
     for (int r = 0; r < n_slip; ++r)
       unknowns[Residual::tau_c_index + r] = tau_c_n_scaled[r];
     const LocalNewtonResult newton = LocalProblem::solve(residual, parameters, unknowns, settings);
-    const double lambda_scaled = unknowns[Residual::lambda_index];
+    const double            lambda_scaled = unknowns[Residual::lambda_index];
     if (!newton.converged || !(lambda_scaled >= 0.0))
       {
         // A trial state on the yield surface to round-off returns Delta lambda = 0 (+- round-off).
@@ -524,11 +519,8 @@ namespace indentsim::testing::reference
 
     // Converged slip increments and the new plastic state.
     SlipResponse<n_slip, double> slip;
-    slip_response<n_slip, double>(law,
-                                  &unknowns[0],
-                                  &unknowns[Residual::tau_c_index],
-                                  unknowns[Residual::lambda_index],
-                                  slip);
+    slip_response<n_slip, double>(law, &unknowns[0], &unknowns[Residual::tau_c_index],
+                                  unknowns[Residual::lambda_index], slip);
     Matrix<double> delta_L_p{};
     double         delta_Gamma = 0.0;
     for (int r = 0; r < n_slip; ++r)
@@ -542,7 +534,8 @@ namespace indentsim::testing::reference
     for (auto &row : minus_delta_L_p)
       for (auto &a : row)
         a = -a;
-    const Matrix<double> F_p_new = multiply(exp_matrix(delta_L_p), to_matrix(plastic_deformation(state_old)));
+    const Matrix<double> F_p_new =
+        multiply(exp_matrix(delta_L_p), to_matrix(plastic_deformation(state_old)));
     const Matrix<double> A = exp_matrix(minus_delta_L_p);
     const Matrix<double> F_p_new_inverse = multiply(F_p_n_inverse, A);
 
@@ -565,8 +558,8 @@ namespace indentsim::testing::reference
           parameters_ad[k] = C_e_trial_ad[sym_i[k]][sym_j[k]];
         const auto x_ad = LocalProblem::linearized_solution(unknowns, dx_dp, parameters_ad);
         SlipResponse<n_slip, ADNumberF> slip_ad;
-        slip_response<n_slip, ADNumberF>(
-          law, &x_ad[0], &x_ad[Residual::tau_c_index], x_ad[Residual::lambda_index], slip_ad);
+        slip_response<n_slip, ADNumberF>(law, &x_ad[0], &x_ad[Residual::tau_c_index],
+                                         x_ad[Residual::lambda_index], slip_ad);
         Matrix<ADNumberF> minus_delta_L_p_ad;
         for (unsigned int i = 0; i < 3; ++i)
           for (unsigned int j = 0; j < 3; ++j)

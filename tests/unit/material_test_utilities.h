@@ -86,10 +86,8 @@ namespace indentsim::testing
   // Central finite differences of P(F) with the old state held fixed (each perturbed update
   // re-runs the whole return mapping from state_old), compared with the model's dP/dF:
   // returns |dP/dF_FD - dP/dF| / |dP/dF| (Frobenius norms).
-  inline double tangent_error(const MaterialModel       &model,
-                       const Tensor<2, 3>        &F,
-                       const std::vector<double> &state_old,
-                       const double               step = 1e-6)
+  inline double tangent_error(const MaterialModel &model, const Tensor<2, 3> &F,
+                              const std::vector<double> &state_old, const double step = 1e-6)
   {
     MaterialPointResponse response;
     std::vector<double>   state_new(state_old.size());
@@ -120,22 +118,23 @@ namespace indentsim::testing
     double log_strain, cauchy_stress, lateral_stretch, alpha;
   };
 
-  inline std::vector<J2UniaxialReferenceRow> read_j2_uniaxial_reference(const std::string &file_name)
+  inline std::vector<J2UniaxialReferenceRow>
+  read_j2_uniaxial_reference(const std::string &file_name)
   {
     const std::string path = std::string(INDENTSIM_TEST_DATA_DIR) + "/unit/data/" + file_name;
     std::ifstream     file(path);
     EXPECT_TRUE(file) << "cannot open " << path;
     std::vector<J2UniaxialReferenceRow> rows;
-    std::string               line;
+    std::string                         line;
     while (std::getline(file, line))
       {
         if (line.empty() || line[0] == '#' || line.rfind("log_strain", 0) == 0)
           continue;
-        std::istringstream stream(line);
-        J2UniaxialReferenceRow       row;
-        char               comma;
+        std::istringstream     stream(line);
+        J2UniaxialReferenceRow row;
+        char                   comma;
         stream >> row.log_strain >> comma >> row.cauchy_stress >> comma >> row.lateral_stretch >>
-          comma >> row.alpha;
+            comma >> row.alpha;
         EXPECT_FALSE(stream.fail()) << "bad line in " << path << ": " << line;
         rows.push_back(row);
       }

@@ -90,7 +90,10 @@ namespace
   }
 
   // minimal_case plus one more section.
-  std::string with(const std::string &extra) { return minimal_case + extra; }
+  std::string with(const std::string &extra)
+  {
+    return minimal_case + extra;
+  }
 } // namespace
 
 // The paper's J2 example parses into exactly the paper's parameters (Table 1, eq. 16).
@@ -147,15 +150,15 @@ TEST(CaseFile, MinimalCaseGetsAllDefaults)
 TEST(CaseFile, FBarDefaultDependsOnModel)
 {
   EXPECT_TRUE(parse_case_yaml(minimal_case, "a.yaml").specimen.f_bar);
-  EXPECT_FALSE(
-    parse_case_yaml("test: indentation\nmaterial:\n  model: neo_hookean\n", "a.yaml").specimen.f_bar);
+  EXPECT_FALSE(parse_case_yaml("test: indentation\nmaterial:\n  model: neo_hookean\n", "a.yaml")
+                   .specimen.f_bar);
   EXPECT_FALSE(parse_case_yaml(with("specimen:\n  f_bar: false\n"), "a.yaml").specimen.f_bar);
   EXPECT_TRUE(parse_case_yaml("test: indentation\nmaterial:\n  model: neo_hookean\n"
                               "specimen:\n  f_bar: true\n",
                               "a.yaml")
-                .specimen.f_bar);
-  EXPECT_TRUE(parse_case_yaml("test: indentation\nmaterial:\n  model: crystal\n", "a.yaml")
-                .specimen.f_bar);
+                  .specimen.f_bar);
+  EXPECT_TRUE(
+      parse_case_yaml("test: indentation\nmaterial:\n  model: crystal\n", "a.yaml").specimen.f_bar);
 }
 
 // Writing the resolved case and reading it back gives an identical case for every key.
@@ -204,7 +207,7 @@ TEST(CaseFile, ResolvedCaseRoundTrips)
   validate_case(c);
   ASSERT_FALSE(c.material == Case().material);
 
-  const fs::path dir = scratch_directory("round_trip");
+  const fs::path    dir = scratch_directory("round_trip");
   const std::string path = (dir / "resolved_case.yaml").string();
   write_resolved_case(c, path);
   Case back = read_case_file(path);
@@ -234,9 +237,8 @@ TEST(CaseFile, ResolvedCaseRoundTrips)
   EXPECT_EQ(text.find("euler_bunge_deg"), std::string::npos) << text;
   Case normal_back = parse_case_yaml(text, "");
   normal_back.source_file = normal.source_file;
-  EXPECT_TRUE(normal_back == normal)
-    << text << "\nread back as\n"
-    << resolved_case_yaml(normal_back);
+  EXPECT_TRUE(normal_back == normal) << text << "\nread back as\n"
+                                     << resolved_case_yaml(normal_back);
 }
 
 // Every crystal-plasticity and tensile-test key of the case file reaches the Case.
@@ -311,7 +313,7 @@ TEST(CaseFile, CrystalAndTensileKeysAreParsed)
 TEST(CaseFile, CrystalRangesAreChecked)
 {
   const std::string crystal = "test: indentation\nmaterial:\n  model: crystal\n";
-  const auto crystal_with = [&](const std::string &extra) { return crystal + extra; };
+  const auto        crystal_with = [&](const std::string &extra) { return crystal + extra; };
   expect_rejected(crystal_with("  lattice: bcc\n"),
                   {"material.lattice = 'bcc'", "only fcc", "bcc and hcp are not yet", ":4:"});
   expect_rejected(crystal_with("  lattice: hcp\n"), {"material.lattice = 'hcp'", "not yet"});
@@ -338,7 +340,7 @@ TEST(CaseFile, CrystalRangesAreChecked)
   expect_rejected(crystal_with("  hardening: {tau1: 0}\n"),
                   {"material.hardening.tau1", "tau1 = 0, theta0 = 0.1", "divides by tau1"});
   EXPECT_EQ(error_of(crystal_with("  hardening: {tau1: 0, theta0: 0}\n")), "")
-    << "linear hardening (theta0 = 0) needs no tau1";
+      << "linear hardening (theta0 = 0) needs no tau1";
   expect_rejected(crystal_with("  yield_exponent_n: 0.5\n"),
                   {"material.yield_exponent_n = 0.5", "1 <= n <= 50"});
   expect_rejected(crystal_with("  yield_exponent_n: 60\n"),
@@ -358,10 +360,10 @@ TEST(CaseFile, CrystalRangesAreChecked)
 TEST(CaseFile, OrientationIsChecked)
 {
   const std::string crystal = "test: indentation\nmaterial:\n  model: crystal\n";
-  const auto crystal_with = [&](const std::string &extra) { return crystal + extra; };
-  expect_rejected(crystal_with("  orientation: {surface_normal: [1, 1, 1]}\n"),
-                  {"material.orientation", "[1, 1, 1]", "needs reference_direction",
-                   "not guessed", ":4:"});
+  const auto        crystal_with = [&](const std::string &extra) { return crystal + extra; };
+  expect_rejected(
+      crystal_with("  orientation: {surface_normal: [1, 1, 1]}\n"),
+      {"material.orientation", "[1, 1, 1]", "needs reference_direction", "not guessed", ":4:"});
   expect_rejected(crystal_with("  orientation: {reference_direction: [1, 0, 0]}\n"),
                   {"material.orientation", "[1, 0, 0]", "only used with surface_normal"});
   expect_rejected(crystal_with("  orientation: {euler_bunge_deg: [0, 0, 0], "
@@ -369,10 +371,10 @@ TEST(CaseFile, OrientationIsChecked)
                   {"material.orientation", "both", "exactly one"});
   expect_rejected(crystal_with("  orientation: {}\n"),
                   {"material.orientation", "no orientation given", "euler_bunge_deg"});
-  expect_rejected(crystal_with("  orientation: {surface_normal: [1, 1, 1], "
-                               "reference_direction: [1, 0, 0]}\n"),
-                  {"material.orientation.reference_direction = [1, 0, 0]", "not perpendicular",
-                   ":4:"});
+  expect_rejected(
+      crystal_with("  orientation: {surface_normal: [1, 1, 1], "
+                   "reference_direction: [1, 0, 0]}\n"),
+      {"material.orientation.reference_direction = [1, 0, 0]", "not perpendicular", ":4:"});
   expect_rejected(crystal_with("  orientation: {surface_normal: [0, 0, 0], "
                                "reference_direction: [1, 0, 0]}\n"),
                   {"material.orientation.surface_normal = [0, 0, 0]", "non-zero"});
@@ -400,19 +402,18 @@ TEST(CaseFile, QuarterSymmetryNeedsCubicMirrorPlanes)
                                       "material:\n  model: crystal\n";
   expect_rejected(quarter_crystal + "  orientation: {surface_normal: [1, 1, 1], "
                                     "reference_direction: [1, -1, 0]}\n",
-                  {"specimen.symmetry = quarter", "mirror planes", "[1, 1, 1]", "y = 0",
-                   "(111)", "use symmetry: full"});
+                  {"specimen.symmetry = quarter", "mirror planes", "[1, 1, 1]", "y = 0", "(111)",
+                   "use symmetry: full"});
   expect_rejected(quarter_crystal + "  orientation: {euler_bunge_deg: [10, 0, 0]}\n",
-                  {"specimen.symmetry = quarter", "euler_bunge_deg [10, 0, 0]",
-                   "symmetry: full"});
+                  {"specimen.symmetry = quarter", "euler_bunge_deg [10, 0, 0]", "symmetry: full"});
   EXPECT_EQ(error_of(quarter_crystal + "  orientation: {euler_bunge_deg: [0, 0, 0]}\n"), "")
-    << "(001) with <100> along x: x = 0 and y = 0 are {100} mirror planes";
+      << "(001) with <100> along x: x = 0 and y = 0 are {100} mirror planes";
   EXPECT_EQ(error_of(quarter_crystal + "  orientation: {euler_bunge_deg: [45, 0, 0]}\n"), "")
-    << "(001) with <110> along x: {110} mirror planes";
+      << "(001) with <110> along x: {110} mirror planes";
   EXPECT_EQ(error_of(quarter_crystal + "  orientation: {surface_normal: [0, 1, 1], "
                                        "reference_direction: [1, 0, 0]}\n"),
             "")
-    << "(011) with [100] along x: (100) and (01-1) are mirror planes";
+      << "(011) with [100] along x: (100) and (01-1) are mirror planes";
   EXPECT_EQ(error_of(quarter_crystal + "  orientation: {surface_normal: [0, 0, 1], "
                                        "reference_direction: [1, 0, 0]}\n"),
             "");
@@ -475,9 +476,9 @@ TEST(CaseFile, IndenterRangesAreChecked)
                   {"indenter.half_angle_deg = 0", "0 < alpha < 90 deg"});
   expect_rejected(with("indenter:\n  tip_radius: -0.1\n"),
                   {"indenter.tip_radius = -0.1", ">= 0 um", "0: sharp"});
-  expect_rejected(with("indenter:\n  shape: flat_punch\n  edge_radius: -0.1\n"),
-                  {"indenter.edge_radius", "edge_radius = -0.1, radius = 10",
-                   "0 <= edge_radius <= radius"});
+  expect_rejected(
+      with("indenter:\n  shape: flat_punch\n  edge_radius: -0.1\n"),
+      {"indenter.edge_radius", "edge_radius = -0.1, radius = 10", "0 <= edge_radius <= radius"});
   expect_rejected(with("indenter:\n  shape: flat_punch\n  radius: 2\n  edge_radius: 3\n"),
                   {"indenter.edge_radius", "edge_radius = 3, radius = 2", ":7:"});
   expect_rejected(with("indenter:\n  rotation_deg: ninety\n"),
@@ -487,15 +488,14 @@ TEST(CaseFile, IndenterRangesAreChecked)
   expect_rejected(with("indenter:\n  tipradius: 0.1\n"),
                   {"unknown key 'indenter.tipradius'", "did you mean 'indenter.tip_radius'"});
   expect_rejected(with("indenter:\n  shape: profile_table\n"),
-                  {"indenter.file = \"\" (default)", "profile_table needs the table",
-                   "r_um,z_um", "depth_um,area_um2"});
+                  {"indenter.file = \"\" (default)", "profile_table needs the table", "r_um,z_um",
+                   "depth_um,area_um2"});
   expect_rejected(with("indenter:\n  shape: profile_table\n  file: [a.csv]\n"),
                   {"indenter.file", "expected the path of a CSV profile table"});
   EXPECT_EQ(error_of(with("indenter:\n  shape: berkovich\n  rotation_deg: -725.5\n")), "")
-    << "any finite rotation";
-  EXPECT_EQ(error_of(with("indenter:\n  shape: flat_punch\n  radius: 2\n  edge_radius: 2\n")),
-            "")
-    << "edge_radius = radius: a hemispherical end";
+      << "any finite rotation";
+  EXPECT_EQ(error_of(with("indenter:\n  shape: flat_punch\n  radius: 2\n  edge_radius: 2\n")), "")
+      << "edge_radius = radius: a hemispherical end";
 
   Case c;
   c.indenter.half_angle_deg = 95.;
@@ -515,8 +515,8 @@ TEST(CaseFile, ProfileTableFileIsResolvedAndChecked)
   write_text(dir / "cases" / "tables" / "tip.csv", "r_um,z_um\n0,0\n1,0.1\n3,1\n");
   const std::string case_text = with("indenter:\n  shape: profile_table\n"
                                      "  file: tables/../tables/tip.csv\n");
-  const fs::path case_path = write_text(dir / "cases" / "case.yaml", case_text);
-  const Case     c = read_case_file(case_path.string());
+  const fs::path    case_path = write_text(dir / "cases" / "case.yaml", case_text);
+  const Case        c = read_case_file(case_path.string());
   const fs::path expected = fs::absolute(dir / "cases" / "tables" / "tip.csv").lexically_normal();
   EXPECT_EQ(c.indenter.file, expected.string());
 
@@ -529,13 +529,13 @@ TEST(CaseFile, ProfileTableFileIsResolvedAndChecked)
   EXPECT_TRUE(back == c) << read_text_file(resolved);
 
   // Missing and malformed tables.
-  expect_rejected(with("indenter:\n  shape: profile_table\n  file: /no/such/dir/tip.csv\n"),
-                  {"bad.yaml:6:", "indenter.file = \"/no/such/dir/tip.csv\"", "does not exist",
-                   "r_um,z_um"});
+  expect_rejected(
+      with("indenter:\n  shape: profile_table\n  file: /no/such/dir/tip.csv\n"),
+      {"bad.yaml:6:", "indenter.file = \"/no/such/dir/tip.csv\"", "does not exist", "r_um,z_um"});
   write_text(dir / "cases" / "tables" / "bad.csv", "r_um,z_um\n0,0\n1,0.5\n0.5,0.7\n");
-  const fs::path bad_case = write_text(
-    dir / "cases" / "bad_case.yaml",
-    with("indenter:\n  shape: profile_table\n  file: tables/bad.csv\n"));
+  const fs::path bad_case =
+      write_text(dir / "cases" / "bad_case.yaml",
+                 with("indenter:\n  shape: profile_table\n  file: tables/bad.csv\n"));
   try
     {
       read_case_file(bad_case.string());
@@ -546,8 +546,8 @@ TEST(CaseFile, ProfileTableFileIsResolvedAndChecked)
       const std::string message = error.what();
       const std::string table = (fs::absolute(dir / "cases" / "tables" / "bad.csv")).string();
       for (const std::string &part : {bad_case.string() + ":6:", std::string("indenter.file"),
-                                     table + ":4:", std::string("r_um = 0.5 does not increase"),
-                                     std::string("strictly increasing")})
+                                      table + ":4:", std::string("r_um = 0.5 does not increase"),
+                                      std::string("strictly increasing")})
         EXPECT_NE(message.find(part), std::string::npos) << "missing '" << part << "' in\n"
                                                          << message;
     }
@@ -564,15 +564,15 @@ TEST(CaseFile, QuarterSymmetryNeedsAMirrorSymmetricIndenter)
   expect_rejected(quarter + "indenter:\n  shape: vickers\n  rotation_deg: 30\n",
                   {"specimen.symmetry = quarter", "vickers with rotation_deg = 30",
                    "multiple of 45", "symmetry: full"});
-  for (const std::string ok : {"vickers\n", "vickers\n  rotation_deg: 45\n",
-                               "vickers\n  rotation_deg: -90\n", "sphere\n", "cone\n",
-                               "flat_punch\n", "rounded_cone\n"})
+  for (const std::string ok :
+       {"vickers\n", "vickers\n  rotation_deg: 45\n", "vickers\n  rotation_deg: -90\n", "sphere\n",
+        "cone\n", "flat_punch\n", "rounded_cone\n"})
     EXPECT_EQ(error_of(quarter + "indenter:\n  shape: " + ok), "") << ok;
   EXPECT_EQ(error_of(with("specimen:\n  symmetry: full\nindenter:\n  shape: berkovich\n")), "");
   EXPECT_EQ(error_of("test: tensile\nmaterial:\n  model: j2\nspecimen:\n  symmetry: quarter\n"
                      "indenter:\n  shape: berkovich\n"),
             "")
-    << "the tensile test ignores the indenter's symmetry";
+      << "the tensile test ignores the indenter's symmetry";
   Case c;
   c.indenter.shape = "berkovich";
   c.specimen.symmetry = "quarter";
@@ -583,14 +583,14 @@ TEST(CaseFile, QuarterSymmetryNeedsAMirrorSymmetricIndenter)
 TEST(CaseFile, PyramidExamplesAreValid)
 {
   const Case v =
-    read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/vickers_j2_n12.yaml");
+      read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/vickers_j2_n12.yaml");
   EXPECT_EQ(v.indenter.shape, "vickers");
   EXPECT_EQ(v.material.model, "j2");
   EXPECT_EQ(v.specimen.contact_elements, 12u);
   EXPECT_EQ(v.specimen.symmetry, "quarter");
   EXPECT_EQ(v.output.directory, "results/vickers_j2_n12");
   const Case b =
-    read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/berkovich_j2_n12.yaml");
+      read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/berkovich_j2_n12.yaml");
   EXPECT_EQ(b.indenter.shape, "berkovich");
   EXPECT_EQ(b.material.model, "j2");
   EXPECT_EQ(b.specimen.contact_elements, 12u);
@@ -603,11 +603,11 @@ TEST(CaseFile, PyramidExamplesAreValid)
 TEST(CaseFile, FrictionAndForceControlExamplesAreValid)
 {
   const Case f =
-    read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/friction_j2_n12.yaml");
+      read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/friction_j2_n12.yaml");
   EXPECT_DOUBLE_EQ(f.contact.friction_coefficient, 0.1);
   EXPECT_EQ(f.loading.control, "depth");
   const Case c =
-    read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/force_control_j2_n12.yaml");
+      read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/force_control_j2_n12.yaml");
   EXPECT_EQ(c.loading.control, "force");
   EXPECT_DOUBLE_EQ(c.loading.max_force, 500.0);
   EXPECT_EQ(c.loading.cycles, 2u);
@@ -633,8 +633,7 @@ TEST(CaseFile, TensileRangesAreChecked)
                   {"loading.max_strain = 1.5", "0 < strain <= 1"});
   expect_rejected(tensile + "compare_j2: yes please\n",
                   {"compare_j2", "yes please", "true or false"});
-  expect_rejected(with("compare_j2: true\n"),
-                  {"compare_j2 = true", "only the tensile test"});
+  expect_rejected(with("compare_j2: true\n"), {"compare_j2 = true", "only the tensile test"});
   expect_rejected(with("specimen:\n  grains: per_element\n"),
                   {"specimen.grains = per_element", "only implemented for test: tensile"});
   expect_rejected(with("elements_per_side: 3\n"),
@@ -650,7 +649,7 @@ TEST(CaseFile, TensileRangesAreChecked)
 TEST(CaseFile, TensileExampleIsValid)
 {
   const Case c =
-    read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/tensile_27_grains.yaml");
+      read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/tensile_27_grains.yaml");
   EXPECT_EQ(c.test, "tensile");
   EXPECT_TRUE(c.compare_j2);
   EXPECT_EQ(c.material.model, "crystal");
@@ -672,9 +671,9 @@ TEST(CaseFile, ResolvedCaseCarriesUnitComments)
   const std::string text = resolved_case_yaml(Case());
   for (const std::string fragment :
        {"young_modulus: 69", "# E [GPa]", "max_depth: 6", "delta: 0.005", "[um]", "[mN]",
-        "radius: 10", "half_angle_deg: 70.3", "tip_radius: 0", "rotation_deg: 0",
-        "edge_radius: 0", "file: \"\"", "[deg]",
-        "size: [360, 360, 180]", "f_bar: true", "directory: \"results/run\""})
+        "radius: 10", "half_angle_deg: 70.3", "tip_radius: 0", "rotation_deg: 0", "edge_radius: 0",
+        "file: \"\"", "[deg]", "size: [360, 360, 180]", "f_bar: true",
+        "directory: \"results/run\""})
     EXPECT_NE(text.find(fragment), std::string::npos) << fragment << "\n" << text;
 }
 
@@ -683,16 +682,15 @@ TEST(CaseFile, UnknownKeysAreRejectedWithSuggestion)
 {
   expect_rejected("tset: indentation\nmaterial:\n  model: j2\n",
                   {"unknown key 'tset'", "did you mean 'test'"});
-  expect_rejected(with("  youngs_modulus: 70\n"),
-                  {"unknown key 'material.youngs_modulus'", "did you mean 'material.young_modulus'",
-                   ":4:"});
+  expect_rejected(with("  youngs_modulus: 70\n"), {"unknown key 'material.youngs_modulus'",
+                                                   "did you mean 'material.young_modulus'", ":4:"});
   expect_rejected(with("loading:\n  max_depht: 5\n"),
                   {"loading.max_depht", "did you mean 'loading.max_depth'"});
   expect_rejected(with("max_depth: 5\n"),
                   {"unknown key 'max_depth'", "did you mean 'loading.max_depth'"});
-  expect_rejected(with("specimen:\n  elephant: 1\n"),
-                  {"unknown key 'specimen.elephant'", "Allowed keys in 'specimen'",
-                   "contact_elements"});
+  expect_rejected(
+      with("specimen:\n  elephant: 1\n"),
+      {"unknown key 'specimen.elephant'", "Allowed keys in 'specimen'", "contact_elements"});
   expect_rejected(with("output:\n  directory: a\n  directory: b\n"),
                   {"duplicate key 'output.directory'"});
 }
@@ -739,10 +737,10 @@ TEST(CaseFile, SyntaxErrorNamesTheLine)
   EXPECT_NE(message.find("bad.yaml:"), std::string::npos) << message;
   EXPECT_NE(message.find("YAML syntax error"), std::string::npos) << message;
 
-  const fs::path dir = scratch_directory("syntax");
+  const fs::path    dir = scratch_directory("syntax");
   const std::string path = write_text(dir / "broken.yaml", "test: indentation\nmaterial:\n"
                                                            "  model: j2\n  a: b: c\n")
-                             .string();
+                               .string();
   try
     {
       read_case_file(path);
@@ -759,8 +757,7 @@ TEST(CaseFile, SyntaxErrorNamesTheLine)
 // A case file that does not exist gives an error naming the path.
 TEST(CaseFile, MissingFileIsReported)
 {
-  const std::string path =
-    (scratch_directory("missing_file") / "no_such_case.yaml").string();
+  const std::string path = (scratch_directory("missing_file") / "no_such_case.yaml").string();
   try
     {
       read_case_file(path);
@@ -822,7 +819,8 @@ TEST(CaseFile, LoadingContactSolverRangesAreChecked)
   expect_rejected(with("contact:\n  friction_coefficient: 10\n"),
                   {"contact.friction_coefficient = 10", "0 <= mu <= 2"});
   EXPECT_EQ(error_of(with("contact:\n  friction_coefficient: 0.2\n")), "");
-  expect_rejected(with("loading:\n  control: load\n"), {"loading.control = 'load'", "depth | force"});
+  expect_rejected(with("loading:\n  control: load\n"),
+                  {"loading.control = 'load'", "depth | force"});
   expect_rejected(with("loading:\n  control: force\n"),
                   {"loading.max_force = 0", "force control needs the maximum indenter force"});
   expect_rejected(with("loading:\n  max_force: 100\n"),
@@ -864,9 +862,9 @@ TEST(CaseFile, UnknownChoicesListAllowedValues)
                   {"test = 'compression'", "indentation | tensile"});
   expect_rejected(with("  yield_stress_measure: mises\n"),
                   {"material.yield_stress_measure = 'mises'", "cauchy | kirchhoff"});
-  expect_rejected("test: indentation\nmaterial:\n  model: cristal\n",
-                  {"material.model = 'cristal'", "neo_hookean | j2 | crystal",
-                   "did you mean 'crystal'"});
+  expect_rejected(
+      "test: indentation\nmaterial:\n  model: cristal\n",
+      {"material.model = 'cristal'", "neo_hookean | j2 | crystal", "did you mean 'crystal'"});
   EXPECT_EQ(error_of("test: tensile\nmaterial:\n  model: j2\n"), "");
 }
 
@@ -887,7 +885,7 @@ TEST(CaseFile, ValidateCaseChecksProgrammaticCases)
   catch (const CaseFileError &error)
     {
       EXPECT_NE(std::string(error.what()).find("material.poisson_ratio = 0.6"), std::string::npos)
-        << error.what();
+          << error.what();
     }
 }
 
@@ -938,9 +936,8 @@ TEST(OutputDirectory, OverwriteRemovesOnlyOwnFiles)
 {
   const fs::path dir = scratch_directory("overwrite");
   for (const char *name : {"load_penetration.csv", "load_penetration.png", "resolved_case.yaml",
-                           "run.log", "specimen.pvd", "specimen_0003.pvtu",
-                           "specimen_0003.0.vtu", "stress_strain.csv", "stress_strain_j2.csv",
-                           "stress_strain.png"})
+                           "run.log", "specimen.pvd", "specimen_0003.pvtu", "specimen_0003.0.vtu",
+                           "stress_strain.csv", "stress_strain_j2.csv", "stress_strain.png"})
     write_text(dir / name, "old");
   for (const char *name : {"notes.txt", "my_mesh.vtu", "load_penetration_paper.csv"})
     write_text(dir / name, "keep");
@@ -949,9 +946,8 @@ TEST(OutputDirectory, OverwriteRemovesOnlyOwnFiles)
 
   prepare_output_directory(dir.string(), true);
   for (const char *name : {"load_penetration.csv", "load_penetration.png", "resolved_case.yaml",
-                           "run.log", "specimen.pvd", "specimen_0003.pvtu",
-                           "specimen_0003.0.vtu", "stress_strain.csv", "stress_strain_j2.csv",
-                           "stress_strain.png"})
+                           "run.log", "specimen.pvd", "specimen_0003.pvtu", "specimen_0003.0.vtu",
+                           "stress_strain.csv", "stress_strain_j2.csv", "stress_strain.png"})
     EXPECT_FALSE(fs::exists(dir / name)) << name;
   for (const char *name : {"notes.txt", "my_mesh.vtu", "load_penetration_paper.csv"})
     EXPECT_TRUE(fs::exists(dir / name)) << name;
@@ -992,7 +988,7 @@ TEST(OutputDirectory, ReadOnlyDirectoryIsReported)
     catch (const CaseFileError &error)
       {
         EXPECT_NE(std::string(error.what()).find("not writable"), std::string::npos)
-          << error.what();
+            << error.what();
       }
   };
   ASSERT_TRUE(fs::is_directory("/proc"));
@@ -1073,8 +1069,8 @@ TEST(CommandLine, HelpListsCommandsOptionsAndUnits)
 {
   const std::string help = help_text();
   for (const std::string fragment :
-       {"run CASE.yaml", "check CASE.yaml", "--output DIR", "--overwrite", "--compare-j2",
-        "--help", "--version", "um", "mN", "GPa", "stress_strain.csv"})
+       {"run CASE.yaml", "check CASE.yaml", "--output DIR", "--overwrite", "--compare-j2", "--help",
+        "--version", "um", "mN", "GPa", "stress_strain.csv"})
     EXPECT_NE(help.find(fragment), std::string::npos) << fragment;
   EXPECT_NE(version_text().find("indentsim"), std::string::npos);
 }
@@ -1091,7 +1087,8 @@ TEST(CommandLine, VersionNamesTheGitCommit)
   EXPECT_EQ(version_text(), "indentsim " + version + "\n");
 
   const std::string source = INDENTSIM_SOURCE_DIR;
-  if (!std::filesystem::exists(source + "/.git") || std::system("git --version > /dev/null 2>&1") != 0)
+  if (!std::filesystem::exists(source + "/.git") ||
+      std::system("git --version > /dev/null 2>&1") != 0)
     {
       EXPECT_EQ(version, project + "no git checkout)");
       return;
@@ -1123,8 +1120,8 @@ TEST(CaseFile, ExperimentalCurveIsResolvedAndChecked)
   fs::create_directories(dir / "cases" / "data");
   write_text(dir / "cases" / "data" / "measured.csv", "depth_nm,load_uN\n0,0\n500,1000\n");
   const fs::path case_path =
-    write_text(dir / "cases" / "case.yaml",
-               with("output:\n  directory: out\n  experimental_curve: data/measured.csv\n"));
+      write_text(dir / "cases" / "case.yaml",
+                 with("output:\n  directory: out\n  experimental_curve: data/measured.csv\n"));
   const Case c = read_case_file(case_path.string());
   EXPECT_EQ(c.output.experimental_curve,
             fs::absolute(dir / "cases" / "data" / "measured.csv").lexically_normal().string());
@@ -1142,12 +1139,12 @@ TEST(CaseFile, ExperimentalCurveIsResolvedAndChecked)
 TEST(CaseFile, ReferenceDocumentIsUpToDate)
 {
   const std::string path = std::string(INDENTSIM_SOURCE_DIR) + "/docs/case-file-reference.md";
-  std::string committed;
+  std::string       committed;
   if (fs::exists(path))
     committed = read_text_file(path);
   EXPECT_TRUE(committed == case_file_reference_markdown())
-    << path << " is out of date with the case schema (src/case/Schema.cc); regenerate it from "
-    << "the repository root with: " << case_reference_command;
+      << path << " is out of date with the case schema (src/case/Schema.cc); regenerate it from "
+      << "the repository root with: " << case_reference_command;
 }
 
 // Every schema key appears in the reference and in the resolved case.
@@ -1191,13 +1188,12 @@ TEST(CaseFile, FingerprintIgnoresOnlyKeysThatDoNotDetermineResults)
   EXPECT_TRUE(changed([](Case &c) { c.contact.friction_coefficient = 0.1; }));
   EXPECT_TRUE(changed([](Case &c) { c.solver.residual_tolerance = 1e-8; }));
   EXPECT_TRUE(changed([](Case &c) { c.output.vtu_every = 2; }));
-  EXPECT_TRUE(changed([](Case &c) {
-    c.material.orientation.kind = OrientationKind::surface_normal;
-  }));
+  EXPECT_TRUE(
+      changed([](Case &c) { c.material.orientation.kind = OrientationKind::surface_normal; }));
   for (const auto &key : case_keys())
     EXPECT_EQ(canonical_case_text(base).find(key.path + ": ") != std::string::npos,
               key.determines_results && (key.written == nullptr || key.written(base)))
-      << key.path;
+        << key.path;
 }
 
 // A word that names no enumerator is kept (for the validator's message) and compares unequal

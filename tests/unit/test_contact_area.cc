@@ -6,9 +6,9 @@
 
 #include <cmath>
 
+using dealii::Point;
 using indentsim::contact::quad_contact_patch;
 using indentsim::contact::triangle_contact_patch;
-using dealii::Point;
 
 // Requirement: on a triangle, the area of {phi > 0} of a linear phi is exact, including the
 // all-positive and all-negative cases.
@@ -33,9 +33,9 @@ TEST(ContactArea, QuadPerimeterMovesContinuously)
 {
   // A rotated, stretched parallelogram: phi linear in x, so the contact part is exact.
   const std::array<Point<2>, 4> q = {
-    {Point<2>(1, 1), Point<2>(3, 1.5), Point<2>(3.5, 3.5), Point<2>(1.5, 3)}};
+      {Point<2>(1, 1), Point<2>(3, 1.5), Point<2>(3.5, 3.5), Point<2>(1.5, 3)}};
   const auto phi_at = [](const Point<2> &x, const double level) { return level - x[0]; };
-  double previous = -1;
+  double     previous = -1;
   for (double level = 1.0; level <= 3.5; level += 0.25)
     {
       std::array<double, 4> phi;
@@ -44,7 +44,7 @@ TEST(ContactArea, QuadPerimeterMovesContinuously)
       const double area = quad_contact_patch(q, phi).area;
       // Closed form: area of the parallelogram left of x = level, by a fine strip sum of the
       // chord length (independent of the clipping code).
-      double reference = 0;
+      double    reference = 0;
       const int n = 20000;
       for (int k = 0; k < n; ++k)
         {

@@ -135,9 +135,9 @@ namespace
   Tensor<2, 3> axis_along_z(const std::array<double, 3> &axis)
   {
     // any crystal direction perpendicular to `axis` along sample x
-    const std::array<double, 3> reference =
-      (axis[0] == 0 && axis[1] == 0) ? std::array<double, 3>{{1, 0, 0}} :
-                                       std::array<double, 3>{{-axis[1], axis[0], 0}};
+    const std::array<double, 3> reference = (axis[0] == 0 && axis[1] == 0)
+                                                ? std::array<double, 3>{{1, 0, 0}}
+                                                : std::array<double, 3>{{-axis[1], axis[0], 0}};
     return rotation_from_surface_normal(axis, reference);
   }
 
@@ -236,10 +236,10 @@ namespace
     for (const double Gamma : {0.0, 0.01, 0.1, 1.0})
       {
         const double h = 1e-6;
-        EXPECT_NEAR((law.critical_shear(Gamma + h) - law.critical_shear(Gamma - std::min(h, Gamma))) /
-                      (h + std::min(h, Gamma)),
-                    law.hardening_rate(Gamma),
-                    1e-6);
+        EXPECT_NEAR(
+            (law.critical_shear(Gamma + h) - law.critical_shear(Gamma - std::min(h, Gamma))) /
+                (h + std::min(h, Gamma)),
+            law.hardening_rate(Gamma), 1e-6);
       }
   }
 
@@ -249,7 +249,7 @@ namespace
   {
     const CrystalPlasticity model = table2_model({106.75, 60.41, 28.34});
     const std::array<std::pair<std::array<double, 3>, double>, 3> cases = {
-      {{{{1, 0, 0}}, 63.09}, {{{1, 1, 0}}, 72.03}, {{{1, 1, 1}}, 75.60}}};
+        {{{{1, 0, 0}}, 63.09}, {{{1, 1, 0}}, 72.03}, {{{1, 1, 1}}, 75.60}}};
     for (const auto &[axis, expected] : cases)
       {
         UniaxialDriver driver{model, oriented_state(model, axis_along_z(axis))};
@@ -257,7 +257,7 @@ namespace
         const double   sigma = driver.load_to(1.0 + strain);
         const double   modulus = sigma / std::log(1.0 + strain);
         report("E along [" + std::to_string(int(axis[0])) + std::to_string(int(axis[1])) +
-                 std::to_string(int(axis[2])) + "] [GPa]",
+                   std::to_string(int(axis[2])) + "] [GPa]",
                modulus);
         EXPECT_NEAR(modulus / expected, 1.0, 1e-3);
       }
@@ -274,12 +274,13 @@ namespace
   TEST(CrystalPlasticityModel, InitialYieldStressMatchesRegularizedSchmidLaw)
   {
     const std::array<std::pair<std::array<double, 3>, double>, 3> cases = {
-      {{{{0, 0, 1}}, 2.20760}, {{{0, 1, 1}}, 2.28545}, {{{1, 1, 1}}, 3.35938}}};
+        {{{{0, 0, 1}}, 2.20760}, {{{0, 1, 1}}, 2.28545}, {{{1, 1, 1}}, 3.35938}}};
     for (const double stiffness_factor : {1000.0, 1.0})
       {
         const CubicElasticity   table2;
-        const CrystalPlasticity model = table2_model(
-          {table2.C11 * stiffness_factor, table2.C12 * stiffness_factor, table2.C44 * stiffness_factor});
+        const CrystalPlasticity model =
+            table2_model({table2.C11 * stiffness_factor, table2.C12 * stiffness_factor,
+                          table2.C44 * stiffness_factor});
         for (const auto &[axis, ratio] : cases)
           {
             const auto state0 = oriented_state(model, axis_along_z(axis));
@@ -294,9 +295,10 @@ namespace
             UniaxialDriver driver{model, state0};
             const double   sigma_y = driver.load_to(elastic);
             const double   deviation = sigma_y / (0.12 * ratio) - 1.0;
-            report("stiffness x " + std::to_string(int(stiffness_factor)) + ": sigma_y / tau0 along [" +
-                     std::to_string(int(axis[0])) + std::to_string(int(axis[1])) +
-                     std::to_string(int(axis[2])) + "], relative deviation",
+            report("stiffness x " + std::to_string(int(stiffness_factor)) +
+                       ": sigma_y / tau0 along [" + std::to_string(int(axis[0])) +
+                       std::to_string(int(axis[1])) + std::to_string(int(axis[2])) +
+                       "], relative deviation",
                    deviation);
             EXPECT_LT(std::abs(deviation), stiffness_factor > 1 ? 1e-5 : 3e-3);
           }
@@ -326,8 +328,7 @@ namespace
     EXPECT_GT(one_step, 2.2076 * 0.12); // hardened beyond the initial yield stress
 
     const Tensor<2, 3> g = bunge_rotation({{20, 35, 10}});
-    const double       s10 = stress_after(g, 10), s20 = stress_after(g, 20),
-                 s40 = stress_after(g, 40);
+    const double s10 = stress_after(g, 10), s20 = stress_after(g, 20), s40 = stress_after(g, 40);
     report("general axis, 10/20/40 steps: s10 - s40 [GPa]", s10 - s40);
     report("general axis, 10/20/40 steps: s20 - s40 [GPa]", s20 - s40);
     EXPECT_LT(std::abs(s20 - s40), std::abs(s10 - s40));
@@ -389,26 +390,22 @@ namespace
           {
             MaterialPointResponse response;
             std::vector<double>   state_new(state.size());
-            ASSERT_EQ(reference::update(model,
-                                        identity() + (F_history - identity()) * (step / 4.0),
-                                        state,
-                                        response,
-                                        state_new,
-                                        false),
+            ASSERT_EQ(reference::update(model, identity() + (F_history - identity()) * (step / 4.0),
+                                        state, response, state_new, false),
                       UpdateStatus::success);
             state = state_new;
           }
         // Up to 0.5: increments large enough for dR_tc/dtau_c to lose its diagonal and the solve
         // to fall back to the dense LU.
         const double amplitude = std::array<double, 5>{{1e-3, 0.02, 0.08, 0.2, 0.5}}[sample % 5];
-        const Tensor<2, 3> F =
-          (n_history > 0 ? F_history : identity()) + (random_deformation(generator, amplitude) - identity());
+        const Tensor<2, 3> F = (n_history > 0 ? F_history : identity()) +
+                               (random_deformation(generator, amplitude) - identity());
         for (const bool tangent : {false, true})
           {
             MaterialPointResponse fast, slow;
             std::vector<double>   state_fast(state.size()), state_slow(state.size());
             const UpdateStatus    status_slow =
-              reference::update(model, F, state, slow, state_slow, tangent);
+                reference::update(model, F, state, slow, state_slow, tangent);
             const UpdateStatus status_fast = model.update(F, state, fast, state_fast, tangent);
             // Where the reference Newton fails, round-off may let the fast one succeed.
             if (status_slow != UpdateStatus::success)
@@ -421,7 +418,8 @@ namespace
             worst_P = std::max(worst_P, error_P);
             // Each part of the state relative to its change over the increment (the state is
             // mostly the old one): F_p, tau_c^r and Gamma.
-            for (const auto &[begin, end] : {std::pair{0u, 9u}, std::pair{9u, 21u}, std::pair{21u, 22u}})
+            for (const auto &[begin, end] :
+                 {std::pair{0u, 9u}, std::pair{9u, 21u}, std::pair{21u, 22u}})
               {
                 double difference = 0, change = 0;
                 for (unsigned int k = begin; k < end; ++k)
@@ -461,7 +459,7 @@ namespace
     unsigned int            n_compared = 0;
     for (unsigned int sample = 0; sample < 12; ++sample)
       {
-        auto state = oriented_state(model, random_rotation(generator));
+        auto               state = oriented_state(model, random_rotation(generator));
         const Tensor<2, 3> F_history = random_deformation(generator, 0.02);
         for (unsigned int step = 1; step <= sample % 3; ++step)
           {
@@ -473,7 +471,9 @@ namespace
             state = state_new;
           }
         const Tensor<2, 3> F =
-          F_history + (random_deformation(generator, std::array<double, 3>{{0.005, 0.03, 0.1}}[sample % 3]) - identity());
+            F_history +
+            (random_deformation(generator, std::array<double, 3>{{0.005, 0.03, 0.1}}[sample % 3]) -
+             identity());
         MaterialPointResponse cold;
         std::vector<double>   state_cold(state); // the hint of an increment's first iteration
         ASSERT_EQ(model.update(F, state, cold, state_cold, true), UpdateStatus::success);
@@ -483,7 +483,8 @@ namespace
         for (const double distance : {1e-6, 1e-3, 0.05, 0.3})
           {
             // The update at a nearby deformation, as a previous global iterate leaves it.
-            const Tensor<2, 3> F_near = F + distance * (random_deformation(generator, 1.0) - identity());
+            const Tensor<2, 3> F_near =
+                F + distance * (random_deformation(generator, 1.0) - identity());
             MaterialPointResponse response;
             std::vector<double>   hint(state);
             if (model.update(F_near, state, response, hint, false) == UpdateStatus::success)
@@ -508,7 +509,7 @@ namespace
             MaterialPointResponse warm;
             std::vector<double>   state_warm(hint);
             ASSERT_EQ(model.update(F, state, warm, state_warm, true), UpdateStatus::success)
-              << "sample " << sample;
+                << "sample " << sample;
             const double error_P = (warm.P - cold.P).norm() / cold.P.norm();
             const double error_tangent = (warm.dP_dF - cold.dP_dF).norm() / cold.dP_dF.norm();
             double       difference = 0, change = 0;
@@ -538,9 +539,9 @@ namespace
     std::mt19937            generator(11);
     for (unsigned int sample = 0; sample < 5; ++sample)
       {
-        const auto         state = oriented_state(model, random_rotation(generator));
-        const Tensor<2, 3> F = random_deformation(generator, 0.02);
-        const Tensor<2, 3> Q = random_rotation(generator);
+        const auto            state = oriented_state(model, random_rotation(generator));
+        const Tensor<2, 3>    F = random_deformation(generator, 0.02);
+        const Tensor<2, 3>    Q = random_rotation(generator);
         MaterialPointResponse plain, rotated;
         std::vector<double>   state_plain(state.size()), state_rotated(state.size());
         ASSERT_EQ(model.update(F, state, plain, state_plain), UpdateStatus::success);
@@ -571,16 +572,14 @@ namespace
         for (unsigned int r = 0; r < 12; ++r)
           tau_c[r] = model.critical_shear(state_new, r);
         EXPECT_NEAR(model.yield_function_value(model.resolved_shear_stresses(F, state_new), tau_c),
-                    1.0,
-                    1e-10);
-        EXPECT_NEAR(dealii::determinant(CrystalPlasticity::plastic_deformation(state_new)), 1.0, 1e-12);
+                    1.0, 1e-10);
+        EXPECT_NEAR(dealii::determinant(CrystalPlasticity::plastic_deformation(state_new)), 1.0,
+                    1e-12);
         // Unloading to the stress-free configuration F = F_p (F_e = I) is elastic: zero stress,
         // the state is kept.
         std::vector<double> state_unloaded(state.size());
-        ASSERT_EQ(model.update(CrystalPlasticity::plastic_deformation(state_new),
-                               state_new,
-                               response,
-                               state_unloaded),
+        ASSERT_EQ(model.update(CrystalPlasticity::plastic_deformation(state_new), state_new,
+                               response, state_unloaded),
                   UpdateStatus::success);
         EXPECT_LT(response.P.norm(), 1e-12);
         EXPECT_EQ(state_unloaded, state_new);
@@ -598,10 +597,8 @@ namespace
     for (const double stretch : {1.5, 3.0, 10.0})
       {
         const UpdateStatus status =
-          model.update(diagonal(1 / std::sqrt(stretch), 1 / std::sqrt(stretch), stretch),
-                       state,
-                       response,
-                       state_new);
+            model.update(diagonal(1 / std::sqrt(stretch), 1 / std::sqrt(stretch), stretch), state,
+                         response, state_new);
         EXPECT_TRUE(status == UpdateStatus::success || status == UpdateStatus::local_newton_failed);
         if (status == UpdateStatus::success)
           {

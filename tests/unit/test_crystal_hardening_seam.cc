@@ -33,10 +33,8 @@ namespace
     double initial_critical_shear() const { return tau0; }
 
     template <int n_slip>
-    void increment(double /*Gamma_n*/,
-                   const std::array<double, n_slip> &abs_delta_gamma,
-                   const double                      delta_Gamma,
-                   HardeningIncrement<n_slip>       &out) const
+    void increment(double /*Gamma_n*/, const std::array<double, n_slip> &abs_delta_gamma,
+                   const double delta_Gamma, HardeningIncrement<n_slip> &out) const
     {
       for (int r = 0; r < n_slip; ++r)
         {
@@ -48,21 +46,25 @@ namespace
 
     const char *parameter_error() const
     {
-      return (tau0 > 0 && h >= 0 && q >= 0) ? nullptr : "tau0 must be positive, h and q non-negative";
+      return (tau0 > 0 && h >= 0 && q >= 0) ? nullptr
+                                            : "tau0 must be positive, h and q non-negative";
     }
   };
 
-  using LinearHardeningCrystal = CrystalPlasticityModel<CubicElasticity, RegularizedSchmidFlow, LinearHardening>;
+  using LinearHardeningCrystal =
+      CrystalPlasticityModel<CubicElasticity, RegularizedSchmidFlow, LinearHardening>;
 
   LinearHardeningCrystal linear_model(const double q)
   {
     LinearHardening hardening;
     hardening.q = q;
-    return LinearHardeningCrystal(fcc_slip_systems(), CubicElasticity(), RegularizedSchmidFlow{10.0}, hardening);
+    return LinearHardeningCrystal(fcc_slip_systems(), CubicElasticity(),
+                                  RegularizedSchmidFlow{10.0}, hardening);
   }
 
   // Plastic states reached in 4 increments towards a random deformation of a few per cent.
-  std::vector<double> plastic_state(const MaterialModel &model, std::mt19937 &generator, Tensor<2, 3> &F_target)
+  std::vector<double> plastic_state(const MaterialModel &model, std::mt19937 &generator,
+                                    Tensor<2, 3> &F_target)
   {
     std::vector<double> state(model.n_state_variables());
     model.oriented_initial_state(state, random_rotation(generator));
@@ -90,7 +92,8 @@ namespace
           {
             std::vector<double> virgin(model.n_state_variables());
             model.oriented_initial_state(virgin, random_rotation(generator));
-            const double error_elastic = tangent_error(model, random_deformation(generator, 5e-4), virgin, 1e-7);
+            const double error_elastic =
+                tangent_error(model, random_deformation(generator, 5e-4), virgin, 1e-7);
             EXPECT_LT(error_elastic, 1e-6) << "q = " << q << ", elastic sample " << sample;
 
             Tensor<2, 3> F_target;
@@ -98,7 +101,8 @@ namespace
             ASSERT_GT(model.equivalent_plastic_strain(state), 0.0);
             const double error_plastic = tangent_error(model, F_target, state, 1e-7);
             if (sample == 0)
-              report("linear hardening, q = " + std::to_string(q) + ": plastic tangent FD error", error_plastic);
+              report("linear hardening, q = " + std::to_string(q) + ": plastic tangent FD error",
+                     error_plastic);
             EXPECT_LT(error_plastic, 1e-5) << "q = " << q << ", plastic sample " << sample;
           }
       }
@@ -125,7 +129,8 @@ namespace
             for (unsigned int r = 0; r < n; ++r)
               hardening_sum += model.critical_shear(state, r) - law.tau0;
             const double expected = law.h * Gamma * (q * n + 1.0 - q);
-            EXPECT_NEAR(hardening_sum / expected, 1.0, 1e-8) << "q = " << q << ", sample " << sample;
+            EXPECT_NEAR(hardening_sum / expected, 1.0, 1e-8)
+                << "q = " << q << ", sample " << sample;
 
             MaterialPointResponse response;
             std::vector<double>   state_new(state.size());
@@ -136,7 +141,9 @@ namespace
                 std::vector<double> tau_c(n);
                 for (unsigned int r = 0; r < n; ++r)
                   tau_c[r] = model.critical_shear(state_new, r);
-                EXPECT_NEAR(model.yield_function_value(model.resolved_shear_stresses(F, state_new), tau_c), 1.0, 1e-10);
+                EXPECT_NEAR(
+                    model.yield_function_value(model.resolved_shear_stresses(F, state_new), tau_c),
+                    1.0, 1e-10);
               }
           }
       }

@@ -7,8 +7,8 @@
 #include "indenter/ProfileTable.h"
 #include "indenter/Pyramid.h"
 #include "indenter/RoundedCone.h"
-#include "indenter/Sphere.h"
 #include "indenter/SneddonReference.h"
+#include "indenter/Sphere.h"
 
 #include "../test_files.h"
 
@@ -56,7 +56,7 @@ namespace
     const double scale = std::hypot(x[0], x[1]) + std::abs(x[2] + depth) + 10. * a * a * delta;
     const double r_max = 2. * scale;
 
-    double best_r = 0., best_phi = 0., best = std::numeric_limits<double>::max();
+    double        best_r = 0., best_phi = 0., best = std::numeric_limits<double>::max();
     constexpr int n_r = 2000, n_phi = 360;
     // Quadratic spacing in r resolves the tip as well as the flank.
     for (int i = 0; i <= n_r; ++i)
@@ -71,8 +71,8 @@ namespace
           }
       }
     const int i_best = int(std::round(n_r * std::sqrt(best_r / r_max)));
-    double dr = r_max * (2. * std::max(i_best, 1) + 1.) / (double(n_r) * n_r);
-    double dphi = 2. * std::numbers::pi / n_phi;
+    double    dr = r_max * (2. * std::max(i_best, 1) + 1.) / (double(n_r) * n_r);
+    double    dphi = 2. * std::numbers::pi / n_phi;
     for (int level = 0; level < 14; ++level)
       {
         const double r0 = best_r, phi0 = best_phi;
@@ -99,22 +99,22 @@ namespace
   // Test points relative to the apex (specimen frame with the apex at (0, 0, -depth)).
   std::vector<Point<3>> probe_points(const Geometry &g)
   {
-    const double R = g.a * g.a * g.delta;
+    const double          R = g.a * g.a * g.delta;
     std::vector<Point<3>> points = {
-      {0., 0., -0.3},                 // on the axis, outside (below the apex)
-      {0., 0., -5.},                  // on the axis, far outside
-      {0.01, 0.005, -0.002},          // near the apex, outside
-      {-0.004, 0.003, 0.0005},        // near the apex, slightly above its level
-      {0., 0., 0.3 * R},              // on the axis inside, below the centre of curvature
-      {0., 0., 1.},                   // on the axis inside, above it (closest points: a circle)
-      {50., 30., 20.},                // far out on the cone flank, outside
-      {-400., 250., 150.},            // very far out, outside
-      {5., 3., 3.},                   // inside, near the flank
-      {1., 0., 5.},                   // deep inside
-      {-2., -1.5, 0.5},               // outside, above the apex level, other quadrant
-      {3., -4., 1.},                  // outside, above the apex level
-      {0.02, -0.01, 0.0012},          // inside near the tip
-      {1e-7, 0., -1e-3},              // almost on the axis
+        {0., 0., -0.3},          // on the axis, outside (below the apex)
+        {0., 0., -5.},           // on the axis, far outside
+        {0.01, 0.005, -0.002},   // near the apex, outside
+        {-0.004, 0.003, 0.0005}, // near the apex, slightly above its level
+        {0., 0., 0.3 * R},       // on the axis inside, below the centre of curvature
+        {0., 0., 1.},            // on the axis inside, above it (closest points: a circle)
+        {50., 30., 20.},         // far out on the cone flank, outside
+        {-400., 250., 150.},     // very far out, outside
+        {5., 3., 3.},            // inside, near the flank
+        {1., 0., 5.},            // deep inside
+        {-2., -1.5, 0.5},        // outside, above the apex level, other quadrant
+        {3., -4., 1.},           // outside, above the apex level
+        {0.02, -0.01, 0.0012},   // inside near the tip
+        {1e-7, 0., -1e-3},       // almost on the axis
     };
     // Random points at several scales around the apex.
     std::mt19937                           generator(42);
@@ -130,12 +130,12 @@ namespace
   void check_projection(const RoundedCone &cone, const Geometry &g, const Point<3> &relative,
                         const double depth)
   {
-    const Point<3> x(relative[0], relative[1], relative[2] - depth);
+    const Point<3>          x(relative[0], relative[1], relative[2] - depth);
     const SurfaceProjection p = cone.project(x, depth);
     const BruteForceResult  bf = brute_force(x, depth, g.a, g.delta);
-    const double rho = std::hypot(x[0], x[1]);
-    const bool   inside = relative[2] > eq16(rho, g.a, g.delta);
-    const double scale = 1. + relative.norm();
+    const double            rho = std::hypot(x[0], x[1]);
+    const bool              inside = relative[2] > eq16(rho, g.a, g.delta);
+    const double            scale = 1. + relative.norm();
     SCOPED_TRACE("a = " + std::to_string(g.a) + ", delta = " + std::to_string(g.delta) +
                  ", point relative to apex (" + std::to_string(relative[0]) + ", " +
                  std::to_string(relative[1]) + ", " + std::to_string(relative[2]) + ")");
@@ -165,7 +165,7 @@ namespace
     if (std::abs(bf.distance) > 1e-6 && unique && (rho == 0. || rho > 1e-4 * scale))
       {
         const Tensor<1, 3> expected =
-          (x - bf.closest_point) / (inside ? -bf.distance : bf.distance);
+            (x - bf.closest_point) / (inside ? -bf.distance : bf.distance);
         EXPECT_LT((p.normal - expected).norm(), 1e-5);
       }
     // Perpendicular to the surface tangents at c (where the surface is smooth).
@@ -174,7 +174,7 @@ namespace
       {
         const double phi = r_c > 0. ? std::atan2(c[1], c[0]) : 0.;
         const double h = 1e-6 * (r_c + g.a * g.delta + 1e-3);
-        const auto surface = [&](const double r, const double ph) {
+        const auto   surface = [&](const double r, const double ph) {
           return Point<3>(r * std::cos(ph), r * std::sin(ph), eq16(r, g.a, g.delta) - depth);
         };
         const Tensor<1, 3> t_r = (surface(r_c + h, phi) - surface(std::max(r_c - h, 0.), phi)) /
@@ -194,7 +194,7 @@ namespace
 // Gap, closest point and normal of the paper's rounded cone agree with brute force everywhere.
 TEST(RoundedCone, ProjectionMatchesBruteForce)
 {
-  const Geometry   g{2.48, 0.005};
+  const Geometry    g{2.48, 0.005};
   const RoundedCone cone(g.a, g.delta);
   for (const double depth : {0., 1.7})
     for (const auto &point : probe_points(g))
@@ -204,7 +204,7 @@ TEST(RoundedCone, ProjectionMatchesBruteForce)
 // The projection is also exact for a blunt tip, where the rounding is large.
 TEST(RoundedCone, ProjectionMatchesBruteForceBluntTip)
 {
-  const Geometry   g{1.2, 0.5};
+  const Geometry    g{1.2, 0.5};
   const RoundedCone cone(g.a, g.delta);
   for (const auto &point : probe_points(g))
     check_projection(cone, g, point, 0.4);
@@ -213,7 +213,7 @@ TEST(RoundedCone, ProjectionMatchesBruteForceBluntTip)
 // delta = 0 (a sharp cone, allowed by the case file) is projected exactly, apex included.
 TEST(RoundedCone, ProjectionMatchesBruteForceSharpCone)
 {
-  const Geometry   g{2.48, 0.};
+  const Geometry    g{2.48, 0.};
   const RoundedCone cone(g.a, g.delta);
   for (const auto &point : probe_points(Geometry{2.48, 0.005}))
     check_projection(cone, g, point, 0.3);
@@ -284,7 +284,7 @@ TEST(RoundedCone, ProjectedAreaIsPiRSquared)
 TEST(IndenterFactory, CreatesRoundedCone)
 {
   indentsim::io::IndenterParameters parameters;
-  const auto indenter = create_indenter(parameters);
+  const auto                        indenter = create_indenter(parameters);
   ASSERT_NE(indenter, nullptr);
   EXPECT_EQ(indenter->name(), "rounded_cone");
   EXPECT_NEAR(indenter->profile(1., 0.), eq16(1., parameters.a, parameters.delta), 1e-15);
@@ -338,8 +338,9 @@ TEST(SneddonReference, StiffnessIsDerivativeOfForce)
       const double h = h_over_delta * delta;
       const double dh = 1e-5 * h;
       const double dP_dh =
-        (reference.force_at_depth(h + dh) - reference.force_at_depth(h - dh)) / (2. * dh);
-      EXPECT_NEAR(reference.stiffness_at_depth(h) / dP_dh, 1., 1e-7) << "h/delta = " << h_over_delta;
+          (reference.force_at_depth(h + dh) - reference.force_at_depth(h - dh)) / (2. * dh);
+      EXPECT_NEAR(reference.stiffness_at_depth(h) / dP_dh, 1., 1e-7)
+          << "h/delta = " << h_over_delta;
     }
 }
 
@@ -377,7 +378,10 @@ namespace
   constexpr double pi = std::numbers::pi;
   constexpr double infinity = std::numeric_limits<double>::infinity();
 
-  double radians(const double degrees) { return degrees * pi / 180.; }
+  double radians(const double degrees)
+  {
+    return degrees * pi / 180.;
+  }
 
   // A continuous map of [0, 1]^2 onto part of an indenter surface, in the indenter frame (apex
   // at the origin). The patches of a shape together cover its surface up to a given extent.
@@ -393,8 +397,8 @@ namespace
   // from the best few grid-local minima of each patch. No projection formula is involved.
   Nearest brute_force(const std::vector<Patch> &patches, const Point<3> &q, const int n = 120)
   {
-    double   best = infinity;
-    Point<3> best_point;
+    double              best = infinity;
+    Point<3>            best_point;
     std::vector<double> grid((n + 1) * (n + 1));
     for (const Patch &patch : patches)
       {
@@ -520,7 +524,7 @@ namespace
           const double       angle = std::acos(std::clamp(n0 * n1, -1., 1.));
           result.push_back([=, this](double u, double v) {
             const Tensor<1, 3> arc =
-              (std::sin((1. - v) * angle) * n0 + std::sin(v * angle) * n1) / std::sin(angle);
+                (std::sin((1. - v) * angle) * n0 + std::sin(v * angle) * n1) / std::sin(angle);
             return apex + u * extent * e + R * arc;
           });
         }
@@ -528,8 +532,8 @@ namespace
         result.push_back([=, this](double u, double v) {
           Tensor<1, 3> w;
           if (n == 4)
-            w = (1. - u) * (1. - v) * normals[0] + u * (1. - v) * normals[1] +
-                u * v * normals[2] + (1. - u) * v * normals[3];
+            w = (1. - u) * (1. - v) * normals[0] + u * (1. - v) * normals[1] + u * v * normals[2] +
+                (1. - u) * v * normals[3];
           else
             w = (1. - u) * normals[0] + u * ((1. - v) * normals[1] + v * normals[2]);
           return apex + R * w / w.norm();
@@ -542,8 +546,8 @@ namespace
   std::vector<Patch> flat_punch_patches(const double a, const double e, const double extent)
   {
     std::vector<Patch> result = {
-      [=](double u, double v) { return on_circle(u * (a - e), 2. * pi * v, 0.); },
-      [=](double u, double v) { return on_circle(a, 2. * pi * v, e + u * extent); }};
+        [=](double u, double v) { return on_circle(u * (a - e), 2. * pi * v, 0.); },
+        [=](double u, double v) { return on_circle(a, 2. * pi * v, e + u * extent); }};
     if (e > 0.)
       result.push_back([=](double u, double v) {
         const double angle = u * pi / 2.;
@@ -565,18 +569,18 @@ namespace
   // A shape under test with its independent oracle.
   struct ShapeCase
   {
-    std::string                                      label;
-    const IndenterSurface                           *surface;
-    std::function<std::vector<Patch>(double)>        patches; // of the extent
-    double                                           scale;   // size of the tip features [um]
+    std::string                               label;
+    const IndenterSurface                    *surface;
+    std::function<std::vector<Patch>(double)> patches; // of the extent
+    double                                    scale;   // size of the tip features [um]
     // Distance of a point from the surface, in the oracle's own terms where that is simple.
-    std::function<double(const Point<3> &)>          surface_residual;
+    std::function<double(const Point<3> &)> surface_residual;
   };
 
   // |z - profile(x, y)| where the surface is a graph, else the distance from a wall of radius
   // `wall` that starts at `wall_bottom`.
   std::function<double(const Point<3> &)> graph_residual(const IndenterSurface *surface,
-                                                         const double wall = infinity,
+                                                         const double           wall = infinity,
                                                          const double wall_bottom = infinity)
   {
     return [=](const Point<3> &c) {
@@ -592,14 +596,14 @@ namespace
   void check_against_brute_force(const ShapeCase &shape, const Point<3> &q, const double depth,
                                  double &max_gap_error)
   {
-    const double   size = q.norm() + 3. * shape.scale + 1e-3;
-    const Point<3> x(q[0], q[1], q[2] - depth); // specimen frame
+    const double            size = q.norm() + 3. * shape.scale + 1e-3;
+    const Point<3>          x(q[0], q[1], q[2] - depth); // specimen frame
     const SurfaceProjection p = shape.surface->project(x, depth);
     const Nearest           bf = brute_force(shape.patches(2. * size + 1.), q);
-    const bool   inside = q[2] > shape.surface->profile(q[0], q[1]);
-    const double tolerance = 1e-9 * (1. + q.norm());
-    SCOPED_TRACE(shape.label + ", point (" + std::to_string(q[0]) + ", " +
-                 std::to_string(q[1]) + ", " + std::to_string(q[2]) + ") relative to the apex" +
+    const bool              inside = q[2] > shape.surface->profile(q[0], q[1]);
+    const double            tolerance = 1e-9 * (1. + q.norm());
+    SCOPED_TRACE(shape.label + ", point (" + std::to_string(q[0]) + ", " + std::to_string(q[1]) +
+                 ", " + std::to_string(q[2]) + ") relative to the apex" +
                  (inside ? ", inside" : ", outside"));
 
     ASSERT_TRUE(p.converged);
@@ -629,8 +633,8 @@ namespace
     if (bf.distance > 1e-3 * size)
       {
         const Tensor<1, 3> expected = (q - bf.point) / (inside ? -bf.distance : bf.distance);
-        if (!inside || (p.closest_point + Tensor<1, 3>({0., 0., depth})).distance(bf.point) <
-                         1e-6 * size)
+        if (!inside ||
+            (p.closest_point + Tensor<1, 3>({0., 0., depth})).distance(bf.point) < 1e-6 * size)
           {
             EXPECT_LT((p.normal - expected).norm(), 1e-5);
           }
@@ -647,7 +651,7 @@ namespace
     std::uniform_real_distribution<double> unit(-1., 1.), fraction(0., 1.);
     const double                           S = shape.scale;
     std::vector<Point<3>>                  points = {
-      {0., 0., -0.5 * S}, {0., 0., 0.2 * S}, {0., 0., 3. * S}, {0.3 * S, 0.1 * S, -0.01 * S}};
+                         {0., 0., -0.5 * S}, {0., 0., 0.2 * S}, {0., 0., 3. * S}, {0.3 * S, 0.1 * S, -0.01 * S}};
     for (unsigned int k = 0; k < n_random; ++k)
       {
         const double size = S * std::pow(10., 1.5 * fraction(generator) - 0.5);
@@ -657,10 +661,10 @@ namespace
     const auto patches = shape.patches(3. * S);
     for (unsigned int k = 0; k < n_near; ++k)
       {
-        const Patch &patch = patches[generator() % patches.size()];
+        const Patch   &patch = patches[generator() % patches.size()];
         const Point<3> on = patch(fraction(generator), fraction(generator));
-        points.push_back(on + 0.05 * S * Tensor<1, 3>({unit(generator), unit(generator),
-                                                        unit(generator)}));
+        points.push_back(
+            on + 0.05 * S * Tensor<1, 3>({unit(generator), unit(generator), unit(generator)}));
       }
     return points;
   }
@@ -671,8 +675,8 @@ namespace
     for (const double depth : {0., 1.3})
       for (const Point<3> &q : probe_points(shape, seed))
         check_against_brute_force(shape, q, depth, max_gap_error);
-    std::cout << "[ brute force ] " << shape.label << ": max |gap - brute force| = "
-              << max_gap_error << " um\n";
+    std::cout << "[ brute force ] " << shape.label
+              << ": max |gap - brute force| = " << max_gap_error << " um\n";
   }
 
   // Area of {(x, y): profile(x, y) < h} by the polar integral of r(phi)^2 / 2, r(phi) found by
@@ -698,17 +702,17 @@ namespace
     const double width = 2. * pi / n_sectors;
     const double tolerance = relative_tolerance * integrand(first_break) * width;
     const std::function<double(double, double, double, double, double, double, int)> adaptive =
-      [&](const double a, const double b, const double fa, const double fm, const double fb,
-          const double whole, const int depth) {
-        const double m = 0.5 * (a + b);
-        const double flm = integrand(0.5 * (a + m)), frm = integrand(0.5 * (m + b));
-        const double left = (m - a) / 6. * (fa + 4. * flm + fm);
-        const double right = (b - m) / 6. * (fm + 4. * frm + fb);
-        if (depth >= 40 || std::abs(left + right - whole) <= 15. * tolerance * (b - a) / width)
-          return left + right + (left + right - whole) / 15.;
-        return adaptive(a, m, fa, flm, fm, left, depth + 1) +
-               adaptive(m, b, fm, frm, fb, right, depth + 1);
-      };
+        [&](const double a, const double b, const double fa, const double fm, const double fb,
+            const double whole, const int depth) {
+          const double m = 0.5 * (a + b);
+          const double flm = integrand(0.5 * (a + m)), frm = integrand(0.5 * (m + b));
+          const double left = (m - a) / 6. * (fa + 4. * flm + fm);
+          const double right = (b - m) / 6. * (fm + 4. * frm + fb);
+          if (depth >= 40 || std::abs(left + right - whole) <= 15. * tolerance * (b - a) / width)
+            return left + right + (left + right - whole) / 15.;
+          return adaptive(a, m, fa, flm, fm, left, depth + 1) +
+                 adaptive(m, b, fm, frm, fb, right, depth + 1);
+        };
     double area = 0.;
     for (unsigned int sector = 0; sector < n_sectors; ++sector)
       {
@@ -730,8 +734,7 @@ TEST(IndenterSphere, ProjectionMatchesBruteForce)
 {
   const double R = 2.;
   const Sphere sphere(R);
-  check_shape({"sphere R = 2", &sphere,
-               [=](double extent) { return sphere_patches(R, extent); }, R,
+  check_shape({"sphere R = 2", &sphere, [=](double extent) { return sphere_patches(R, extent); }, R,
                graph_residual(&sphere, R, R)},
               1);
 }
@@ -744,8 +747,8 @@ TEST(IndenterCone, ProjectionMatchesBruteForce)
       const double alpha = radians(70.3);
       const Cone   cone(70.3, R);
       check_shape({"cone alpha = 70.3 deg, R = " + std::to_string(R), &cone,
-                   [=](double extent) { return cone_patches(alpha, R, extent); },
-                   std::max(R, 0.2), graph_residual(&cone)},
+                   [=](double extent) { return cone_patches(alpha, R, extent); }, std::max(R, 0.2),
+                   graph_residual(&cone)},
                   2);
     }
 }
@@ -758,14 +761,14 @@ TEST(IndenterPyramid, ProjectionMatchesBruteForce)
     unsigned int n;
     double       theta, R, rotation;
   };
-  for (const Variant &v : {Variant{4, 68., 0., 0.}, Variant{4, 68., 0.2, 0.},
-                           Variant{4, 68., 0.2, 30.}, Variant{3, 65.27, 0., 0.},
-                           Variant{3, 65.27, 0.2, -17.}})
+  for (const Variant &v :
+       {Variant{4, 68., 0., 0.}, Variant{4, 68., 0.2, 0.}, Variant{4, 68., 0.2, 30.},
+        Variant{3, 65.27, 0., 0.}, Variant{3, 65.27, 0.2, -17.}})
     {
       const Pyramid pyramid(v.n == 4 ? "vickers" : "berkovich", v.n, v.theta, v.R, v.rotation);
       const PyramidGeometry geometry(v.n, v.theta, v.R, v.rotation);
       check_shape({pyramid.name() + " R = " + std::to_string(v.R) + ", rotation " +
-                     std::to_string(v.rotation) + " deg",
+                       std::to_string(v.rotation) + " deg",
                    &pyramid, [geometry](double extent) { return geometry.patches(extent); },
                    std::max(v.R, 0.2), graph_residual(&pyramid)},
                   3 + v.n);
@@ -791,8 +794,8 @@ TEST(IndenterPyramid, ProfileLiesOnTheSurface)
 {
   for (const double R : {0., 0.2})
     {
-      const PyramidGeometry geometry(4, 68., R, 30.);
-      const Pyramid         pyramid("vickers", 4, 68., R, 30.);
+      const PyramidGeometry                  geometry(4, 68., R, 30.);
+      const Pyramid                          pyramid("vickers", 4, 68., R, 30.);
       std::mt19937                           generator(11);
       std::uniform_real_distribution<double> unit(-1., 1.);
       for (int k = 0; k < 20; ++k)
@@ -800,7 +803,7 @@ TEST(IndenterPyramid, ProfileLiesOnTheSurface)
           const double   x = 2. * unit(generator), y = 2. * unit(generator);
           const Point<3> on(x, y, pyramid.profile(x, y));
           EXPECT_LT(brute_force(geometry.patches(10.), on).distance, 1e-10)
-            << "R = " << R << " at (" << x << ", " << y << ")";
+              << "R = " << R << " at (" << x << ", " << y << ")";
         }
     }
 }
@@ -816,9 +819,9 @@ TEST(IndenterPyramid, VickersAreaFunction)
       EXPECT_NEAR(vickers.projected_area(h) / (h * h), 24.504, 5e-4);
       const double polar = polar_area(vickers, h, 4, radians(45.));
       EXPECT_NEAR(polar / vickers.projected_area(h), 1., 1e-12) << "h = " << h;
-      std::cout << "[ area ] Vickers h = " << h << ": A / h^2 = "
-                << vickers.projected_area(h) / (h * h) << ", A / 24.504 h^2 - 1 = "
-                << vickers.projected_area(h) / (24.504 * h * h) - 1.
+      std::cout << "[ area ] Vickers h = " << h
+                << ": A / h^2 = " << vickers.projected_area(h) / (h * h)
+                << ", A / 24.504 h^2 - 1 = " << vickers.projected_area(h) / (24.504 * h * h) - 1.
                 << ", area of {profile < h} / A - 1 = " << polar / vickers.projected_area(h) - 1.
                 << "\n";
     }
@@ -840,9 +843,9 @@ TEST(IndenterPyramid, BerkovichAreaFunction)
       EXPECT_NEAR(berkovich.projected_area(h) / (h * h), coefficient, 1e-12);
       const double polar = polar_area(berkovich, h, 3, radians(60.));
       EXPECT_NEAR(polar / berkovich.projected_area(h), 1., 1e-12) << "h = " << h;
-      std::cout << "[ area ] Berkovich h = " << h << ": A / h^2 = "
-                << berkovich.projected_area(h) / (h * h) << ", A / 24.56 h^2 - 1 = "
-                << berkovich.projected_area(h) / (24.56 * h * h) - 1.
+      std::cout << "[ area ] Berkovich h = " << h
+                << ": A / h^2 = " << berkovich.projected_area(h) / (h * h)
+                << ", A / 24.56 h^2 - 1 = " << berkovich.projected_area(h) / (24.56 * h * h) - 1.
                 << ", area of {profile < h} / A - 1 = " << polar / berkovich.projected_area(h) - 1.
                 << "\n";
     }
@@ -858,9 +861,9 @@ TEST(IndenterPyramid, BerkovichAreaFunction)
 // Cone pi tan^2(alpha) h^2, sphere pi (2 R h - h^2), flat punch pi a^2.
 TEST(IndenterLibrary, AxisymmetricAreaFunctions)
 {
-  const double alpha = radians(70.3);
-  const Cone   cone(70.3, 0.);
-  const Sphere sphere(3.);
+  const double    alpha = radians(70.3);
+  const Cone      cone(70.3, 0.);
+  const Sphere    sphere(3.);
   const FlatPunch punch(2., 0.);
   for (const double h : {1e-4, 0.2, 2.9})
     {
@@ -871,9 +874,9 @@ TEST(IndenterLibrary, AxisymmetricAreaFunctions)
       EXPECT_NEAR(polar_area(cone, h, 1, 0.) / cone.projected_area(h), 1., 1e-10);
     }
   EXPECT_DOUBLE_EQ(sphere.projected_area(5.), pi * 9.) << "beyond the equator: the shank";
-  for (const IndenterSurface *surface : {static_cast<const IndenterSurface *>(&cone),
-                                         static_cast<const IndenterSurface *>(&sphere),
-                                         static_cast<const IndenterSurface *>(&punch)})
+  for (const IndenterSurface *surface :
+       {static_cast<const IndenterSurface *>(&cone), static_cast<const IndenterSurface *>(&sphere),
+        static_cast<const IndenterSurface *>(&punch)})
     EXPECT_EQ(surface->projected_area(0.), 0.) << surface->name();
 }
 
@@ -890,7 +893,7 @@ TEST(IndenterLibrary, RoundedShapesApproachTheSharpAreaFunction)
     EXPECT_NEAR(rounded.blunting_offset(), Delta, 1e-15);
     for (const double h : {0.5 * R * (1. - std::sin(alpha)), 0.05, 0.3, 2.})
       EXPECT_NEAR(polar_area(rounded, h, 1, 0.) / rounded.projected_area(h), 1., 1e-10)
-        << "h = " << h;
+          << "h = " << h;
     for (const double h : {1., 10., 100.})
       EXPECT_NEAR(rounded.projected_area(h) / sharp.projected_area(h + Delta), 1., 1e-13);
     const double h = 100. * R;
@@ -899,28 +902,27 @@ TEST(IndenterLibrary, RoundedShapesApproachTheSharpAreaFunction)
   }
   for (const unsigned int n : {4u, 3u})
     {
-      const double theta_deg = n == 4 ? 68. : 65.27, theta = radians(theta_deg);
+      const double  theta_deg = n == 4 ? 68. : 65.27, theta = radians(theta_deg);
       const Pyramid rounded("p", n, theta_deg, R, 0.), sharp("p", n, theta_deg, 0., 0.);
       const double  Delta = R * (1. / std::sin(theta) - 1.);
       EXPECT_NEAR(rounded.blunting_offset(), Delta, 1e-15);
       // Heights on the tip sphere, among the elliptic edge arcs, and on the faces.
       const double beta = std::atan(std::tan(theta) / std::cos(pi / n));
-      double largest = 0.;
-      for (const double h : {0.5 * R * (1. - std::sin(beta)),
-                             R * (1. - 0.5 * (std::sin(beta) + std::sin(theta))),
-                             R * (1. - std::sin(theta)), 0.05, 0.3, 2.})
+      double       largest = 0.;
+      for (const double h :
+           {0.5 * R * (1. - std::sin(beta)), R * (1. - 0.5 * (std::sin(beta) + std::sin(theta))),
+            R * (1. - std::sin(theta)), 0.05, 0.3, 2.})
         {
           const double ratio = polar_area(rounded, h, n, pi / n) / rounded.projected_area(h);
           EXPECT_NEAR(ratio, 1., 1e-11) << "n = " << n << ", h = " << h;
           largest = std::max(largest, std::abs(ratio - 1.));
         }
       std::cout << "[ area ] rounded " << (n == 4 ? "Vickers" : "Berkovich")
-                << " (R = 0.1): max relative difference from the area of {profile < h}: "
-                << largest << "\n";
+                << " (R = 0.1): max relative difference from the area of {profile < h}: " << largest
+                << "\n";
       // The two closed forms meet where the faces begin.
       const double h_faces = R * (1. - std::sin(theta));
-      EXPECT_NEAR(rounded.projected_area(h_faces * (1. - 1e-12)) /
-                    rounded.projected_area(h_faces),
+      EXPECT_NEAR(rounded.projected_area(h_faces * (1. - 1e-12)) / rounded.projected_area(h_faces),
                   1., 1e-9);
       // Far from the tip: the sharp area at h + Delta less the n corner deficits.
       const double D = rounded.corner_deficit();
@@ -956,7 +958,7 @@ namespace
   check_continuity_along(const IndenterSurface &surface, const double R,
                          const std::function<Point<3>(double)> &path, const unsigned int n_steps)
   {
-    SurfaceProjection previous = surface.project(path(0.), 0.);
+    SurfaceProjection  previous = surface.project(path(0.), 0.);
     const Tensor<1, 3> first = previous.normal;
     double             largest_normal_jump = 0.;
     for (unsigned int i = 1; i <= n_steps; ++i)
@@ -965,7 +967,7 @@ namespace
         const SurfaceProjection current = surface.project(path(s1), 0.);
         const double            step = path(s1).distance(path(s0));
         EXPECT_LE(std::abs(current.gap - previous.gap), step * (1. + 1e-9) + 1e-15)
-          << surface.name() << " at s = " << s1;
+            << surface.name() << " at s = " << s1;
         const double bound = step / (R + std::min(current.gap, previous.gap));
         const double jump = (current.normal - previous.normal).norm();
         EXPECT_LE(jump, bound * (1. + 1e-6) + 1e-12) << surface.name() << " at s = " << s1;
@@ -984,7 +986,7 @@ TEST(IndenterPyramid, RoundedEdgesAreContinuous)
   const double R = 0.2;
   for (const unsigned int n : {4u, 3u})
     {
-      const Pyramid pyramid("p", n, n == 4 ? 68. : 65.27, R, 10.);
+      const Pyramid         pyramid("p", n, n == 4 ? 68. : 65.27, R, 10.);
       const PyramidGeometry geometry(n, n == 4 ? 68. : 65.27, R, 10.);
       const double          phi0 = radians(10.), phi1 = radians(10. + 360. / n);
       const double          height = 1.;
@@ -995,7 +997,7 @@ TEST(IndenterPyramid, RoundedEdgesAreContinuous)
       for (const double offset : {0.3 * R, 0.01 * R, -0.5 * R})
         {
           const double inradius =
-            (height + pyramid.blunting_offset()) * std::tan(pyramid.face_angle());
+              (height + pyramid.blunting_offset()) * std::tan(pyramid.face_angle());
           const auto arc = [&](const double s) {
             const double phi = phi0 + s * (phi1 - phi0);
             const double from_face = std::min(phi - phi0, phi1 - phi); // to the nearer face
@@ -1008,8 +1010,8 @@ TEST(IndenterPyramid, RoundedEdgesAreContinuous)
       // Up the edge's meridian from below the apex: tip sphere, then the edge cylinder.
       const double psi = phi0 + pi / n;
       const auto   meridian = [&](const double s) {
-        return Point<3>(0., 0., -0.3 * R) + s * Tensor<1, 3>({2. * R * std::cos(psi),
-                                                              2. * R * std::sin(psi), 0.9 * R});
+        return Point<3>(0., 0., -0.3 * R) +
+               s * Tensor<1, 3>({2. * R * std::cos(psi), 2. * R * std::sin(psi), 0.9 * R});
       };
       const auto [bottom, top] = check_continuity_along(pyramid, R, meridian, 4000);
       EXPECT_NEAR(bottom[2], -1., 1e-12);
@@ -1023,15 +1025,14 @@ TEST(IndenterPyramid, RoundedEdgesAreContinuous)
 TEST(IndenterLibrary, RoundedSeamsAreContinuous)
 {
   const Cone cone(70.3, 0.2);
-  check_continuity_along(cone, 0.2, [](double s) { return Point<3>(2. * s, 0.3 * s, -0.05); },
-                         4000);
+  check_continuity_along(
+      cone, 0.2, [](double s) { return Point<3>(2. * s, 0.3 * s, -0.05); }, 4000);
   const FlatPunch punch(1., 0.2);
-  check_continuity_along(punch, 0.2,
-                         [](double s) { return Point<3>(1.3 * s, 0.1, -0.1 + 0.45 * s); },
-                         4000);
+  check_continuity_along(
+      punch, 0.2, [](double s) { return Point<3>(1.3 * s, 0.1, -0.1 + 0.45 * s); }, 4000);
   const Sphere sphere(1.);
-  check_continuity_along(sphere, 1.,
-                         [](double s) { return Point<3>(1.2, 0.2 * s, -0.2 + 2. * s); }, 4000);
+  check_continuity_along(
+      sphere, 1., [](double s) { return Point<3>(1.2, 0.2 * s, -0.2 + 2. * s); }, 4000);
 }
 
 // Rotation convention: at rotation 0 face 0 faces +x; a positive rotation turns the pyramid
@@ -1041,8 +1042,8 @@ TEST(IndenterPyramid, RotationConvention)
   const double theta = radians(68.);
   for (const double rotation : {0., 30.})
     {
-      const Pyramid     vickers = Pyramid::vickers(0., rotation);
-      const double      phi = radians(rotation);
+      const Pyramid           vickers = Pyramid::vickers(0., rotation);
+      const double            phi = radians(rotation);
       const SurfaceProjection p = vickers.project(on_circle(10., phi, 1.), 0.);
       EXPECT_NEAR(p.normal[0], std::cos(theta) * std::cos(phi), 1e-14);
       EXPECT_NEAR(p.normal[1], std::cos(theta) * std::sin(phi), 1e-14);
@@ -1052,16 +1053,16 @@ TEST(IndenterPyramid, RotationConvention)
       EXPECT_NEAR(vickers.profile(std::cos(phi + pi / 4.), std::sin(phi + pi / 4.)),
                   std::cos(pi / 4.) / std::tan(theta), 1e-14);
     }
-  const Pyramid berkovich = Pyramid::berkovich(0., 0.);
-  const double  theta_b = radians(65.27);
+  const Pyramid     berkovich = Pyramid::berkovich(0., 0.);
+  const double      theta_b = radians(65.27);
   SurfaceProjection p = berkovich.project(Point<3>(10., 0., 1.), 0.);
   EXPECT_NEAR(p.normal[0], std::cos(theta_b), 1e-14);
   EXPECT_NEAR(p.normal[1], 0., 1e-14);
   p = berkovich.project(Point<3>(-10., 0., 1.), 0.); // nearest: the edge along -x
   EXPECT_NEAR(p.closest_point[1], 0., 1e-12);
   EXPECT_LT(p.closest_point[0], 0.);
-  EXPECT_NEAR(berkovich.edge_direction(0)[1] / berkovich.edge_direction(0)[0], std::sqrt(3.),
-              1e-12) << "edge 0 at 60 deg";
+  EXPECT_NEAR(berkovich.edge_direction(0)[1] / berkovich.edge_direction(0)[0], std::sqrt(3.), 1e-12)
+      << "edge 0 at 60 deg";
   EXPECT_NEAR(berkovich.edge_direction(1)[1], 0., 1e-15);
   EXPECT_LT(berkovich.edge_direction(1)[0], 0.) << "edge 1 along -x";
 }
@@ -1070,13 +1071,13 @@ TEST(IndenterPyramid, RotationConvention)
 // mirrored exactly; where it says no, some point shows the asymmetry.
 TEST(IndenterLibrary, MirrorSymmetryClaimsHold)
 {
-  const Sphere    sphere(1.);
-  const Cone      cone(70.3, 0.1);
-  const FlatPunch punch(1., 0.1);
-  const RoundedCone rounded(2.48, 0.005);
-  const ProfileTable table({0., 1., 2.}, {0., 0.3, 1.2});
+  const Sphere                                          sphere(1.);
+  const Cone                                            cone(70.3, 0.1);
+  const FlatPunch                                       punch(1., 0.1);
+  const RoundedCone                                     rounded(2.48, 0.005);
+  const ProfileTable                                    table({0., 1., 2.}, {0., 0.3, 1.2});
   std::vector<std::pair<const IndenterSurface *, bool>> cases = {
-    {&sphere, true}, {&cone, true}, {&punch, true}, {&rounded, true}, {&table, true}};
+      {&sphere, true}, {&cone, true}, {&punch, true}, {&rounded, true}, {&table, true}};
   std::vector<Pyramid> pyramids;
   for (const double rotation : {0., 45., 90., -45., 135., 30., 10.})
     pyramids.push_back(Pyramid::vickers(0.1, rotation));
@@ -1084,7 +1085,7 @@ TEST(IndenterLibrary, MirrorSymmetryClaimsHold)
     pyramids.push_back(Pyramid::berkovich(0.1, rotation));
   for (const Pyramid &pyramid : pyramids)
     cases.emplace_back(&pyramid, pyramid.name() == "vickers" &&
-                                   std::fmod(std::abs(pyramid.rotation_deg()), 45.) == 0.);
+                                     std::fmod(std::abs(pyramid.rotation_deg()), 45.) == 0.);
 
   std::mt19937                           generator(5);
   std::uniform_real_distribution<double> unit(-1., 1.);
@@ -1127,16 +1128,16 @@ TEST(IndenterLibrary, ProjectionIsRobust)
   const FlatPunch    punch(1., 0.), rounded_punch(1., 0.1);
   const ProfileTable table({0., 1., 2.}, {0., 0.3, 1.2});
   const std::vector<const IndenterSurface *> surfaces = {
-    &sphere, &sharp_cone, &cone, &vickers, &rounded, &punch, &rounded_punch, &table};
+      &sphere, &sharp_cone, &cone, &vickers, &rounded, &punch, &rounded_punch, &table};
   const std::vector<std::pair<Point<3>, double>> inputs = {
-    {Point<3>(0., 0., 0.), 0.},            // the apex itself
-    {Point<3>(0., 0., 5.), 0.},            // on the axis, deep inside
-    {Point<3>(0., 0., 0.1), 0.},           // on the axis at a tip centre
-    {Point<3>(1e-300, -1e-300, 0.), 0.},   // tiny
-    {Point<3>(0.5, 0.5, 0.), -1e30},       // the solver's "indenter far away"
-    {Point<3>(1e150, -2e150, 3e150), 1e150},
-    {Point<3>(-1e200, 1e200, -1e200), 0.},
-    {Point<3>(1., 0., 1e-17), 0.},         // on a face/edge within round-off
+      {Point<3>(0., 0., 0.), 0.},          // the apex itself
+      {Point<3>(0., 0., 5.), 0.},          // on the axis, deep inside
+      {Point<3>(0., 0., 0.1), 0.},         // on the axis at a tip centre
+      {Point<3>(1e-300, -1e-300, 0.), 0.}, // tiny
+      {Point<3>(0.5, 0.5, 0.), -1e30},     // the solver's "indenter far away"
+      {Point<3>(1e150, -2e150, 3e150), 1e150},
+      {Point<3>(-1e200, 1e200, -1e200), 0.},
+      {Point<3>(1., 0., 1e-17), 0.}, // on a face/edge within round-off
   };
   for (const IndenterSurface *surface : surfaces)
     {
@@ -1211,12 +1212,12 @@ TEST(IndenterProfileTable, SampledSphereReproducesTheSphere)
       r.push_back(0.9 * R * i / (n_rows - 1));
       z.push_back(R - std::sqrt(R * R - r.back() * r.back()));
     }
-  const ProfileTable table(r, z, "sphere table");
-  const Sphere       sphere(R);
+  const ProfileTable                     table(r, z, "sphere table");
+  const Sphere                           sphere(R);
   std::mt19937                           generator(3);
   std::uniform_real_distribution<double> unit(-1., 1.);
-  double largest_gap_error = 0., largest_normal_error = 0.;
-  unsigned int n_checked = 0;
+  double                                 largest_gap_error = 0., largest_normal_error = 0.;
+  unsigned int                           n_checked = 0;
   for (int k = 0; k < 400; ++k)
     {
       const Point<3> x(4. * unit(generator), 4. * unit(generator), 1.5 * unit(generator) + 0.5);
@@ -1254,21 +1255,21 @@ TEST(IndenterProfileTable, AreaFunctionOfAConeIsTheCone)
   for (const double h : depths)
     {
       std::array<char, 64> buffer{};
-      const auto end = std::to_chars(buffer.data(), buffer.data() + 64, k * h * h).ptr;
+      const auto           end = std::to_chars(buffer.data(), buffer.data() + 64, k * h * h).ptr;
       text += std::to_string(h) + " , " + std::string(buffer.data(), end) + "\r\n";
     }
   const fs::path     path = write_table("area_cone", "cone_area.csv", text + "\n# end\n");
   const ProfileTable table = ProfileTable::read(path.string());
   EXPECT_EQ(table.kind(), ProfileTable::Kind::area_function);
-  const Cone cone(alpha_deg, 0.);
+  const Cone                             cone(alpha_deg, 0.);
   std::mt19937                           generator(4);
   std::uniform_real_distribution<double> unit(-1., 1.);
-  double largest = 0.;
+  double                                 largest = 0.;
   for (int i = 0; i < 300; ++i)
     {
-      const double   size = std::pow(10., 1.5 * unit(generator));
-      const Point<3> x(size * unit(generator), size * unit(generator),
-                       size * unit(generator) - 0.3);
+      const double            size = std::pow(10., 1.5 * unit(generator));
+      const Point<3>          x(size * unit(generator), size * unit(generator),
+                                size * unit(generator) - 0.3);
       const SurfaceProjection p = table.project(x, 0.3), q = cone.project(x, 0.3);
       ASSERT_TRUE(p.converged);
       EXPECT_NEAR(p.gap, q.gap, 1e-12 * (1. + size)) << x;
@@ -1374,8 +1375,7 @@ TEST(IndenterProfileTable, ProjectionFindsTheGlobalMinimumOnLongPieces)
       EXPECT_NEAR(std::abs(p.gap), expected, 1e-9) << "rho = " << rho << ", zeta = " << zeta;
       largest = std::max(largest, std::abs(std::abs(p.gap) - expected));
     }
-  std::cout << "[ profile table ] long pieces, 1500 points: max |gap| error " << largest
-            << " um\n";
+  std::cout << "[ profile table ] long pieces, 1500 points: max |gap| error " << largest << " um\n";
 }
 
 // Bad table files are rejected with the file, the line and what is allowed.
@@ -1387,26 +1387,26 @@ TEST(IndenterProfileTable, BadFilesAreRejected)
     std::vector<std::string> parts;
   };
   const std::vector<BadFile> bad = {
-    {"r,z\n0,0\n1,1\n", {":1:", "header 'r,z'", "r_um,z_um", "depth_um,area_um2"}},
-    {"", {"empty", "r_um,z_um"}},
-    {"r_um,z_um\n0,0\n", {"1 data row", "at least 2"}},
-    {"r_um,z_um\n", {"0 data rows", "at least 2"}},
-    {"r_um,z_um\n0,0\n1,abc\n", {":3:", "'abc' is not a number", "r_um,z_um"}},
-    {"r_um,z_um\n0,0\n1\n", {":3:", "expected 2", "got 1"}},
-    {"r_um,z_um\n0,0\n1,2,3\n", {":3:", "got 3"}},
-    {"r_um,z_um\n0.1,0\n1,1\n", {":2:", "first row must be the apex 0,0"}},
-    {"r_um,z_um\n0,0\n1,1\n1,2\n", {":4:", "r_um = 1 does not increase", "strictly increasing"}},
-    {"r_um,z_um\n0,0\n1,1\n2,0.5\n3,2\n", {":4:", "z_um = 0.5", "non-decreasing"}},
-    {"r_um,z_um\n0,0\n1,1\n2,1\n", {":4:", "same z_um", "last slope"}},
-    {"r_um,z_um\n0,0\n1,inf\n", {":3:", "'inf' is not a number"}},
-    {"depth_um,area_um2\n0,0\n1,24.5\n1,30\n", {":4:", "depth_um = 1", "strictly increasing"}},
-    {"depth_um,area_um2\n0,0\n1,24.5\n2,24.5\n", {":4:", "area_um2 = 24.5", "vertical wall"}},
-    {"depth_um,area_um2\n0,1\n1,24.5\n", {":2:", "depth_um = 0, area_um2 = 0"}},
+      {"r,z\n0,0\n1,1\n", {":1:", "header 'r,z'", "r_um,z_um", "depth_um,area_um2"}},
+      {"", {"empty", "r_um,z_um"}},
+      {"r_um,z_um\n0,0\n", {"1 data row", "at least 2"}},
+      {"r_um,z_um\n", {"0 data rows", "at least 2"}},
+      {"r_um,z_um\n0,0\n1,abc\n", {":3:", "'abc' is not a number", "r_um,z_um"}},
+      {"r_um,z_um\n0,0\n1\n", {":3:", "expected 2", "got 1"}},
+      {"r_um,z_um\n0,0\n1,2,3\n", {":3:", "got 3"}},
+      {"r_um,z_um\n0.1,0\n1,1\n", {":2:", "first row must be the apex 0,0"}},
+      {"r_um,z_um\n0,0\n1,1\n1,2\n", {":4:", "r_um = 1 does not increase", "strictly increasing"}},
+      {"r_um,z_um\n0,0\n1,1\n2,0.5\n3,2\n", {":4:", "z_um = 0.5", "non-decreasing"}},
+      {"r_um,z_um\n0,0\n1,1\n2,1\n", {":4:", "same z_um", "last slope"}},
+      {"r_um,z_um\n0,0\n1,inf\n", {":3:", "'inf' is not a number"}},
+      {"depth_um,area_um2\n0,0\n1,24.5\n1,30\n", {":4:", "depth_um = 1", "strictly increasing"}},
+      {"depth_um,area_um2\n0,0\n1,24.5\n2,24.5\n", {":4:", "area_um2 = 24.5", "vertical wall"}},
+      {"depth_um,area_um2\n0,1\n1,24.5\n", {":2:", "depth_um = 0, area_um2 = 0"}},
   };
   for (std::size_t i = 0; i < bad.size(); ++i)
     {
-      const fs::path    path = write_table("bad_tables", "bad_" + std::to_string(i) + ".csv",
-                                           bad[i].text);
+      const fs::path path =
+          write_table("bad_tables", "bad_" + std::to_string(i) + ".csv", bad[i].text);
       const std::string message = table_error(path);
       SCOPED_TRACE("table:\n" + bad[i].text + "message: " + message);
       ASSERT_FALSE(message.empty()) << "accepted";
@@ -1415,7 +1415,7 @@ TEST(IndenterProfileTable, BadFilesAreRejected)
         EXPECT_NE(message.find(part), std::string::npos) << "missing '" << part << "'";
     }
   const std::string missing =
-    table_error(indentsim::test_files::scratch_directory("indenter", "missing") / "none.csv");
+      table_error(indentsim::test_files::scratch_directory("indenter", "missing") / "none.csv");
   EXPECT_NE(missing.find("none.csv"), std::string::npos) << missing;
   EXPECT_NE(missing.find("does not exist"), std::string::npos) << missing;
   // Comments, blank lines, spaces and CRLF are fine.
@@ -1429,10 +1429,9 @@ TEST(IndenterProfileTable, BadFilesAreRejected)
 TEST(IndenterFactory, CreatesEveryShape)
 {
   indentsim::io::IndenterParameters parameters;
-  parameters.file =
-    write_table("factory", "tip.csv", "r_um,z_um\n0,0\n1,0.2\n2,1\n").string();
-  for (const std::string shape : {"rounded_cone", "sphere", "cone", "vickers", "berkovich",
-                                  "flat_punch", "profile_table"})
+  parameters.file = write_table("factory", "tip.csv", "r_um,z_um\n0,0\n1,0.2\n2,1\n").string();
+  for (const std::string shape :
+       {"rounded_cone", "sphere", "cone", "vickers", "berkovich", "flat_punch", "profile_table"})
     {
       parameters.shape = shape;
       const auto indenter = create_indenter(parameters);

@@ -49,8 +49,7 @@ namespace
   }
 
   // One update that must succeed; returns the new state.
-  std::vector<double> updated_state(const MaterialModel       &model,
-                                    const Tensor<2, 3>        &F,
+  std::vector<double> updated_state(const MaterialModel &model, const Tensor<2, 3> &F,
                                     const std::vector<double> &state_old,
                                     MaterialPointResponse     &response)
   {
@@ -108,10 +107,10 @@ namespace
         worst_log = std::max(worst_log, (log_spd(A) - log_A).norm() / std::max(log_A.norm(), 1.0));
         if (sample % 4 == 3)
           worst_log_near_identity =
-            std::max(worst_log_near_identity, (log_spd(A) - log_A).norm() / A.norm());
+              std::max(worst_log_near_identity, (log_spd(A) - log_A).norm() / A.norm());
         worst_exp = std::max(worst_exp, (exp_symmetric(log_A) - A).norm() / A.norm());
         worst_round_trip =
-          std::max(worst_round_trip, (exp_symmetric(log_spd(A)) - A).norm() / A.norm());
+            std::max(worst_round_trip, (exp_symmetric(log_spd(A)) - A).norm() / A.norm());
       }
     report("max error of log_spd relative to max(|log A|, 1)", worst_log);
     report("max error of log_spd near the identity, relative to |A|", worst_log_near_identity);
@@ -129,8 +128,8 @@ namespace
     B[0][1] = 1.5;
     B[1][2] = -0.7;
     const double error =
-      (exp_symmetric(B) - spectral_function(B, [](double x) { return std::exp(x); })).norm() /
-      exp_symmetric(B).norm();
+        (exp_symmetric(B) - spectral_function(B, [](double x) { return std::exp(x); })).norm() /
+        exp_symmetric(B).norm();
     report("relative error of exp_symmetric, |B| ~ 4.5", error);
     EXPECT_LT(error, 1e-14);
 
@@ -144,7 +143,7 @@ namespace
           C.access_raw_entry(k) = size * (uniform(generator) - 0.5);
         const auto reference = spectral_function(C, [](double x) { return std::expm1(x); });
         worst_expm1 =
-          std::max(worst_expm1, (expm1_symmetric(C) - reference).norm() / reference.norm());
+            std::max(worst_expm1, (expm1_symmetric(C) - reference).norm() / reference.norm());
       }
     report("max relative error of expm1_symmetric", worst_expm1);
     EXPECT_LT(worst_expm1, 1e-14);
@@ -169,9 +168,8 @@ namespace
             {
               const double delta = (k == m ? 1.0 : 0.0);
               worst_identity = std::max(
-                {worst_identity,
-                 std::abs(log_A.access_raw_entry(k).dx(m) - delta / c) * c,
-                 std::abs(exp_A.access_raw_entry(k).dx(m) - delta * std::exp(c)) / std::exp(c)});
+                  {worst_identity, std::abs(log_A.access_raw_entry(k).dx(m) - delta / c) * c,
+                   std::abs(exp_A.access_raw_entry(k).dx(m) - delta * std::exp(c)) / std::exp(c)});
             }
       }
     report("max relative error of d log, d exp at c I", worst_identity);
@@ -209,11 +207,10 @@ namespace
             const auto d_log = (log_spd(A_plus) - log_spd(A_minus)) / (2 * h);
             const auto d_exp = (exp_symmetric(A_plus) - exp_symmetric(A_minus)) / (2 * h);
             for (unsigned int k = 0; k < 6; ++k)
-              worst_fd =
-                std::max({worst_fd,
-                          std::abs(d_log.access_raw_entry(k) - log_A.access_raw_entry(k).dx(m)),
-                          std::abs(d_exp.access_raw_entry(k) - exp_A.access_raw_entry(k).dx(m)) /
-                            std::exp(2.0)});
+              worst_fd = std::max(
+                  {worst_fd, std::abs(d_log.access_raw_entry(k) - log_A.access_raw_entry(k).dx(m)),
+                   std::abs(d_exp.access_raw_entry(k) - exp_A.access_raw_entry(k).dx(m)) /
+                       std::exp(2.0)});
           }
       }
     report("max error of AD d log, d exp vs central FD", worst_fd);
@@ -277,7 +274,7 @@ namespace
 
     const double mu = young_modulus / (2 * (1 + poisson_ratio));
     const double lambda =
-      young_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));
+        young_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));
     EXPECT_DOUBLE_EQ(model.reference_modulus(), mu);
     Tensor<4, 3> linear;
     for (unsigned int i = 0; i < 3; ++i)
@@ -285,7 +282,7 @@ namespace
         for (unsigned int k = 0; k < 3; ++k)
           for (unsigned int L = 0; L < 3; ++L)
             linear[i][J][k][L] =
-              lambda * (i == J) * (k == L) + mu * ((i == k) * (J == L) + (i == L) * (J == k));
+                lambda * (i == J) * (k == L) + mu * ((i == k) * (J == L) + (i == L) * (J == k));
     EXPECT_LT((response.dP_dF - linear).norm() / linear.norm(), 1e-14);
   }
 
@@ -302,9 +299,8 @@ namespace
         MaterialPointResponse response, rotated;
         ASSERT_EQ(model.update(F, {}, response, {}), UpdateStatus::success);
         ASSERT_EQ(model.update(Q * F, {}, rotated, {}), UpdateStatus::success);
-        worst = std::max(worst,
-                         (rotated.tau - Q * response.tau * dealii::transpose(Q)).norm() /
-                           response.tau.norm());
+        worst = std::max(worst, (rotated.tau - Q * response.tau * dealii::transpose(Q)).norm() /
+                                    response.tau.norm());
       }
     report("NeoHookean objectivity error", worst);
     EXPECT_LT(worst, 1e-13);
@@ -384,8 +380,8 @@ namespace
           for (unsigned int L = 0; L < 3; ++L)
             {
               size = std::max(size, std::abs(response.dP_dF[i][J][k][L]));
-              asymmetry = std::max(asymmetry, std::abs(response.dP_dF[i][J][k][L] -
-                                                       response.dP_dF[k][L][i][J]));
+              asymmetry = std::max(
+                  asymmetry, std::abs(response.dP_dF[i][J][k][L] - response.dP_dF[k][L][i][J]));
             }
     return asymmetry / size;
   }
@@ -397,14 +393,14 @@ namespace
   // is not symmetric (measured 0.6 % relative): the declaration must say so.
   TEST(MaterialJ2, DeclaredTangentSymmetryHolds)
   {
-    std::mt19937 generator(11);
+    std::mt19937     generator(11);
     const NeoHookean neo_hookean(69.0, 0.26);
     ASSERT_TRUE(neo_hookean.symmetric_tangent());
     double worst_neo_hookean = 0;
     for (unsigned int sample = 0; sample < 5; ++sample)
-      worst_neo_hookean =
-        std::max(worst_neo_hookean, tangent_asymmetry(neo_hookean, random_deformation(generator, 0.2),
-                                                      virgin_state(neo_hookean)));
+      worst_neo_hookean = std::max(
+          worst_neo_hookean, tangent_asymmetry(neo_hookean, random_deformation(generator, 0.2),
+                                               virgin_state(neo_hookean)));
     report("largest relative tangent asymmetry, neo-Hookean", worst_neo_hookean);
     EXPECT_LT(worst_neo_hookean, 1e-12);
     for (const auto measure : {YieldStressMeasure::cauchy, YieldStressMeasure::kirchhoff})
@@ -447,7 +443,7 @@ namespace
           const auto            state_new = updated_state(model, F, old, response);
           EXPECT_GT(model.equivalent_plastic_strain(state_new),
                     model.equivalent_plastic_strain(old) + 1e-5)
-            << "not a plastic step";
+              << "not a plastic step";
         };
 
         for (const double amplitude : {0.01, 0.05, 0.2})
@@ -513,16 +509,15 @@ namespace
             ASSERT_EQ(model.update(F, state, response, state_new), UpdateStatus::success);
             if (model.equivalent_plastic_strain(state_new) > model.equivalent_plastic_strain(state))
               {
-                worst_yield =
-                  std::max(worst_yield,
-                           std::abs(
-                             model.yield_function(response.tau,
-                                                  dealii::determinant(F),
+                worst_yield = std::max(
+                    worst_yield,
+                    std::abs(model.yield_function(response.tau, dealii::determinant(F),
                                                   model.equivalent_plastic_strain(state_new))));
               }
             worst_det = std::max(
-              worst_det,
-              std::abs(dealii::determinant(J2Plasticity::plastic_metric_inverse(state_new)) - 1.0));
+                worst_det,
+                std::abs(dealii::determinant(J2Plasticity::plastic_metric_inverse(state_new)) -
+                         1.0));
             state = state_new;
           }
         EXPECT_GT(model.equivalent_plastic_strain(state), 0.05);
@@ -546,8 +541,7 @@ namespace
     const double          gamma_p = kirchhoff.equivalent_plastic_strain(state);
     EXPECT_NEAR(kirchhoff.yield_function(response.tau, 1.03, gamma_p), 0.0, 1e-10);
     const double sigma_y = kirchhoff.flow_stress(gamma_p);
-    EXPECT_NEAR(cauchy.yield_function(response.tau, 1.03, gamma_p),
-                sigma_y * (1.0 / 1.03 - 1.0),
+    EXPECT_NEAR(cauchy.yield_function(response.tau, 1.03, gamma_p), sigma_y * (1.0 / 1.03 - 1.0),
                 1e-10);
   }
 
@@ -564,12 +558,11 @@ namespace
     std::vector<double>   state_new(state.size(), -1.0);
     ASSERT_EQ(model.update(F, state, response, state_new), UpdateStatus::success);
     EXPECT_EQ(state_new, state);
-    EXPECT_LT(model.yield_function(response.tau,
-                                   dealii::determinant(F),
+    EXPECT_LT(model.yield_function(response.tau, dealii::determinant(F),
                                    model.equivalent_plastic_strain(state)),
               0.0);
-    model.elastic_law().elastic_response(
-      F, J2Plasticity::plastic_metric_inverse(state), dealii::determinant(F) - 1.0, elastic, true);
+    model.elastic_law().elastic_response(F, J2Plasticity::plastic_metric_inverse(state),
+                                         dealii::determinant(F) - 1.0, elastic, true);
     EXPECT_LT((response.P - elastic.P).norm(), 1e-12);
   }
 
@@ -582,14 +575,12 @@ namespace
         const J2Plasticity model = make_j2(measure);
         std::mt19937       generator(9);
         const Tensor<2, 3> F =
-          random_rotation(generator) * diagonal(std::exp(0.5), std::exp(-0.3), std::exp(-0.1));
+            random_rotation(generator) * diagonal(std::exp(0.5), std::exp(-0.3), std::exp(-0.1));
         MaterialPointResponse response;
         const auto            state = updated_state(model, F, virgin_state(model), response);
-        EXPECT_NEAR(model.yield_function(response.tau,
-                                         dealii::determinant(F),
+        EXPECT_NEAR(model.yield_function(response.tau, dealii::determinant(F),
                                          model.equivalent_plastic_strain(state)),
-                    0.0,
-                    1e-10);
+                    0.0, 1e-10);
         EXPECT_LT(tangent_error(model, F, virgin_state(model)), 1e-6);
       }
   }
@@ -623,9 +614,9 @@ namespace
   // steps; at every step lambda_t is found by a secant iteration on the lateral stress P_22 = 0
   // (independent of the tangent). Returns the worst relative stress error and the worst
   // absolute errors of lambda_t and gamma_p.
-  std::array<double, 3> uniaxial_errors(const J2Plasticity              &model,
+  std::array<double, 3> uniaxial_errors(const J2Plasticity                        &model,
                                         const std::vector<J2UniaxialReferenceRow> &reference,
-                                        const unsigned int               n_increments)
+                                        const unsigned int                         n_increments)
   {
     const unsigned int rows_per_increment = (reference.size() - 1) / n_increments;
     EXPECT_EQ(rows_per_increment * n_increments, reference.size() - 1);
@@ -634,14 +625,14 @@ namespace
     std::array<double, 3> worst = {{0.0, 0.0, 0.0}};
     for (unsigned int increment = 1; increment <= n_increments; ++increment)
       {
-        const J2UniaxialReferenceRow   &row = reference[increment * rows_per_increment];
-        const double          lambda = std::exp(row.log_strain);
-        std::vector<double>   state_new(state.size());
-        MaterialPointResponse response;
-        const auto            lateral_stress = [&](const double lambda_t) {
+        const J2UniaxialReferenceRow &row = reference[increment * rows_per_increment];
+        const double                  lambda = std::exp(row.log_strain);
+        std::vector<double>           state_new(state.size());
+        MaterialPointResponse         response;
+        const auto                    lateral_stress = [&](const double lambda_t) {
           EXPECT_EQ(
-            model.update(diagonal(lambda, lambda_t, lambda_t), state, response, state_new, false),
-            UpdateStatus::success);
+                                 model.update(diagonal(lambda, lambda_t, lambda_t), state, response, state_new, false),
+                                 UpdateStatus::success);
           return response.P[1][1];
         };
         // Secant from the isochoric guess.
@@ -663,10 +654,10 @@ namespace
         const double J = lambda * lateral_stretch * lateral_stretch;
         const double sigma = response.tau[0][0] / J;
         worst[0] =
-          std::max(worst[0], std::abs(sigma - row.cauchy_stress) / std::abs(row.cauchy_stress));
+            std::max(worst[0], std::abs(sigma - row.cauchy_stress) / std::abs(row.cauchy_stress));
         worst[1] = std::max(worst[1], std::abs(lateral_stretch - row.lateral_stretch));
         worst[2] =
-          std::max(worst[2], std::abs(model.equivalent_plastic_strain(state_new) - row.alpha));
+            std::max(worst[2], std::abs(model.equivalent_plastic_strain(state_new) - row.alpha));
         state = state_new;
         previous_log_strain = row.log_strain;
       }
@@ -681,9 +672,9 @@ namespace
   {
     for (const auto measure : {YieldStressMeasure::cauchy, YieldStressMeasure::kirchhoff})
       {
-        const auto reference = read_j2_uniaxial_reference(measure == YieldStressMeasure::cauchy ?
-                                                "j2_uniaxial_reference.csv" :
-                                                "j2_uniaxial_reference_kirchhoff.csv");
+        const auto reference = read_j2_uniaxial_reference(
+            measure == YieldStressMeasure::cauchy ? "j2_uniaxial_reference.csv"
+                                                  : "j2_uniaxial_reference_kirchhoff.csv");
         ASSERT_EQ(reference.size(), 101u);
         ASSERT_NEAR(reference.back().log_strain, 0.2, 1e-15);
         const J2Plasticity model = make_j2(measure);

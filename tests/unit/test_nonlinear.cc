@@ -30,7 +30,7 @@ TEST(LoadingProgramme, CyclesOfLoadHoldUnload)
   ASSERT_EQ(depth.segments.size(), 6u);
   EXPECT_FALSE(depth.force_control);
   EXPECT_EQ(depth.maximum, 2.0);
-  const SegmentKind kinds[3] = {SegmentKind::load, SegmentKind::hold, SegmentKind::unload};
+  const SegmentKind  kinds[3] = {SegmentKind::load, SegmentKind::hold, SegmentKind::unload};
   const unsigned int steps[3] = {10, 3, 5};
   const double       targets[3] = {2.0, 2.0, 0.0};
   for (unsigned int i = 0; i < 6; ++i)
@@ -98,9 +98,9 @@ TEST(CutBackStepper, RetriesFromTheConvergedStateFirst)
   std::vector<RetryEvent> events;
   unsigned int            cutbacks = 7;
   const double            reached = solve_with_cutbacks(
-    programme, programme.segments[0], control, 0.5, 2, 8,
-    [&](double t, bool e) { return solver(t, e); }, [&]() { ++solver.rejections; },
-    [&](const RetryEvent &event) { events.push_back(event); }, cutbacks);
+                 programme, programme.segments[0], control, 0.5, 2, 8,
+                 [&](double t, bool e) { return solver(t, e); }, [&]() { ++solver.rejections; },
+                 [&](const RetryEvent &event) { events.push_back(event); }, cutbacks);
   EXPECT_EQ(reached, 0.75);
   EXPECT_EQ(cutbacks, 0u);
   EXPECT_EQ(solver.rejections, 1u);
@@ -121,8 +121,8 @@ TEST(CutBackStepper, HalvesTheIncrementAndGivesUp)
   // From 0.25: 0.5 fails (twice: extrapolated, then converged start), 0.375 fails, 0.3125 fails,
   // 0.28125 converges.
   const double reached = solve_with_cutbacks(
-    programme, programme.segments[0], control, 0.25, 1, 8,
-    [&](double t, bool e) { return solver(t, e); }, []() {}, [](const RetryEvent &) {}, cutbacks);
+      programme, programme.segments[0], control, 0.25, 1, 8,
+      [&](double t, bool e) { return solver(t, e); }, []() {}, [](const RetryEvent &) {}, cutbacks);
   EXPECT_EQ(reached, 0.28125);
   EXPECT_EQ(cutbacks, 3u);
   EXPECT_EQ(control.increment, 0.03125);
@@ -131,9 +131,9 @@ TEST(CutBackStepper, HalvesTheIncrementAndGivesUp)
   control.start_segment(0.25, false);
   FakeSolver never{-1.0};
   EXPECT_THROW(solve_with_cutbacks(
-                 programme, programme.segments[0], control, 0.25, 0, 2,
-                 [&](double t, bool e) { return never(t, e); }, []() {},
-                 [](const RetryEvent &) {}, cutbacks),
+                   programme, programme.segments[0], control, 0.25, 0, 2,
+                   [&](double t, bool e) { return never(t, e); }, []() {},
+                   [](const RetryEvent &) {}, cutbacks),
                std::runtime_error);
   EXPECT_EQ(cutbacks, 3u);
 }

@@ -33,13 +33,11 @@ namespace
 
   // Rings r_i = i dr (i = 0 ... n_rings) and n_spokes spokes; counter-clockwise quads. The quads
   // at the centre have two coincident corners (one degenerate triangle).
-  std::vector<SurfaceQuad> polar_surface(const unsigned int n_rings,
-                                         const double       dr,
-                                         const unsigned int n_spokes,
-                                         const ScalarField &h)
+  std::vector<SurfaceQuad> polar_surface(const unsigned int n_rings, const double dr,
+                                         const unsigned int n_spokes, const ScalarField &h)
   {
     std::vector<SurfaceQuad> surface;
-    const auto at = [&](const unsigned int i, const unsigned int j) {
+    const auto               at = [&](const unsigned int i, const unsigned int j) {
       const double theta = 2 * pi * j / n_spokes;
       return node(i * dr * std::cos(theta), i * dr * std::sin(theta), h, no_displacement);
     };
@@ -55,7 +53,7 @@ namespace
                                           const ScalarField &h, const InPlaneField &u)
   {
     std::vector<SurfaceQuad> surface;
-    const auto at = [&](const unsigned int i, const unsigned int j) {
+    const auto               at = [&](const unsigned int i, const unsigned int j) {
       return node(x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * j / n, h, u);
     };
     for (unsigned int j = 0; j < n; ++j)
@@ -67,7 +65,7 @@ namespace
   // A pile-up ring of radius r0 and width w, modulated k-fold:
   // h = f(r) (B + A cos(k theta)), f(r) = exp(-((r - r0) / w)^2).
   constexpr double r0 = 6, width = 1.5, mean_height = 0.5, modulation = 0.2, contact_radius = 3;
-  double ring(const double r)
+  double           ring(const double r)
   {
     return std::exp(-std::pow((r - r0) / width, 2));
   }
@@ -109,13 +107,12 @@ TEST(PileUp, InterpolationIsExactForLinearField)
   const InPlaneField wavy = [](const double X, const double Y) {
     return std::array<double, 2>{{0.1 * std::sin(Y), 0.05 * std::cos(X)}};
   };
-  const auto linear = [](const double x, const double y) { return 0.3 - 0.2 * x + 0.7 * y; };
+  const auto        linear = [](const double x, const double y) { return 0.3 - 0.2 * x + 0.7 * y; };
   const ScalarField height_of_reference = [&](const double X, const double Y) {
     const auto [u_x, u_y] = wavy(X, Y);
     return linear(X + u_x, Y + u_y);
   };
-  const SurfaceInterpolator surface(
-    square_surface(-5, 5, -5, 5, 10, height_of_reference, wavy));
+  const SurfaceInterpolator surface(square_surface(-5, 5, -5, 5, 10, height_of_reference, wavy));
   for (double x = -4.8; x <= 4.8; x += 0.37)
     for (double y = -4.8; y <= 4.8; y += 0.41)
       {
@@ -137,7 +134,7 @@ TEST(PileUp, ModulatedRingGivesItsFold)
     {
       SCOPED_TRACE("k = " + std::to_string(k));
       const PileUpResult result =
-        analyse_with_spacing(polar_surface(120, 0.1, 360, modulated_ring(k)), 0.1);
+          analyse_with_spacing(polar_surface(120, 0.1, 360, modulated_ring(k)), 0.1);
       const AzimuthalSpectrum &spectrum = result.spectrum;
       EXPECT_EQ(spectrum.dominant_fold, k);
       EXPECT_NEAR(result.analysis_radius, r0, 0.05);
@@ -164,7 +161,7 @@ TEST(PileUp, ModulatedRingGivesItsFold)
 TEST(PileUp, AxisymmetricBumpHasNoFold)
 {
   const PileUpResult result =
-    analyse_with_spacing(polar_surface(120, 0.1, 360, modulated_ring(0, 0.)), 0.1);
+      analyse_with_spacing(polar_surface(120, 0.1, 360, modulated_ring(0, 0.)), 0.1);
   EXPECT_EQ(result.spectrum.dominant_fold, 0u);
   for (unsigned int k = 1; k <= 12; ++k)
     EXPECT_LT(result.spectrum.amplitudes[k], 1e-12) << "harmonic " << k;
@@ -214,7 +211,7 @@ TEST(PileUp, SymmetryFoldSeesThroughTheMeshImprint)
   EXPECT_EQ(crystal_011.dominant_fold, 8u);
   EXPECT_EQ(crystal_011.symmetry_fold, 2u);
   const AzimuthalSpectrum crystal_111 =
-    spectrum_of({{1, 0.02}, {3, 0.117}, {4, 0.152}, {5, 0.01}, {6, 0.03}, {7, 0.01}, {8, 0.131}});
+      spectrum_of({{1, 0.02}, {3, 0.117}, {4, 0.152}, {5, 0.01}, {6, 0.03}, {7, 0.01}, {8, 0.131}});
   EXPECT_EQ(crystal_111.dominant_fold, 4u);
   EXPECT_EQ(crystal_111.symmetry_fold, 3u);
   const AzimuthalSpectrum crystal_001 = spectrum_of({{4, 0.556}, {8, 0.1}, {12, 0.02}});
@@ -256,9 +253,9 @@ TEST(PileUp, MirroredQuarterEqualsFullSurface)
     return std::array<double, 2>{{scale * X, scale * Y}};
   };
   const ScalarField h = modulated_ring(4);
-  const auto full = square_surface(-12, 12, -12, 12, 160, h, radial);
-  const auto quarter = square_surface(0, 12, 0, 12, 80, h, radial);
-  const auto mirrored = mirror_quarter(quarter);
+  const auto        full = square_surface(-12, 12, -12, 12, 160, h, radial);
+  const auto        quarter = square_surface(0, 12, 0, 12, 80, h, radial);
+  const auto        mirrored = mirror_quarter(quarter);
   ASSERT_EQ(mirrored.size(), full.size());
 
   const SurfaceInterpolator full_surface(full), mirrored_surface(mirrored);
@@ -280,7 +277,7 @@ TEST(PileUp, MirroredQuarterEqualsFullSurface)
   EXPECT_NEAR(from_full.analysis_radius, from_mirror.analysis_radius, 1e-12);
   for (unsigned int k = 0; k <= 12; ++k)
     EXPECT_NEAR(from_full.spectrum.amplitudes[k], from_mirror.spectrum.amplitudes[k], 1e-12)
-      << "harmonic " << k;
+        << "harmonic " << k;
   EXPECT_NEAR(from_full.max_pileup, from_mirror.max_pileup, 1e-12);
 
   // Forgetting the sign flip of u_x, u_y moves the mirrored surface by 2 u: detectable.
@@ -293,7 +290,7 @@ TEST(PileUp, MirroredQuarterEqualsFullSurface)
         wrong[q][v].u_y = original.u_y;
       }
   const HeightGrid c = resample_on_grid(SurfaceInterpolator(wrong), 9, 0.1);
-  double wrong_difference = 0;
+  double           wrong_difference = 0;
   for (std::size_t i = 0; i < a.height.size(); ++i)
     if (a.height[i] && c.height[i])
       wrong_difference = std::max(wrong_difference, std::abs(*a.height[i] - *c.height[i]));
@@ -304,7 +301,7 @@ TEST(PileUp, MirroredQuarterEqualsFullSurface)
 // both stages plus the top-level stage's dominant_fold and max_pileup_um.
 TEST(PileUp, FilesHaveEmptyCellsAndBothStages)
 {
-  const auto surface = square_surface(-2, 2, -2, 2, 8, modulated_ring(4), no_displacement);
+  const auto       surface = square_surface(-2, 2, -2, 2, 8, modulated_ring(4), no_displacement);
   PileUpParameters parameters;
   parameters.depth = 0.5;
   parameters.contact_radius = 1;

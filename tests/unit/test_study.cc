@@ -92,8 +92,8 @@ TEST(StudyKey, SameResolvedCaseGivesTheSameKey)
                         "material: {poisson_ratio: 0.26, young_modulus: 69, model: j2}\n"
                         "solver: {threads: 2}\n"
                         "test: indentation\n";
-  const io::Case case_a = io::parse_case_yaml(a, "a.yaml");
-  const io::Case case_b = io::parse_case_yaml(b, "b.yaml");
+  const io::Case    case_a = io::parse_case_yaml(a, "a.yaml");
+  const io::Case    case_b = io::parse_case_yaml(b, "b.yaml");
   EXPECT_EQ(study::case_key(case_a), study::case_key(case_b));
   EXPECT_EQ(study::canonical_case_text(case_a), study::canonical_case_text(case_b));
   EXPECT_EQ(study::case_key(case_a).size(), 16u);
@@ -105,10 +105,9 @@ TEST(StudyKey, ChangedValueGivesAnotherKey)
 {
   const std::string text = "test: indentation\nmaterial: {model: j2}\n";
   const std::string key = study::case_key(io::parse_case_yaml(text, "a.yaml"));
-  for (const std::string extra : {"specimen: {contact_elements: 16}\n",
-                                  "material: {model: j2, young_modulus: 69.5}\n",
-                                  "loading: {max_depth: 5.9}\n", "loading: {unload: false}\n",
-                                  "indenter: {delta: 0.006}\n"})
+  for (const std::string extra :
+       {"specimen: {contact_elements: 16}\n", "material: {model: j2, young_modulus: 69.5}\n",
+        "loading: {max_depth: 5.9}\n", "loading: {unload: false}\n", "indenter: {delta: 0.006}\n"})
     {
       std::string changed = text + extra;
       if (extra.rfind("material", 0) == 0)
@@ -136,9 +135,9 @@ TEST(StudyFile, OverridesMergeOntoTheBase)
 {
   const YAML::Node base = YAML::Load(base_case);
   const YAML::Node overrides =
-    YAML::Load("specimen: {contact_elements: 48, size: [400, 400, 200], symmetry: ~}\n"
-               "material: {orientation: {euler_bunge_deg: [0, 45, 0]}, young_modulus: 70}\n"
-               "contact: {friction_coefficient: 0.1}\n");
+      YAML::Load("specimen: {contact_elements: 48, size: [400, 400, 200], symmetry: ~}\n"
+                 "material: {orientation: {euler_bunge_deg: [0, 45, 0]}, young_modulus: 70}\n"
+                 "contact: {friction_coefficient: 0.1}\n");
   const YAML::Node merged = study::merge_overrides(base, overrides);
 
   EXPECT_EQ(merged["specimen"]["contact_elements"].as<int>(), 48);
@@ -167,18 +166,19 @@ TEST(StudyFile, OverridesMergeOntoTheBase)
 // reads groups, labels and report settings.
 TEST(StudyFile, ResolvesCasesAndReportSettings)
 {
-  const fs::path path = study_directory("resolves");
-  const std::string text = "output: out\n"
-                           "report: {depth_at_force_mN: 821.2, tensile_strains: [0.1],\n"
-                           "         paper_forces_mN: {mesh_j2: {48: 821.2, 72: 822.2}}}\n"
-                           "cases:\n"
-                           "  - {name: j2_n12, base: base.yaml, group: mesh_j2}\n"
-                           "  - name: j2_n24\n"
-                           "    base: base.yaml\n"
-                           "    group: [mesh_j2]\n"
-                           "    label: \"J2, 24x24\"\n"
-                           "    overrides: {specimen: {contact_elements: 24}}\n";
-  const study::Study s = study::parse_study_yaml(text, path.string(), (path.parent_path() / "o2").string());
+  const fs::path     path = study_directory("resolves");
+  const std::string  text = "output: out\n"
+                            "report: {depth_at_force_mN: 821.2, tensile_strains: [0.1],\n"
+                            "         paper_forces_mN: {mesh_j2: {48: 821.2, 72: 822.2}}}\n"
+                            "cases:\n"
+                            "  - {name: j2_n12, base: base.yaml, group: mesh_j2}\n"
+                            "  - name: j2_n24\n"
+                            "    base: base.yaml\n"
+                            "    group: [mesh_j2]\n"
+                            "    label: \"J2, 24x24\"\n"
+                            "    overrides: {specimen: {contact_elements: 24}}\n";
+  const study::Study s =
+      study::parse_study_yaml(text, path.string(), (path.parent_path() / "o2").string());
   ASSERT_EQ(s.cases.size(), 2u);
   EXPECT_EQ(s.output_directory, (path.parent_path() / "o2").string()); // --output wins
   EXPECT_EQ(s.cases[0].resolved.specimen.contact_elements, 12u);
@@ -190,7 +190,8 @@ TEST(StudyFile, ResolvesCasesAndReportSettings)
   EXPECT_EQ(s.cases[1].directory,
             (path.parent_path() / "o2" / "cases" / ("j2_n24-" + s.cases[1].key)).string());
   EXPECT_EQ(s.cases[1].resolved.output.directory, s.cases[1].directory);
-  EXPECT_EQ(s.cases[0].key, study::case_key(io::read_case_file((path.parent_path() / "base.yaml").string())));
+  EXPECT_EQ(s.cases[0].key,
+            study::case_key(io::read_case_file((path.parent_path() / "base.yaml").string())));
   EXPECT_DOUBLE_EQ(s.report.depth_at_force_mN, 821.2);
   EXPECT_EQ(s.report.tensile_strains, std::vector<double>{0.1});
   EXPECT_DOUBLE_EQ(s.report.paper_forces_mN.at("mesh_j2").at(72), 822.2);
@@ -200,12 +201,12 @@ TEST(StudyFile, ResolvesCasesAndReportSettings)
 // J2 and crystal at 12, 24, 48, 72 contact elements, orientations (001), (011), (111).
 TEST(StudyFile, ShippedStudiesAreValid)
 {
-  const std::string root = INDENTSIM_SOURCE_DIR;
+  const std::string  root = INDENTSIM_SOURCE_DIR;
   const study::Study quick = study::read_study_file(root + "/studies/quick.yaml");
   EXPECT_EQ(quick.cases.size(), 5u);
   const study::Study paper = study::read_study_file(root + "/studies/paper.yaml");
   std::map<std::string, std::vector<unsigned int>> meshes;
-  std::size_t n_tensile = 0;
+  std::size_t                                      n_tensile = 0;
   for (const auto &c : paper.cases)
     for (const auto &g : c.groups)
       {
@@ -229,47 +230,47 @@ TEST(StudyFile, ShippedStudiesAreValid)
 // the value and what is allowed; nothing crashes.
 TEST(StudyFile, BadInputNamesFileKeyValueAndRule)
 {
-  const fs::path path = study_directory("bad_input");
+  const fs::path    path = study_directory("bad_input");
   const std::string file = path.string();
-  const auto case_entry = [](const std::string &fields) {
+  const auto        case_entry = [](const std::string &fields) {
     return "cases:\n  - {name: c1, base: base.yaml" + fields + "}\n";
   };
   const std::vector<std::pair<std::string, std::vector<std::string>>> bad = {
-    {"case:\n  - {name: c1, base: base.yaml}\n", {":1:", "unknown key 'case'", "cases"}},
-    {"output: o\n", {"missing key 'cases'"}},
-    {"cases: []\n", {"non-empty list"}},
-    {case_entry(", overrides: {specimen: {contact_elements: 10}}"),
-     {":2:", "case 'c1'", "specimen.contact_elements", "10", "multiple of 4"}},
-    {case_entry(", overrides: {specimen: {contact_element: 16}}"),
-     {"case 'c1'", "unknown key 'specimen.contact_element'", "contact_elements"}},
-    {case_entry(", overrides: {material: {poisson_ratio: 0.5}}"),
-     {"material.poisson_ratio", "0.5", "-1 < nu < 0.5"}},
-    {case_entry(", overrides: {output: {directory: x}}"),
-     {"overrides.output.directory", "set by the study"}},
-    {case_entry(", overrides: [1, 2]"), {"overrides = [1, 2]", "expected a mapping"}},
-    {case_entry(", group: mesh"), {"group = mesh", "mesh_j2", "orientation"}},
-    {case_entry(", group: mesh_crystal"), {"group mesh_crystal needs material.model: crystal"}},
-    {case_entry(", group: tensile"), {"group tensile needs test: tensile"}},
-    {case_entry(", colour: red"), {"unknown key 'cases[0].colour'", "name, base"}},
-    {"cases:\n  - {name: c1, base: missing.yaml}\n", {"base = missing.yaml", "no case file"}},
-    {"cases:\n  - {base: base.yaml}\n", {"missing key 'name'"}},
-    {"cases:\n  - {name: \"a b\", base: base.yaml}\n", {"\"a b\"", "letters, digits"}},
-    {"cases:\n  - {name: c1, base: base.yaml}\n  - {name: c1, base: base.yaml, overrides: "
-     "{loading: {steps: 8}}}\n",
-     {"case name 'c1' given twice"}},
-    {"cases:\n  - {name: c1, base: base.yaml}\n  - {name: c2, base: base.yaml, overrides: "
-     "{output: {vtu_every: 0}}}\n",
-     {"'c2' resolves to the same case as 'c1'", "group: [a, b]"}},
-    {"cases:\n  - {name: c1, base: base.yaml, group: mesh_j2}\n  - {name: c2, base: base.yaml, "
-     "group: mesh_j2, overrides: {loading: {steps: 8}}}\n",
-     {"both have contact_elements 12", "one case per mesh"}},
-    {"report: {paper_forces_mN: {mesh_j2: {50: 821.2}}}\n" + case_entry(""),
-     {"report.paper_forces_mN.mesh_j2", "'50'", "multiple of 4"}},
-    {"report: {depth_at_force_mN: -3}\n" + case_entry(""),
-     {"report.depth_at_force_mN = -3", "> 0"}},
-    {"report: {tensile_strains: 0.1}\n" + case_entry(""), {"report.tensile_strains = 0.1"}},
-    {"cases:\n  - {name: c1, base: base.yaml\n", {"YAML syntax error"}},
-    {"- just\n- a list\n", {"a study file is a mapping"}},
+      {"case:\n  - {name: c1, base: base.yaml}\n", {":1:", "unknown key 'case'", "cases"}},
+      {"output: o\n", {"missing key 'cases'"}},
+      {"cases: []\n", {"non-empty list"}},
+      {case_entry(", overrides: {specimen: {contact_elements: 10}}"),
+       {":2:", "case 'c1'", "specimen.contact_elements", "10", "multiple of 4"}},
+      {case_entry(", overrides: {specimen: {contact_element: 16}}"),
+       {"case 'c1'", "unknown key 'specimen.contact_element'", "contact_elements"}},
+      {case_entry(", overrides: {material: {poisson_ratio: 0.5}}"),
+       {"material.poisson_ratio", "0.5", "-1 < nu < 0.5"}},
+      {case_entry(", overrides: {output: {directory: x}}"),
+       {"overrides.output.directory", "set by the study"}},
+      {case_entry(", overrides: [1, 2]"), {"overrides = [1, 2]", "expected a mapping"}},
+      {case_entry(", group: mesh"), {"group = mesh", "mesh_j2", "orientation"}},
+      {case_entry(", group: mesh_crystal"), {"group mesh_crystal needs material.model: crystal"}},
+      {case_entry(", group: tensile"), {"group tensile needs test: tensile"}},
+      {case_entry(", colour: red"), {"unknown key 'cases[0].colour'", "name, base"}},
+      {"cases:\n  - {name: c1, base: missing.yaml}\n", {"base = missing.yaml", "no case file"}},
+      {"cases:\n  - {base: base.yaml}\n", {"missing key 'name'"}},
+      {"cases:\n  - {name: \"a b\", base: base.yaml}\n", {"\"a b\"", "letters, digits"}},
+      {"cases:\n  - {name: c1, base: base.yaml}\n  - {name: c1, base: base.yaml, overrides: "
+       "{loading: {steps: 8}}}\n",
+       {"case name 'c1' given twice"}},
+      {"cases:\n  - {name: c1, base: base.yaml}\n  - {name: c2, base: base.yaml, overrides: "
+       "{output: {vtu_every: 0}}}\n",
+       {"'c2' resolves to the same case as 'c1'", "group: [a, b]"}},
+      {"cases:\n  - {name: c1, base: base.yaml, group: mesh_j2}\n  - {name: c2, base: base.yaml, "
+       "group: mesh_j2, overrides: {loading: {steps: 8}}}\n",
+       {"both have contact_elements 12", "one case per mesh"}},
+      {"report: {paper_forces_mN: {mesh_j2: {50: 821.2}}}\n" + case_entry(""),
+       {"report.paper_forces_mN.mesh_j2", "'50'", "multiple of 4"}},
+      {"report: {depth_at_force_mN: -3}\n" + case_entry(""),
+       {"report.depth_at_force_mN = -3", "> 0"}},
+      {"report: {tensile_strains: 0.1}\n" + case_entry(""), {"report.tensile_strains = 0.1"}},
+      {"cases:\n  - {name: c1, base: base.yaml\n", {"YAML syntax error"}},
+      {"- just\n- a list\n", {"a study file is a mapping"}},
   };
   for (const auto &[text, parts] : bad)
     {
@@ -323,11 +324,10 @@ TEST(StudyCommandLine, ParsesOptionsAndRejectsBadValues)
                                              {"study", "a.yaml", "--only", "a,,b"},
                                              {"study", "a.yaml", "--overwrite"},
                                              {"study", "a.yaml", "--jobs", "1", "--jobs", "2"}})
-    EXPECT_THROW(io::parse_command_line(arguments), io::CommandLineError)
-      << arguments.back();
+    EXPECT_THROW(io::parse_command_line(arguments), io::CommandLineError) << arguments.back();
   const std::string help = io::help_text();
-  for (const std::string fragment : {"study STUDY.yaml", "--ranks N", "--jobs J", "--dry-run",
-                                     "--only NAME"})
+  for (const std::string fragment :
+       {"study STUDY.yaml", "--ranks N", "--jobs J", "--dry-run", "--only NAME"})
     EXPECT_NE(help.find(fragment), std::string::npos) << fragment;
 }
 
@@ -347,7 +347,7 @@ namespace
 
   struct RunnerFixture
   {
-    fs::path             dir;
+    fs::path                dir;
     study::StudyRunSettings settings;
 
     explicit RunnerFixture(const std::string &name)
@@ -424,11 +424,11 @@ TEST(StudyRunner, FailedCaseDoesNotStopTheOthersAndFinishedOnesAreSkipped)
 // --only restricts the run to the named cases or groups; --dry-run writes nothing.
 TEST(StudyRunner, RerunsInterruptedCaseOnlySelectsAndDryRunWritesNothing)
 {
-  RunnerFixture fixture("runner_interrupted");
+  RunnerFixture      fixture("runner_interrupted");
   const study::Study s = fixture.study("  - {name: ok1, base: base.yaml, group: mesh_j2}\n"
                                        "  - {name: ok2, base: base.yaml, overrides: {specimen: "
                                        "{contact_elements: 24}}}\n");
-  std::string output;
+  std::string        output;
   fixture.settings.dry_run = true;
   EXPECT_EQ(fixture.run(s, output), study::exit_ok);
   EXPECT_NE(output.find("2 case(s) would run"), std::string::npos) << output;

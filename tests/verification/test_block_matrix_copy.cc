@@ -29,8 +29,8 @@ namespace
   {
     PetscInt row_begin, row_end;
     EXPECT_EQ(MatGetOwnershipRange(source, &row_begin, &row_end), 0);
-    double   largest = 0, difference = 0;
-    long     n_padding = 0;
+    double largest = 0, difference = 0;
+    long   n_padding = 0;
     for (PetscInt row = row_begin; row < row_end; ++row)
       {
         std::map<PetscInt, double> expected;
@@ -72,17 +72,17 @@ namespace
                         indentsim::linalg::BlockMatrixCopy &copy)
   {
     const indentsim::test_meshes::ConstrainedCube cube(communicator, rounds);
-    const auto &dof_handler = cube.dof_handler;
-    const auto &fe = cube.fe;
-    const auto &owned = cube.owned;
-    const auto &constraints = cube.constraints;
+    const auto                                   &dof_handler = cube.dof_handler;
+    const auto                                   &fe = cube.fe;
+    const auto                                   &owned = cube.owned;
+    const auto                                   &constraints = cube.constraints;
     ASSERT_GT(constraints.n_constraints(), 0u);
     PETScWrappers::MPI::SparseMatrix matrix;
     matrix.reinit(owned, owned, cube.sparsity, communicator);
 
     const unsigned int                   n = fe.n_dofs_per_cell();
     std::vector<types::global_dof_index> dofs(n);
-    const auto assemble = [&](const double phase) {
+    const auto                           assemble = [&](const double phase) {
       matrix = 0;
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
@@ -91,7 +91,7 @@ namespace
             for (unsigned int i = 0; i < n; ++i)
               for (unsigned int j = 0; j < n; ++j)
                 K(i, j) = std::sin(phase + 1.3 * cell->active_cell_index() + 0.7 * i +
-                                   0.37 * j * j + 0.11 * i * j);
+                                                             0.37 * j * j + 0.11 * i * j);
             cell->get_dof_indices(dofs);
             constraints.distribute_local_to_global(K, dofs, matrix);
           }
@@ -99,7 +99,7 @@ namespace
     };
 
     PETScWrappers::MPI::Vector x(owned, communicator), y_source(owned, communicator),
-      y_copy(owned, communicator);
+        y_copy(owned, communicator);
     for (const auto i : owned)
       x(i) = std::cos(0.1 * i);
     x.compress(VectorOperation::insert);

@@ -1,9 +1,9 @@
 // Verification of single-crystal indentation (paper section 4): the quarter model against the
 // full model where the crystal has the mirror planes x = 0 and y = 0, the cubic symmetry of the
 // load-penetration curve, and global equilibrium. Units: um, mN, GPa.
+#include "../test_cases.h"
 #include "case/Case.h"
 #include "problems/IndentationProblem.h"
-#include "../test_cases.h"
 
 #include <gtest/gtest.h>
 
@@ -31,21 +31,22 @@ namespace
   // increments: when any model fails an increment, all reject it and the increment is halved.
   // Returns the forces [model][accepted increment].
   std::vector<std::vector<double>> forces_along_common_path(const std::vector<io::Case> &cases,
-                                                            const double max_depth,
+                                                            const double                 max_depth,
                                                             const unsigned int n_increments)
   {
     std::vector<std::unique_ptr<problems::IndentationProblem>> problems;
     for (const auto &c : cases)
       {
-        problems.push_back(std::make_unique<problems::IndentationProblem>(c, MPI_COMM_WORLD, false));
+        problems.push_back(
+            std::make_unique<problems::IndentationProblem>(c, MPI_COMM_WORLD, false));
         problems.back()->setup();
       }
     std::vector<std::vector<double>> forces(cases.size());
-    double depth = 0, increment = max_depth / n_increments;
+    double                           depth = 0, increment = max_depth / n_increments;
     while (depth < max_depth * (1 - 1e-12) && increment > max_depth / n_increments / 64)
       {
-        const double target = std::min(max_depth, depth + increment);
-        bool         all_converged = true;
+        const double                       target = std::min(max_depth, depth + increment);
+        bool                               all_converged = true;
         std::vector<nonlinear::StepRecord> records(cases.size());
         for (unsigned int m = 0; m < cases.size() && all_converged; ++m)
           all_converged = problems[m]->solve_increment(target, records[m]) ==
@@ -62,7 +63,7 @@ namespace
           {
             EXPECT_NEAR(records[m].force, records[m].bottom_reaction,
                         1e-6 * std::max(records[m].force, 1.0))
-              << "model " << m << " depth " << depth;
+                << "model " << m << " depth " << depth;
             forces[m].push_back(records[m].force);
           }
       }

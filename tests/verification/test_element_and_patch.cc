@@ -1,12 +1,12 @@
 // Verification of the finite-strain hexahedron: element tangent against finite differences of
 // the element residual (with and without F-bar, elastic and plastic), and patch tests on a mesh
 // with hanging nodes. Units: um, mN, GPa.
+#include "../problem_test_access.h"
 #include "case/Case.h"
-#include "materials/MaterialFactory.h"
 #include "fem/CellWorkspace.h"
 #include "fem/FiniteStrainElement.h"
+#include "materials/MaterialFactory.h"
 #include "problems/IndentationProblem.h"
-#include "../problem_test_access.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_q.h>
@@ -57,8 +57,8 @@ namespace
   // element residual, relative to the largest tangent entry.
   double element_tangent_error(const std::string &model, bool f_bar, double amplitude)
   {
-    const auto material = materials::create_material(paper_material(model));
-    const unsigned int n_state = material->n_state_variables();
+    const auto          material = materials::create_material(paper_material(model));
+    const unsigned int  n_state = material->n_state_variables();
     std::vector<double> state_old(8 * n_state), state_new(8 * n_state);
     for (unsigned int q = 0; q < 8; ++q)
       material->initial_state(std::span<double>(state_old).subspan(q * n_state, n_state));
@@ -71,8 +71,8 @@ namespace
     for (auto &v : u)
       v = dist(rng);
     FullMatrix<double> K(24, 24);
-    EXPECT_EQ(fem::element_residual_and_tangent(
-                *material, f_bar, u, state_old, state_new, scratch, r, &K),
+    EXPECT_EQ(fem::element_residual_and_tangent(*material, f_bar, u, state_old, state_new, scratch,
+                                                r, &K),
               materials::UpdateStatus::success);
 
     double       error = 0, scale = 0;
@@ -82,10 +82,10 @@ namespace
         Vector<double> up(u), um(u);
         up[b] += step;
         um[b] -= step;
-        fem::element_residual_and_tangent(
-          *material, f_bar, up, state_old, state_new, scratch, r_plus, nullptr);
-        fem::element_residual_and_tangent(
-          *material, f_bar, um, state_old, state_new, scratch, r_minus, nullptr);
+        fem::element_residual_and_tangent(*material, f_bar, up, state_old, state_new, scratch,
+                                          r_plus, nullptr);
+        fem::element_residual_and_tangent(*material, f_bar, um, state_old, state_new, scratch,
+                                          r_minus, nullptr);
         for (unsigned int a = 0; a < 24; ++a)
           {
             error = std::max(error, std::abs(K(a, b) - (r_plus[a] - r_minus[a]) / (2 * step)));
@@ -129,8 +129,8 @@ namespace
   // lambda/2 (J^2 - 1) 1] / J.
   Tensor<2, 3> neo_hookean_cauchy(const Tensor<2, 3> &F, double E, double nu)
   {
-    const double mu = E / (2 * (1 + nu)), lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
-    const double J = determinant(F);
+    const double       mu = E / (2 * (1 + nu)), lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+    const double       J = determinant(F);
     const Tensor<2, 3> I = unit_symmetric_tensor<3>();
     return (mu * (F * transpose(F) - I) + 0.5 * lambda * (J * J - 1) * I) / J;
   }
@@ -142,21 +142,25 @@ TEST(PatchTest, AffineDisplacementOnHangingNodeMesh)
 {
   for (const bool f_bar : {false, true})
     {
-      const io::Case c = patch_case("neo_hookean", f_bar);
+      const io::Case               c = patch_case("neo_hookean", f_bar);
       problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
       problem.setup();
-      ASSERT_GT(problem.n_hanging_node_constraints(), 0u) << "the patch mesh must have hanging nodes";
+      ASSERT_GT(problem.n_hanging_node_constraints(), 0u)
+          << "the patch mesh must have hanging nodes";
 
       Tensor<2, 3> G;
       G[0][0] = 0.02, G[0][1] = -0.01, G[0][2] = 0.015, G[1][0] = 0.005, G[1][1] = -0.03,
       G[1][2] = 0.01, G[2][0] = -0.012, G[2][1] = 0.02, G[2][2] = 0.025;
-      problems::ProblemTestAccess::set_displacement(problem, [&](const Point<3> &X) { return G * X; });
+      problems::ProblemTestAccess::set_displacement(problem,
+                                                    [&](const Point<3> &X) { return G * X; });
       const Tensor<2, 3> F = unit_symmetric_tensor<3>() + G;
       const Tensor<2, 3> sigma = neo_hookean_cauchy(F, 69.0, 0.26);
 
       // Nodal forces scale like |sigma| h^2 ~ 2 GPa * 4 um^2 = 8 mN.
-      EXPECT_LT(problems::ProblemTestAccess::interior_residual_norm(problem), 1e-9 * 8.0) << "f_bar " << f_bar;
-      EXPECT_LT(problems::ProblemTestAccess::max_stress_error(problem, sigma), 1e-11) << "f_bar " << f_bar;
+      EXPECT_LT(problems::ProblemTestAccess::interior_residual_norm(problem), 1e-9 * 8.0)
+          << "f_bar " << f_bar;
+      EXPECT_LT(problems::ProblemTestAccess::max_stress_error(problem, sigma), 1e-11)
+          << "f_bar " << f_bar;
     }
 }
 
@@ -164,7 +168,7 @@ TEST(PatchTest, AffineDisplacementOnHangingNodeMesh)
 // nodes stay in equilibrium across the hanging-node transitions.
 TEST(PatchTest, AffinePlasticFlowOnHangingNodeMesh)
 {
-  const io::Case c = patch_case("j2", true);
+  const io::Case               c = patch_case("j2", true);
   problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   Tensor<2, 3> G;
@@ -185,11 +189,11 @@ TEST(CellWorkspace, GradientsMatchFEValuesOnBoxesParallelepipedsAndDistortedCell
       GridGenerator::hyper_rectangle(tria, Point<3>(0.5, -1, 2), Point<3>(2.5, 0.5, 3));
       if (shape == 1)
         GridTools::transform(
-          [](const Point<3> &p) {
-            return Point<3>(0.8 * p[0] + 0.3 * p[1] - 0.2 * p[2], 0.1 * p[0] + 1.1 * p[1],
-                            0.25 * p[0] - 0.4 * p[1] + 0.9 * p[2]);
-          },
-          tria);
+            [](const Point<3> &p) {
+              return Point<3>(0.8 * p[0] + 0.3 * p[1] - 0.2 * p[2], 0.1 * p[0] + 1.1 * p[1],
+                              0.25 * p[0] - 0.4 * p[1] + 0.9 * p[2]);
+            },
+            tria);
       if (shape == 2)
         GridTools::distort_random(0.2, tria, false, 11);
       const FESystem<3> fe(FE_Q<3>(1), 3);
@@ -200,7 +204,7 @@ TEST(CellWorkspace, GradientsMatchFEValuesOnBoxesParallelepipedsAndDistortedCell
         u[k] = std::sin(1.7 * k);
 
       fem::CellWorkspace workspace(fe, 8);
-      const auto            cell = dof_handler.begin_active();
+      const auto         cell = dof_handler.begin_active();
       workspace.reinit(cell, u);
       FEValues<3> fe_values(fe, QGauss<3>(2), update_gradients | update_JxW_values);
       FEValues<3> fe_centre(fe, QGauss<3>(1), update_gradients);
@@ -210,7 +214,7 @@ TEST(CellWorkspace, GradientsMatchFEValuesOnBoxesParallelepipedsAndDistortedCell
       for (unsigned int q = 0; q < 8; ++q)
         {
           EXPECT_NEAR(workspace.scratch.JxW[q], fe_values.JxW(q), 1e-13 * fe_values.JxW(q))
-            << "shape " << shape;
+              << "shape " << shape;
           for (unsigned int i = 0; i < 8; ++i)
             {
               // node i is dof 3 i (component 0)
@@ -220,8 +224,9 @@ TEST(CellWorkspace, GradientsMatchFEValuesOnBoxesParallelepipedsAndDistortedCell
             }
         }
       for (unsigned int i = 0; i < 8; ++i)
-        error = std::max(error, (workspace.scratch.grad0[i] -
-                                 fe_centre.shape_grad_component(3 * i, 0, 0)).norm());
+        error = std::max(
+            error,
+            (workspace.scratch.grad0[i] - fe_centre.shape_grad_component(3 * i, 0, 0)).norm());
       EXPECT_LT(error, 1e-13 * scale) << "shape " << shape;
       std::vector<types::global_dof_index> dofs(24);
       cell->get_dof_indices(dofs);

@@ -31,7 +31,7 @@ namespace
   class Plane : public indenter::IndenterSurface
   {
   public:
-    double profile(double, double) const override { return 0; }
+    double                      profile(double, double) const override { return 0; }
     indenter::SurfaceProjection project(const Point<3> &x, const double depth) const override
     {
       indenter::SurfaceProjection p;
@@ -98,8 +98,8 @@ namespace
           residual_values[i] = r;
           if (tangent)
             for (unsigned int j = 0; j < n; ++j)
-              (*tangent)(i, j) = is_top[i] ? matrix.el(i, j) + (i == j ? k : 0.0) :
-                                             (i == j ? 1.0 : 0.0);
+              (*tangent)(i, j) =
+                  is_top[i] ? matrix.el(i, j) + (i == j ? k : 0.0) : (i == j ? 1.0 : 0.0);
         }
       return std::sqrt(norm);
     }
@@ -111,8 +111,8 @@ namespace
       bool augmented_enough = false;
       for (unsigned int pass = 0; pass < 60 && !augmented_enough; ++pass)
         {
-          ASSERT_TRUE(newton(depth)) << "Newton did not converge at depth " << depth
-                                     << ", offset " << offset_x;
+          ASSERT_TRUE(newton(depth))
+              << "Newton did not converge at depth " << depth << ", offset " << offset_x;
           const auto s = contact.summary();
           augmented_enough = s.max_penetration <= 1e-12 && s.max_stick_slip <= 1e-12;
           if (!augmented_enough)
@@ -132,7 +132,7 @@ namespace
         {
           FullMatrix<double> tangent;
           const double       norm =
-            assemble(contact::NodeToSurfaceContact::ActiveSet::free, depth, &tangent);
+              assemble(contact::NodeToSurfaceContact::ActiveSet::free, depth, &tangent);
           if (norm < 1e-14)
             return true;
           tangent.gauss_jordan();
@@ -152,16 +152,16 @@ namespace
       u.compress(VectorOperation::insert);
     }
 
-    const double                         k = 1.0; // spring stiffness [mN/um]
-    Triangulation<3>                     triangulation;
-    FESystem<3>                          fe;
-    DoFHandler<3>                        dof_handler;
-    IndexSet                             owned;
-    contact::NodeToSurfaceContact        contact;
-    PETScWrappers::MPI::SparseMatrix     matrix;
-    PETScWrappers::MPI::Vector           u, residual;
-    std::vector<bool>                    is_top;
-    std::vector<double>                  residual_values;
+    const double                     k = 1.0; // spring stiffness [mN/um]
+    Triangulation<3>                 triangulation;
+    FESystem<3>                      fe;
+    DoFHandler<3>                    dof_handler;
+    IndexSet                         owned;
+    contact::NodeToSurfaceContact    contact;
+    PETScWrappers::MPI::SparseMatrix matrix;
+    PETScWrappers::MPI::Vector       u, residual;
+    std::vector<bool>                is_top;
+    std::vector<double>              residual_values;
   };
 
   // Every top node carries the same state: checks its displacement and the total forces.
@@ -207,7 +207,8 @@ TEST(Friction, SpringBlockStickSlipAndReversal)
   expect_state(block, mu * d, mu * N, N, 0, "slip at s = 0.01");
 
   block.solve(d, 0.006); // back by 0.004 < 2 mu d: stick again
-  expect_state(block, mu * d - 0.004, 4 * block.k * (mu * d - 0.004), N, 4, "stick on the way back");
+  expect_state(block, mu * d - 0.004, 4 * block.k * (mu * d - 0.004), N, 4,
+               "stick on the way back");
 
   block.solve(d, 0.0); // back by 0.01 > 2 mu d: slip the other way
   expect_state(block, -mu * d, -mu * N, N, 0, "reverse slip");
@@ -327,14 +328,14 @@ TEST(FrictionIndentation, CoulombConditionsHoldAtConvergence)
   for (unsigned int step = 1; step <= c.loading.steps; ++step)
     {
       nonlinear::StepRecord record;
-      const double       depth = c.loading.max_depth * step / c.loading.steps;
+      const double          depth = c.loading.max_depth * step / c.loading.steps;
       // As run() does: an extrapolated start that fails is retried from the converged state.
       if (problem.solve_increment(depth, record) != nonlinear::IncrementStatus::converged)
         {
           problem.reject_increment();
           ASSERT_EQ(problem.solve_increment(depth, record, false),
                     nonlinear::IncrementStatus::converged)
-            << "depth " << depth;
+              << "depth " << depth;
         }
       n_stick = n_slip = 0;
       for (const auto &node : problem.contact().nodes())
@@ -397,8 +398,8 @@ TEST(Friction, AugmentationJumpIsTheResidualOfTheNextPass)
 TEST(Friction, RetractThenAssembleEqualsAFreshAssembly)
 {
   using ActiveSet = contact::NodeToSurfaceContact::ActiveSet;
-  const Plane plane;
-  SpringBlock block(plane, 0.3, 100.0);
+  const Plane               plane;
+  SpringBlock               block(plane, 0.3, 100.0);
   AffineConstraints<double> symmetry; // u_y = 0 at one top node, as on a symmetry plane
   symmetry.add_line(block.contact.nodes()[0].dofs[1]);
   symmetry.close();
@@ -408,11 +409,12 @@ TEST(Friction, RetractThenAssembleEqualsAFreshAssembly)
       block.shift(node.dofs[0], 0.002 * (1 + node.X[1]));
     }
   block.contact.set_lateral_offset(Tensor<1, 3>({0.001, 0., 0.}));
-  const double depth = 0.01;
+  const double       depth = 0.01;
   const unsigned int n = block.dof_handler.n_dofs();
 
   // An arbitrary "element part" in every entry of the (dense) pattern.
-  const auto element_part = [n](PETScWrappers::MPI::SparseMatrix &A, PETScWrappers::MPI::Vector &r) {
+  const auto element_part = [n](PETScWrappers::MPI::SparseMatrix &A,
+                                PETScWrappers::MPI::Vector       &r) {
     for (unsigned int i = 0; i < n; ++i)
       {
         for (unsigned int j = 0; j < n; ++j)
@@ -453,13 +455,13 @@ TEST(Friction, RetractThenAssembleEqualsAFreshAssembly)
   for (unsigned int i = 0; i < n; ++i)
     for (unsigned int j = 0; j < n; ++j)
       largest_contact_entry =
-        std::max(largest_contact_entry, std::abs(fresh_A.el(i, j) - (1.0 + i + 0.1 * j)));
+          std::max(largest_contact_entry, std::abs(fresh_A.el(i, j) - (1.0 + i + 0.1 * j)));
   ASSERT_GT(largest_contact_entry, 10.0); // the contact part is there (penalty 100 GPa/um)
   for (unsigned int i = 0; i < n; ++i)
     {
       EXPECT_NEAR(r(i), fresh_r(i), 1e-12) << "residual row " << i;
       for (unsigned int j = 0; j < n; ++j)
         EXPECT_NEAR(A.el(i, j), fresh_A.el(i, j), 1e-12 * largest_contact_entry)
-          << "entry " << i << ", " << j;
+            << "entry " << i << ", " << j;
     }
 }

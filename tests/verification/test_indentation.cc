@@ -1,9 +1,9 @@
 // Verification of the indentation solver: elastic indentation by the paper's rounded cone
 // against Sneddon's closed form (REFERENCES.md), equilibrium of contact force and support
 // reaction, and the exactness of the augmented-Lagrangian contact. Units: um, mN, GPa.
-#include "indenter/SneddonReference.h"
 #include "../test_cases.h"
 #include "case/Case.h"
+#include "indenter/SneddonReference.h"
 #include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>
@@ -14,15 +14,17 @@ using namespace indentsim;
 
 namespace
 {
-  io::Case elastic_case() { return test_cases::elastic_rounded_cone_case(); }
+  io::Case elastic_case()
+  {
+    return test_cases::elastic_rounded_cone_case();
+  }
 
   double sneddon_force(const io::Case &c, double depth)
   {
     const indenter::SneddonReference reference(
-      indenter::SneddonReference::reduced_modulus(c.material.young_modulus,
-                                                  c.material.poisson_ratio),
-      c.indenter.a,
-      c.indenter.delta);
+        indenter::SneddonReference::reduced_modulus(c.material.young_modulus,
+                                                    c.material.poisson_ratio),
+        c.indenter.a, c.indenter.delta);
     return reference.force_at_depth(depth);
   }
 } // namespace
@@ -114,9 +116,9 @@ TEST(ElasticIndentation, InterpolatedContactAreaFollowsClosedForm)
   problem.setup();
   problem.run("");
   const indenter::SneddonReference reference(
-    indenter::SneddonReference::reduced_modulus(c.material.young_modulus, c.material.poisson_ratio),
-    c.indenter.a,
-    c.indenter.delta);
+      indenter::SneddonReference::reduced_modulus(c.material.young_modulus,
+                                                  c.material.poisson_ratio),
+      c.indenter.a, c.indenter.delta);
   const double element = problem.mesh_info().contact_element_size;
   double       previous_area = 0;
   for (const auto &r : problem.records())
@@ -142,7 +144,7 @@ TEST(ElasticIndentation, InterpolatedContactAreaFollowsClosedForm)
 // solution slightly (measured 3e-5 here).
 TEST(Symmetry, QuarterModelEqualsFullModel)
 {
-  io::Case c = test_cases::small_j2_case("quarter");
+  io::Case                     c = test_cases::small_j2_case("quarter");
   problems::IndentationProblem quarter(c, MPI_COMM_WORLD, false);
   quarter.setup();
   quarter.run("");

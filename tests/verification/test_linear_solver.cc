@@ -91,7 +91,8 @@ namespace
             for (unsigned int q = 0; q < quadrature.size(); ++q)
               for (unsigned int i = 0; i < n; ++i)
                 for (unsigned int j = 0; j < n; ++j)
-                  if (fe.system_to_component_index(i).first == fe.system_to_component_index(j).first)
+                  if (fe.system_to_component_index(i).first ==
+                      fe.system_to_component_index(j).first)
                     cell_matrix(i, j) += k * fe_values.shape_grad(i, q) *
                                          fe_values.shape_grad(j, q) * fe_values.JxW(q);
             cell->get_dof_indices(dofs);
@@ -141,11 +142,11 @@ TEST(LinearSolver, KeepsAWorkingPreconditionerAndRebuildsAStaleOne)
   double total = 0;
   for (const double e : excess)
     {
-      EXPECT_GT(e, 2.0); // it was stale
+      EXPECT_GT(e, 2.0);                                        // it was stale
       EXPECT_LT(total, LinearSolver::setup_cost_in_iterations); // not kept past the price
       total += e;
     }
-  EXPECT_GE(total, LinearSolver::setup_cost_in_iterations); // not rebuilt before it
+  EXPECT_GE(total, LinearSolver::setup_cost_in_iterations);       // not rebuilt before it
   EXPECT_LT(result.iterations, first.iterations + excess.back()); // the fresh one is better
 }
 

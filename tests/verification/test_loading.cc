@@ -38,8 +38,8 @@ namespace
 // the force target met at every step.
 TEST(ForceControl, ElasticDepthMatchesDepthControl)
 {
-  io::Case   depth_case = elastic_case();
-  const auto by_depth = run(depth_case);
+  io::Case     depth_case = elastic_case();
+  const auto   by_depth = run(depth_case);
   const double force = by_depth.back().force;
   ASSERT_GT(force, 0);
 
@@ -56,7 +56,8 @@ TEST(ForceControl, ElasticDepthMatchesDepthControl)
   EXPECT_NEAR(by_force.back().force, force, 1e-8 * force);
   std::cout << "[ force control ] F = " << force << " mN: depth " << by_force.back().depth
             << " um (depth control: " << depth_case.loading.max_depth << " um)" << std::endl;
-  EXPECT_NEAR(by_force.back().depth, depth_case.loading.max_depth, 1e-6 * depth_case.loading.max_depth);
+  EXPECT_NEAR(by_force.back().depth, depth_case.loading.max_depth,
+              1e-6 * depth_case.loading.max_depth);
 }
 
 // Requirement: on the plastic J2 case, load and unload under force control reach the states that
@@ -78,7 +79,7 @@ TEST(ForceControl, PlasticLoadUnloadReplaysUnderDepthControl)
   EXPECT_EQ(by_force.back().segment, "unload");
   EXPECT_NEAR(by_force.back().force, 0.06, 1e-8 * 6.0);
 
-  io::Case depth_case = test_cases::small_j2_case();
+  io::Case                     depth_case = test_cases::small_j2_case();
   problems::IndentationProblem replay(depth_case, MPI_COMM_WORLD, false);
   replay.setup();
   double largest_difference = 0;
@@ -92,12 +93,12 @@ TEST(ForceControl, PlasticLoadUnloadReplaysUnderDepthControl)
           replay.reject_increment();
           ASSERT_EQ(replay.solve_increment(target.depth, record, false),
                     nonlinear::IncrementStatus::converged)
-            << "step " << i;
+              << "step " << i;
         }
       replay.accept_increment();
       largest_difference = std::max(largest_difference, std::abs(record.force - target.force));
       EXPECT_NEAR(record.force, target.force, 1e-4 * 6.0)
-        << "step " << i << " (" << target.segment << ") at depth " << target.depth << " um";
+          << "step " << i << " (" << target.segment << ") at depth " << target.depth << " um";
     }
   std::cout << "[ force control ] J2: " << by_force.size() - 1
             << " steps replayed under depth control, largest force difference "
@@ -113,7 +114,7 @@ TEST(LoadingProgramme, HoldAndCyclesAreRecorded)
   c.loading.unload = true;
   c.loading.hold_steps = 2;
   c.loading.cycles = 2;
-  const auto records = run(c);
+  const auto               records = run(c);
   std::vector<std::string> kinds;
   for (const auto &r : records)
     if (kinds.empty() || kinds.back() != r.segment + std::to_string(r.cycle))

@@ -39,11 +39,11 @@ namespace
   {
     // Refined twice near one corner: hanging nodes on faces and edges.
     const test_meshes::ConstrainedCube cube(communicator, 2);
-    const auto &dof_handler = cube.dof_handler;
-    const auto &fe = cube.fe;
-    const auto &owned = cube.owned;
-    const auto &constraints = cube.constraints;
-    const auto &dsp = cube.sparsity;
+    const auto                        &dof_handler = cube.dof_handler;
+    const auto                        &fe = cube.fe;
+    const auto                        &owned = cube.owned;
+    const auto                        &constraints = cube.constraints;
+    const auto                        &dsp = cube.sparsity;
     ASSERT_GT(constraints.n_constraints(), 0u);
 
     PETScWrappers::MPI::SparseMatrix expected, scattered;

@@ -1,10 +1,10 @@
 // Oliver-Pharr analysis (analysis/OliverPharr.h) against closed forms: synthetic power laws,
 // Sneddon's elastic cone, Hertz's paraboloid, the work integrals of known curves, and an
 // elastic indentation computed by the solver. Units: um, mN, GPa (1 GPa*um^2 = 1 mN).
-#include "analysis/CurveComparison.h"
-#include "analysis/OliverPharr.h"
 #include "../test_cases.h"
 #include "../test_files.h"
+#include "analysis/CurveComparison.h"
+#include "analysis/OliverPharr.h"
 #include "indenter/IndenterFactory.h"
 #include "problems/IndentationProblem.h"
 
@@ -73,7 +73,7 @@ TEST(OliverPharr, ElasticConeGivesSneddonModulusExactly)
   const auto   sneddon = [&](const double h) {
     return 2. / M_PI * reduced_modulus * tan_theta * h * h;
   };
-  const LoadCurve curve = make_curve(sneddon, sneddon, 2.0, 0.0, 400, 400);
+  const LoadCurve               curve = make_curve(sneddon, sneddon, 2.0, 0.0, 400, 400);
   analysis::OliverPharrSettings settings;
   settings.epsilon = analysis::default_epsilon("cone");
   const auto area = [&](const double h_c) { return M_PI * tan_theta * tan_theta * h_c * h_c; };
@@ -98,7 +98,7 @@ TEST(OliverPharr, ElasticParaboloidGivesHertzModulusAndSampleModulus)
   const auto   hertz = [&](const double h) {
     return 4. / 3. * reduced_modulus * std::sqrt(radius) * std::pow(h, 1.5);
   };
-  const LoadCurve curve = make_curve(hertz, hertz, 0.5, 0.0, 200, 200);
+  const LoadCurve               curve = make_curve(hertz, hertz, 0.5, 0.0, 200, 200);
   analysis::OliverPharrSettings settings;
   settings.epsilon = 0.75;
   settings.sample_poisson_ratio = 0.3;
@@ -119,17 +119,17 @@ TEST(OliverPharr, ElasticParaboloidGivesHertzModulusAndSampleModulus)
 // the fit's h_f. The stiffness is the exact slope.
 TEST(OliverPharr, WorkSplitMatchesClosedFormIntegrals)
 {
-  const double C = 30., h_max = 2.0, h_f = 1.6, m = 1.4;
-  const double p_max = C * h_max * h_max, alpha = p_max / std::pow(h_max - h_f, m);
-  const auto   load = [&](const double h) { return C * h * h; };
-  const auto   unload = [&](const double h) { return alpha * std::pow(h - h_f, m); };
-  const double total = C * std::pow(h_max, 3) / 3;
-  const double elastic = alpha * std::pow(h_max - h_f, m + 1) / (m + 1);
-  const double h_end = h_f + (h_max - h_f) * std::pow(0.3, 1 / m); // P = 0.3 P_max
+  const double    C = 30., h_max = 2.0, h_f = 1.6, m = 1.4;
+  const double    p_max = C * h_max * h_max, alpha = p_max / std::pow(h_max - h_f, m);
+  const auto      load = [&](const double h) { return C * h * h; };
+  const auto      unload = [&](const double h) { return alpha * std::pow(h - h_f, m); };
+  const double    total = C * std::pow(h_max, 3) / 3;
+  const double    elastic = alpha * std::pow(h_max - h_f, m + 1) / (m + 1);
+  const double    h_end = h_f + (h_max - h_f) * std::pow(0.3, 1 / m); // P = 0.3 P_max
   const LoadCurve curve = make_curve(load, unload, h_max, h_end, 2000, 400);
   analysis::OliverPharrSettings settings;
-  const auto area = [](const double h_c) { return 24.5 * h_c * h_c; };
-  const auto result = analysis::analyze(curve, area, settings);
+  const auto                    area = [](const double h_c) { return 24.5 * h_c * h_c; };
+  const auto                    result = analysis::analyze(curve, area, settings);
   EXPECT_NEAR(result.total_work, total, 1e-5 * total);
   EXPECT_NEAR(result.elastic_work, elastic, 1e-4 * elastic);
   EXPECT_NEAR(result.plastic_work_ratio, 1 - elastic / total, 1e-5);
@@ -164,7 +164,7 @@ TEST(OliverPharr, UnloadingStartsAfterTheHoldAtTheLargestDepth)
       add(h, 40 * std::pow((h - h_f) / (2.05 - h_f), 1.5));
     }
   const auto result =
-    analysis::analyze(curve, [](const double h_c) { return 24.5 * h_c * h_c; }, {});
+      analysis::analyze(curve, [](const double h_c) { return 24.5 * h_c * h_c; }, {});
   EXPECT_EQ(result.unloading_begin, 11u); // the second point at 2.05 um
   EXPECT_EQ(result.unloading_end, curve.depth.size());
   EXPECT_DOUBLE_EQ(result.max_depth, 2.05);
@@ -188,8 +188,7 @@ TEST(OliverPharr, TooFewUnloadingPointsIsANamedError)
     {
       const std::string message = e.what();
       EXPECT_NE(message.find("few.csv"), std::string::npos) << message;
-      EXPECT_NE(message.find("has 1 points between 50 % and 100 %"), std::string::npos)
-        << message;
+      EXPECT_NE(message.find("has 1 points between 50 % and 100 %"), std::string::npos) << message;
     }
 }
 
@@ -197,7 +196,7 @@ TEST(OliverPharr, TooFewUnloadingPointsIsANamedError)
 // non-number names file, line, column and value; an unknown unit names the column.
 TEST(OliverPharr, CsvColumnsAndUnits)
 {
-  const auto dir = test_files::scratch_directory("oliver_pharr", "csv");
+  const auto        dir = test_files::scratch_directory("oliver_pharr", "csv");
   const std::string path = (dir / "measured.csv").string();
   {
     std::ofstream out(path);
@@ -237,7 +236,7 @@ TEST(OliverPharr, CsvColumnsAndUnits)
       const std::string message = e.what();
       EXPECT_NE(message.find("'depth_furlong': depth unit 'furlong' is not known"),
                 std::string::npos)
-        << message;
+          << message;
     }
   // Named columns and units given explicitly.
   {
@@ -285,19 +284,19 @@ TEST(OliverPharr, ElasticIndentationRecoversTheReducedModulus)
   const unsigned int n_steps = problem.records().size() - 1; // without the initial state
   EXPECT_NEAR(double(n_steps), double(nonlinear::expected_steps(c.loading)), 1.0);
   EXPECT_EQ(nonlinear::expected_steps(c.loading), 4u + 13u);
-  const auto indenter = indenter::create_indenter(c.indenter);
+  const auto                    indenter = indenter::create_indenter(c.indenter);
   analysis::OliverPharrSettings settings;
   settings.epsilon = 0.75; // paraboloid (the spherical tip)
   settings.sample_poisson_ratio = c.material.poisson_ratio;
   const auto result = analysis::analyze(
-    curve, [&](const double h) { return indenter->projected_area(h); }, settings);
+      curve, [&](const double h) { return indenter->projected_area(h); }, settings);
   const double reduced_modulus =
-    c.material.young_modulus / (1 - c.material.poisson_ratio * c.material.poisson_ratio);
+      c.material.young_modulus / (1 - c.material.poisson_ratio * c.material.poisson_ratio);
   std::cout << "[ oliver-pharr ] E_r " << result.reduced_modulus << " GPa (closed form "
             << reduced_modulus << "), m " << result.fit.m << ", h_r/h_max "
-            << result.residual_depth / result.max_depth << ", W_p/W_t "
-            << result.plastic_work_ratio << ", area " << result.contact_area << " um^2 (true "
-            << *result.true_contact_area << ")" << std::endl;
+            << result.residual_depth / result.max_depth << ", W_p/W_t " << result.plastic_work_ratio
+            << ", area " << result.contact_area << " um^2 (true " << *result.true_contact_area
+            << ")" << std::endl;
   EXPECT_NEAR(result.reduced_modulus / reduced_modulus, 1.0, 0.04);
   EXPECT_NEAR(*result.sample_modulus / c.material.young_modulus, 1.0, 0.04);
   EXPECT_LT(result.residual_depth / result.max_depth, 0.02);
@@ -360,7 +359,6 @@ TEST(OliverPharr, JsonEscapesTheSourcePath)
 {
   const analysis::OliverPharrResult   result;
   const analysis::OliverPharrSettings settings;
-  const std::string json =
-    analysis::to_json(result, settings, "vickers", "data/run \"A\"\\1.csv");
+  const std::string json = analysis::to_json(result, settings, "vickers", "data/run \"A\"\\1.csv");
   EXPECT_NE(json.find("\"source\": \"data/run \\\"A\\\"\\\\1.csv\""), std::string::npos) << json;
 }

@@ -40,17 +40,17 @@ TEST(PileUpRun, IsotropicJ2PilesUpWithTheMeshSymmetry)
 {
   io::Case c = test_cases::small_j2_case("quarter");
   c.loading.unload = true;
-  const fs::path directory = scratch_directory("small_j2");
+  const fs::path               directory = scratch_directory("small_j2");
   problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run(directory.string());
 
-  for (const char *name : {"pileup.json", "pileup_max_depth.csv", "pileup_unloaded.csv",
-                           "pileup_profiles.csv"})
+  for (const char *name :
+       {"pileup.json", "pileup_max_depth.csv", "pileup_unloaded.csv", "pileup_profiles.csv"})
     EXPECT_TRUE(fs::exists(directory / name)) << name;
   const std::string json = read_text(directory / "pileup.json");
-  for (const char *key : {"\"max_depth\": {", "\"unloaded\": {", "\"dominant_fold\":",
-                          "\"max_pileup_um\":", "\"fourier_amplitudes_um\":"})
+  for (const char *key : {"\"max_depth\": {", "\"unloaded\": {",
+                          "\"dominant_fold\":", "\"max_pileup_um\":", "\"fourier_amplitudes_um\":"})
     EXPECT_NE(json.find(key), std::string::npos) << key;
   EXPECT_EQ(json.find(": nan"), std::string::npos);
   EXPECT_EQ(read_text(directory / "pileup_unloaded.csv").find("nan"), std::string::npos);
@@ -63,8 +63,8 @@ TEST(PileUpRun, IsotropicJ2PilesUpWithTheMeshSymmetry)
   for (const auto &r : results)
     {
       const auto &A = r.spectrum.amplitudes;
-      std::cout << "[ pile-up ] " << r.stage << ": max " << r.max_pileup << " um at r = "
-                << r.max_pileup_radius << " um, az " << r.max_pileup_azimuth_deg
+      std::cout << "[ pile-up ] " << r.stage << ": max " << r.max_pileup
+                << " um at r = " << r.max_pileup_radius << " um, az " << r.max_pileup_azimuth_deg
                 << " deg; a_c = " << r.contact_radius << " um, r_c = " << r.analysis_radius
                 << " um, fold " << r.spectrum.dominant_fold << ", A_0..A_8 =";
       for (unsigned int k = 0; k <= 8; ++k)

@@ -25,15 +25,15 @@ namespace
 
   struct RunResult
   {
-    Outcome                               outcome;
-    std::vector<nonlinear::StepRecord>       records;
+    Outcome                                     outcome;
+    std::vector<nonlinear::StepRecord>          records;
     std::vector<analysis::pileup::PileUpResult> pileup;
   };
 
   // A fresh problem on MPI_COMM_WORLD, run into `directory` (stopped after `stop_after` if
   // given, resumed from the directory's checkpoint with `resume`).
-  RunResult run(const io::Case &c, const fs::path &directory, std::optional<unsigned int> stop_after,
-                bool resume)
+  RunResult run(const io::Case &c, const fs::path &directory,
+                std::optional<unsigned int> stop_after, bool resume)
   {
     problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
     problem.setup();
@@ -108,8 +108,8 @@ TEST(Resume, StoppedAndResumedJ2RunEqualsUninterruptedRun)
   io::Case c = test_cases::small_j2_case();
   c.loading.steps = 6;
   c.output.checkpoint_interval_s = 0;
-  const fs::path reference_dir = test_files::scratch_directory("resume", "reference");
-  const fs::path resumed_dir = test_files::scratch_directory("resume", "resumed");
+  const fs::path  reference_dir = test_files::scratch_directory("resume", "reference");
+  const fs::path  resumed_dir = test_files::scratch_directory("resume", "resumed");
   const RunResult reference = run(c, reference_dir, std::nullopt, false);
   ASSERT_EQ(reference.outcome, Outcome::finished);
 
@@ -185,8 +185,7 @@ TEST(Resume, RefusesMissingCheckpointAndDifferentCaseAndResumesForceControl)
   ASSERT_EQ(run(c, dir, 2, false).outcome, Outcome::stopped); // touch and the first force step
   io::Case changed = c;
   changed.material.yield_stress *= 1.01;
-  EXPECT_NE(message_of_resume(changed, dir).find("belongs to a different case"),
-            std::string::npos);
+  EXPECT_NE(message_of_resume(changed, dir).find("belongs to a different case"), std::string::npos);
   // The checkpoint is still there and valid for the unchanged case.
   io::Case other_interval = c;
   other_interval.output.checkpoint_interval_s = 60;

@@ -20,7 +20,8 @@ using namespace indentsim;
 
 namespace
 {
-  std::vector<nonlinear::StepRecord> run_indentation(const io::Case &c, const std::string &directory = "")
+  std::vector<nonlinear::StepRecord> run_indentation(const io::Case    &c,
+                                                     const std::string &directory = "")
   {
     problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
     problem.setup();
@@ -30,8 +31,7 @@ namespace
 
   // Same number of steps, same depths, forces equal to `tolerance` relative to the largest.
   void expect_same_curve(const std::vector<nonlinear::StepRecord> &a,
-                         const std::vector<nonlinear::StepRecord> &b,
-                         const double                           tolerance)
+                         const std::vector<nonlinear::StepRecord> &b, const double tolerance)
   {
     ASSERT_EQ(a.size(), b.size());
     double max_force = 0;
@@ -60,11 +60,11 @@ namespace
         double stiffness = 0;
         for (const std::size_t j : {i - 1, i + 1})
           if (j < a.size() && std::abs(a[j].depth - a[i].depth) > 0)
-            stiffness = std::max(stiffness, std::abs((a[j].force - a[i].force) /
-                                                     (a[j].depth - a[i].depth)));
+            stiffness = std::max(stiffness,
+                                 std::abs((a[j].force - a[i].force) / (a[j].depth - a[i].depth)));
         EXPECT_NEAR(a[i].depth, b[i].depth, 1e-12) << "step " << i;
         EXPECT_NEAR(a[i].force, b[i].force, penetration_tolerance * stiffness)
-          << "step " << i << " (contact stiffness " << stiffness << " mN/um)";
+            << "step " << i << " (contact stiffness " << stiffness << " mN/um)";
       }
   }
 
@@ -72,9 +72,9 @@ namespace
   std::map<std::string, double> json_numbers(const std::string &text)
   {
     std::map<std::string, double> numbers;
-    const std::regex pair("\"([a-zA-Z_0-9]+)\": (-?[0-9.eE+-]+)");
-    for (auto it = std::sregex_iterator(text.begin(), text.end(), pair); it != std::sregex_iterator();
-         ++it)
+    const std::regex              pair("\"([a-zA-Z_0-9]+)\": (-?[0-9.eE+-]+)");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), pair);
+         it != std::sregex_iterator(); ++it)
       numbers[(*it)[1]] = std::stod((*it)[2]);
     return numbers;
   }
@@ -166,7 +166,7 @@ TEST(Threads, TensileCubeDoesNotDependOnTheThreadCountOrSolver)
       EXPECT_EQ(threaded[i].true_stress, reference[i].true_stress) << "step " << i;
       EXPECT_NEAR(iterative[i].true_stress, reference[i].true_stress,
                   1e-7 * reference[i].true_stress)
-        << "step " << i;
+          << "step " << i;
     }
 }
 
@@ -176,7 +176,7 @@ TEST(RunSummary, CountersAndTimesAreConsistentWithTheRun)
 {
   io::Case c = test_cases::small_j2_case();
   c.loading.unload = true;
-  const auto directory = test_files::scratch_directory("solvers", "summary");
+  const auto                   directory = test_files::scratch_directory("solvers", "summary");
   problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run(directory.string());

@@ -39,7 +39,7 @@ namespace
   }
 
   std::vector<problems::TensileRecord> run_tensile(const io::Case &c,
-                                                 const MPI_Comm communicator = MPI_COMM_SELF)
+                                                   const MPI_Comm  communicator = MPI_COMM_SELF)
   {
     problems::TensileProblem problem(c, communicator, false);
     problem.setup();
@@ -56,9 +56,9 @@ TEST(Tensile, J2MatchesIndependentUniaxialReference)
 {
   for (const auto &[measure, steps] : {std::pair{"cauchy", 100u}, std::pair{"kirchhoff", 10u}})
     {
-      const auto reference = indentsim::testing::read_j2_uniaxial_reference(std::string(measure) == "cauchy" ?
-                                              "j2_uniaxial_reference.csv" :
-                                              "j2_uniaxial_reference_kirchhoff.csv");
+      const auto reference = indentsim::testing::read_j2_uniaxial_reference(
+          std::string(measure) == "cauchy" ? "j2_uniaxial_reference.csv"
+                                           : "j2_uniaxial_reference_kirchhoff.csv");
       ASSERT_EQ(reference.size(), 101u);
       io::Case c = tensile_case("j2");
       c.material.yield_stress_measure = measure;
@@ -82,8 +82,7 @@ TEST(Tensile, J2MatchesIndependentUniaxialReference)
           EXPECT_NEAR(r.force, force, 1e-6 * force) << measure << ", step " << i;
         }
       std::cout << "[ measured ] J2 (" << measure << ", " << steps
-                << " steps) tensile cube vs reference: max relative stress error " << worst
-                << '\n';
+                << " steps) tensile cube vs reference: max relative stress error " << worst << '\n';
     }
 }
 
@@ -167,8 +166,8 @@ TEST(Tensile, CrystalGrainsAreReproducible)
     {
       EXPECT_EQ(first[i].true_stress, again[i].true_stress) << "step " << i;
       EXPECT_EQ(first[i].force, again[i].force) << "step " << i;
-      largest_difference = std::max(largest_difference,
-                                    std::abs(other[i].true_stress / first[i].true_stress - 1));
+      largest_difference =
+          std::max(largest_difference, std::abs(other[i].true_stress / first[i].true_stress - 1));
     }
   std::cout << "[ measured ] crystal 8 grains, seed 1 vs 2: largest relative stress difference "
             << largest_difference << '\n';
@@ -191,7 +190,7 @@ TEST(Tensile, SingleCrystalOrientationIsApplied)
   c.material.orientation.kind = "surface_normal";
   c.material.orientation.surface_normal = {{1., 1., 1.}};
   c.material.orientation.reference_direction = {{1., -1., 0.}};
-  const auto along_111 = run_tensile(c);
+  const auto   along_111 = run_tensile(c);
   const double last_001 = along_001.back().true_stress;
   EXPECT_NEAR(rotated.back().true_stress, last_001, 1e-9 * last_001);
   std::cout << "[ measured ] single crystal at log strain 0.02: [001] " << last_001

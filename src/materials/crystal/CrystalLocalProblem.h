@@ -54,7 +54,8 @@ namespace indentsim::materials::crystal
 
   // S_e and the resolved shears [GPa] of an unrolled elastic strain.
   template <typename Laws>
-  void resolved_shears(const Laws &laws, const double *E_e, const int n_slip, Matrix &S_e, double *tau)
+  void resolved_shears(const Laws &laws, const double *E_e, const int n_slip, Matrix &S_e,
+                       double *tau)
   {
     S_e = laws.elasticity->stress(symmetric_matrix(E_e));
     const Matrix M_e = multiply(right_cauchy_green(E_e), S_e);
@@ -63,11 +64,10 @@ namespace indentsim::materials::crystal
   }
 
   template <typename Laws, typename FlowRule, int n_slip>
-  void evaluate_slip(const Laws                   &laws,
-                     const double                 *E_e,
-                     const double                 *tau_c, // scaled
-                     const double                  lambda, // scaled
-                     SlipState<FlowRule, n_slip>  &out)
+  void evaluate_slip(const Laws &laws, const double *E_e,
+                     const double                *tau_c,  // scaled
+                     const double                 lambda, // scaled
+                     SlipState<FlowRule, n_slip> &out)
   {
     resolved_shears(laws, E_e, n_slip, out.S_e, out.tau.data());
     laws.flow_rule->template evaluate<n_slip>(out.tau, tau_c, lambda, laws.stress_scale, out.flow);
@@ -90,13 +90,13 @@ namespace indentsim::materials::crystal
 
     // slip and A are written by every evaluation, the rest by those with a Jacobian; the
     // state update and the consistent tangent reuse them.
-    SlipState<FlowRule, n_slip>                         slip;
-    Matrix                                              A;     // exp(-Delta L_p)
-    std::array<Matrix, 9>                               dA_dX; // dA/dX_ab, row-major ab
-    std::array<std::array<double, n_unknowns>, n_slip>  ddelta_gamma_dx;
+    SlipState<FlowRule, n_slip>                        slip;
+    Matrix                                             A;     // exp(-Delta L_p)
+    std::array<Matrix, 9>                              dA_dX; // dA/dX_ab, row-major ab
+    std::array<std::array<double, n_unknowns>, n_slip> ddelta_gamma_dx;
     // dR_tc/dtau_c = diag(tau_c_diagonal) - low_rank_P low_rank_Q^T (see solve_linearized).
-    std::array<double, n_slip>                          tau_c_diagonal;
-    std::array<std::array<double, 2>, n_slip>           low_rank_P, low_rank_Q;
+    std::array<double, n_slip>                tau_c_diagonal;
+    std::array<std::array<double, 2>, n_slip> low_rank_P, low_rank_Q;
 
     // X = -Delta L_p = -sum_r Delta gamma^r m_0^r (x) n_0^r (eq. 13)
     Matrix minus_delta_L_p() const
@@ -119,8 +119,8 @@ namespace indentsim::materials::crystal
       evaluate_slip<Laws, FlowRule, n_slip>(laws, &x[0], &x[tau_c_index], x[lambda_index], slip);
 
       // A = exp(-Delta L_p) (eqs 12-13), with dA/dX when the Jacobian is wanted.
-      const Matrix                          X = minus_delta_L_p();
-      Matrix                                C_e;
+      const Matrix                         X = minus_delta_L_p();
+      Matrix                               C_e;
       std::array<std::array<double, 9>, 6> dC_e_dX; // unrolled C_e by X_ab
       if (jacobian)
         {
@@ -150,22 +150,22 @@ namespace indentsim::materials::crystal
       std::array<double, n_slip> abs_delta_gamma;
       for (int r = 0; r < n_slip; ++r)
         {
-          abs_delta_gamma[r] = slip.flow.delta_gamma[r] >= 0 ? slip.flow.delta_gamma[r] : -slip.flow.delta_gamma[r];
+          abs_delta_gamma[r] =
+              slip.flow.delta_gamma[r] >= 0 ? slip.flow.delta_gamma[r] : -slip.flow.delta_gamma[r];
           delta_Gamma += abs_delta_gamma[r];
         }
       HardeningIncrement<n_slip> hardening;
       laws.hardening->template increment<n_slip>(Gamma_n, abs_delta_gamma, delta_Gamma, hardening);
       for (int r = 0; r < n_slip; ++r)
         R[tau_c_index + r] =
-          (laws.stress_scale * x[tau_c_index + r] - tau_c_n[r] - hardening.value[r]) / laws.stiffness_scale;
+            (laws.stress_scale * x[tau_c_index + r] - tau_c_n[r] - hardening.value[r]) /
+            laws.stiffness_scale;
       if (jacobian)
         assemble_jacobian(x, dC_e_dX, hardening, *jacobian);
     }
 
-    void assemble_jacobian(const Unknowns                             &x,
-                           const std::array<std::array<double, 9>, 6> &dC_e_dX,
-                           const HardeningIncrement<n_slip>           &hardening,
-                           Jacobian                                   &J)
+    void assemble_jacobian(const Unknowns &x, const std::array<std::array<double, 9>, 6> &dC_e_dX,
+                           const HardeningIncrement<n_slip> &hardening, Jacobian &J)
     {
       const double  lambda = x[lambda_index];
       const double *tau_c = &x[tau_c_index];
@@ -264,8 +264,7 @@ namespace indentsim::materials::crystal
     void assemble_hardening_rows(const std::array<double, n_slip> &D,
                                  const std::array<double, n_slip> &u,
                                  const std::array<double, n_slip> &v,
-                                 const HardeningIncrement<n_slip> &hardening,
-                                 Jacobian                         &J)
+                                 const HardeningIncrement<n_slip> &hardening, Jacobian &J)
     {
       const double                   C = laws.stiffness_scale;
       std::array<double, n_unknowns> ddelta_Gamma_dx{};
@@ -294,8 +293,8 @@ namespace indentsim::materials::crystal
       for (int r = 0; r < n_slip; ++r)
         for (int s = 0; s < n_slip; ++s)
           J[tau_c_index + r][tau_c_index + s] =
-            -(low_rank_P[r][0] * low_rank_Q[s][0] + low_rank_P[r][1] * low_rank_Q[s][1]) +
-            (r == s ? tau_c_diagonal[r] : 0.0);
+              -(low_rank_P[r][0] * low_rank_Q[s][0] + low_rank_P[r][1] * low_rank_Q[s][1]) +
+              (r == s ? tau_c_diagonal[r] : 0.0);
     }
 
     // Solves J X = B, J from the last evaluation with a Jacobian, by eliminating the critical
@@ -308,7 +307,8 @@ namespace indentsim::materials::crystal
     // q > 1, D_r = (tau_ref - b_r D_r)/C can approach zero while J itself is regular, so those
     // cases fall back to the dense LU of J.
     template <int n_rhs>
-    bool solve_linearized(const Jacobian &J, std::array<std::array<double, n_rhs>, n_unknowns> &B) const
+    bool solve_linearized(const Jacobian                                    &J,
+                          std::array<std::array<double, n_rhs>, n_unknowns> &B) const
     {
       constexpr int n_y = tau_c_index, n_columns = n_y + n_rhs;
       const auto    dense = [&]() {
@@ -344,14 +344,17 @@ namespace indentsim::materials::crystal
         }
       for (int c = 0; c < n_columns; ++c)
         {
-          const double k0 = (capacitance_rows[1][1] * W0[c] - capacitance_rows[0][1] * W1[c]) / determinant;
-          const double k1 = (capacitance_rows[0][0] * W1[c] - capacitance_rows[1][0] * W0[c]) / determinant;
+          const double k0 =
+              (capacitance_rows[1][1] * W0[c] - capacitance_rows[0][1] * W1[c]) / determinant;
+          const double k1 =
+              (capacitance_rows[0][0] * W1[c] - capacitance_rows[1][0] * W0[c]) / determinant;
           W0[c] = k0;
           W1[c] = k1;
         }
       for (int r = 0; r < n_slip; ++r)
         {
-          const double p0 = low_rank_P[r][0] / tau_c_diagonal[r], p1 = low_rank_P[r][1] / tau_c_diagonal[r];
+          const double p0 = low_rank_P[r][0] / tau_c_diagonal[r],
+                       p1 = low_rank_P[r][1] / tau_c_diagonal[r];
           for (int c = 0; c < n_columns; ++c)
             Z[r][c] += p0 * W0[c] + p1 * W1[c];
         }

@@ -54,10 +54,8 @@ namespace indentsim::materials
 
     // Throws std::invalid_argument ("CrystalPlasticity: ...") for an unsupported number of slip
     // systems or parameters a law rejects.
-    CrystalPlasticityModel(const SlipSystems &slip_systems,
-                           const Elasticity  &elasticity,
-                           const FlowRule    &flow_rule,
-                           const Hardening   &hardening);
+    CrystalPlasticityModel(const SlipSystems &slip_systems, const Elasticity &elasticity,
+                           const FlowRule &flow_rule, const Hardening &hardening);
 
     unsigned int n_state_variables() const override { return 9 + n_systems + 1; }
     unsigned int n_slip_systems() const { return n_systems; }
@@ -65,13 +63,12 @@ namespace indentsim::materials
     // F_p = I (lattice axes along the sample axes), tau_c^r = tau_c,0, Gamma = 0.
     void initial_state(std::span<double> state) const override;
     // F_p = g, tau_c^r = tau_c,0, Gamma = 0.
-    void oriented_initial_state(std::span<double> state, const Tensor<2, 3> &orientation) const override;
+    void oriented_initial_state(std::span<double>   state,
+                                const Tensor<2, 3> &orientation) const override;
 
-    UpdateStatus update(const Tensor<2, 3>     &F,
-                        std::span<const double> state_old,
-                        MaterialPointResponse  &response,
-                        std::span<double>       state_new,
-                        bool                    compute_tangent = true) const override;
+    UpdateStatus update(const Tensor<2, 3> &F, std::span<const double> state_old,
+                        MaterialPointResponse &response, std::span<double> state_new,
+                        bool compute_tangent = true) const override;
 
     // The accumulated slip Gamma.
     double equivalent_plastic_strain(std::span<const double> state) const override
@@ -90,14 +87,19 @@ namespace indentsim::materials
 
     // Accessors of a state.
     static Tensor<2, 3> plastic_deformation(std::span<const double> state); // F_p
-    double critical_shear(std::span<const double> state, unsigned int r) const { return state[9 + r]; }
+    double              critical_shear(std::span<const double> state, unsigned int r) const
+    {
+      return state[9 + r];
+    }
 
     // Resolved shear stresses tau^r = M_e : (m_0^r (x) n_0^r) [GPa] at deformation F with the
     // plastic state of `state` held fixed.
-    std::vector<double> resolved_shear_stresses(const Tensor<2, 3> &F, std::span<const double> state) const;
+    std::vector<double> resolved_shear_stresses(const Tensor<2, 3>     &F,
+                                                std::span<const double> state) const;
 
     // The flow rule's Phi for given resolved and critical shears.
-    double yield_function_value(const std::vector<double> &tau, const std::vector<double> &tau_c) const
+    double yield_function_value(const std::vector<double> &tau,
+                                const std::vector<double> &tau_c) const
     {
       return flow.value(tau, tau_c);
     }
@@ -109,34 +111,24 @@ namespace indentsim::materials
 
   private:
     template <std::size_t... index>
-    UpdateStatus dispatch_update(std::index_sequence<index...>,
-                                 const Tensor<2, 3>     &F,
-                                 std::span<const double> state_old,
-                                 MaterialPointResponse  &response,
-                                 std::span<double>       state_new,
-                                 bool                    compute_tangent) const;
+    UpdateStatus dispatch_update(std::index_sequence<index...>, const Tensor<2, 3> &F,
+                                 std::span<const double> state_old, MaterialPointResponse &response,
+                                 std::span<double> state_new, bool compute_tangent) const;
 
     template <int n_slip>
-    UpdateStatus update_impl(const Tensor<2, 3>     &F,
-                             std::span<const double> state_old,
-                             MaterialPointResponse  &response,
-                             std::span<double>       state_new,
-                             bool                    compute_tangent) const;
+    UpdateStatus update_impl(const Tensor<2, 3> &F, std::span<const double> state_old,
+                             MaterialPointResponse &response, std::span<double> state_new,
+                             bool compute_tangent) const;
 
     template <int n_slip>
-    bool warm_start_guess(const crystal::Matrix          &F,
-                          std::span<const double>         state_old,
-                          std::span<const double>         hint,
-                          std::array<double, 7 + n_slip> &x) const;
+    bool warm_start_guess(const crystal::Matrix &F, std::span<const double> state_old,
+                          std::span<const double> hint, std::array<double, 7 + n_slip> &x) const;
 
     template <typename LocalProblem>
-    bool plastic_tangent(LocalProblem                         &problem,
-                         const typename LocalProblem::Jacobian &jacobian,
-                         const crystal::Matrix                &F_e_trial,
-                         const crystal::Matrix                &F_e,
-                         const crystal::Matrix                &F_p_n_inverse,
-                         const crystal::Matrix                &G_A,
-                         Tensor<4, 3>                         &dP_dF) const;
+    bool plastic_tangent(LocalProblem &problem, const typename LocalProblem::Jacobian &jacobian,
+                         const crystal::Matrix &F_e_trial, const crystal::Matrix &F_e,
+                         const crystal::Matrix &F_p_n_inverse, const crystal::Matrix &G_A,
+                         Tensor<4, 3> &dP_dF) const;
 
     SlipSystems                  systems;
     unsigned int                 n_systems;

@@ -20,11 +20,8 @@ namespace indentsim::materials
   namespace crystal
   {
     // P = F_e S_e F_p^-T and the Kirchhoff stress tau = P F^T.
-    inline void write_stress(const Matrix          &F_e,
-                             const Matrix          &S_e,
-                             const Matrix          &F_p_inverse,
-                             const Tensor<2, 3>    &F,
-                             MaterialPointResponse &response)
+    inline void write_stress(const Matrix &F_e, const Matrix &S_e, const Matrix &F_p_inverse,
+                             const Tensor<2, 3> &F, MaterialPointResponse &response)
     {
       const auto P = multiply_transposed_second(multiply(F_e, S_e), F_p_inverse);
       for (unsigned int i = 0; i < 3; ++i)
@@ -64,8 +61,7 @@ namespace indentsim::materials
     template <typename LocalProblem>
     bool store_plastic_state(const LocalProblem                    &problem,
                              const typename LocalProblem::Unknowns &unknowns,
-                             std::span<const double>                state_old,
-                             std::span<double>                      state_new)
+                             std::span<const double> state_old, std::span<double> state_new)
     {
       constexpr int n_slip = LocalProblem::n_unknowns - 7;
       Matrix        delta_L_p = problem.minus_delta_L_p();
@@ -95,10 +91,8 @@ namespace indentsim::materials
 
   template <typename Elasticity, typename FlowRule, typename Hardening>
   CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::CrystalPlasticityModel(
-    const SlipSystems &slip_systems,
-    const Elasticity  &elasticity,
-    const FlowRule    &flow_rule,
-    const Hardening   &hardening)
+      const SlipSystems &slip_systems, const Elasticity &elasticity, const FlowRule &flow_rule,
+      const Hardening &hardening)
     : systems(slip_systems)
     , n_systems(slip_systems.size())
     , elasticity(elasticity)
@@ -109,13 +103,15 @@ namespace indentsim::materials
       if (error)
         throw std::invalid_argument(std::string("CrystalPlasticity: ") + error);
     };
-    if (std::find(slip_system_counts.begin(), slip_system_counts.end(), n_systems) == slip_system_counts.end())
+    if (std::find(slip_system_counts.begin(), slip_system_counts.end(), n_systems) ==
+        slip_system_counts.end())
       {
         std::string counts;
         for (const unsigned int count : slip_system_counts)
           counts += (counts.empty() ? "" : ", ") + std::to_string(count);
         require(("the integrator is instantiated for " + counts + " slip systems, got " +
-                 std::to_string(n_systems)).c_str());
+                 std::to_string(n_systems))
+                    .c_str());
       }
     require(elasticity.parameter_error());
     require(hardening.parameter_error());
@@ -126,17 +122,18 @@ namespace indentsim::materials
   }
 
   template <typename Elasticity, typename FlowRule, typename Hardening>
-  void CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::initial_state(std::span<double> state) const
+  void CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::initial_state(
+      std::span<double> state) const
   {
     oriented_initial_state(state, dealii::unit_symmetric_tensor<3>());
   }
 
   template <typename Elasticity, typename FlowRule, typename Hardening>
   void CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::oriented_initial_state(
-    std::span<double>   state,
-    const Tensor<2, 3> &orientation) const
+      std::span<double> state, const Tensor<2, 3> &orientation) const
   {
-    Assert(state.size() == n_state_variables(), dealii::ExcDimensionMismatch(state.size(), n_state_variables()));
+    Assert(state.size() == n_state_variables(),
+           dealii::ExcDimensionMismatch(state.size(), n_state_variables()));
     for (unsigned int i = 0; i < 3; ++i)
       for (unsigned int j = 0; j < 3; ++j)
         state[3 * i + j] = orientation[i][j];
@@ -146,8 +143,8 @@ namespace indentsim::materials
   }
 
   template <typename Elasticity, typename FlowRule, typename Hardening>
-  Tensor<2, 3>
-  CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::plastic_deformation(std::span<const double> state)
+  Tensor<2, 3> CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::plastic_deformation(
+      std::span<const double> state)
   {
     Tensor<2, 3> F_p;
     for (unsigned int i = 0; i < 3; ++i)
@@ -157,15 +154,16 @@ namespace indentsim::materials
   }
 
   template <typename Elasticity, typename FlowRule, typename Hardening>
-  std::vector<double> CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::resolved_shear_stresses(
-    const Tensor<2, 3>     &F,
-    std::span<const double> state) const
+  std::vector<double>
+  CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::resolved_shear_stresses(
+      const Tensor<2, 3> &F, std::span<const double> state) const
   {
     using namespace crystal;
-    const Symmetric E = elastic_strain(to_matrix(F), to_matrix(inverse_3x3(plastic_deformation(state))));
-    const double    tau_ref = hardening.initial_critical_shear();
+    const Symmetric E =
+        elastic_strain(to_matrix(F), to_matrix(inverse_3x3(plastic_deformation(state))));
+    const double                                       tau_ref = hardening.initial_critical_shear();
     const CrystalLaws<Elasticity, FlowRule, Hardening> laws{
-      &elasticity, &flow, &hardening, schmid.data(), tau_ref, elasticity.stiffness_scale()};
+        &elasticity, &flow, &hardening, schmid.data(), tau_ref, elasticity.stiffness_scale()};
     Matrix              S_e;
     std::vector<double> tau(n_systems);
     resolved_shears(laws, E.data(), n_systems, S_e, tau.data());
@@ -173,33 +171,29 @@ namespace indentsim::materials
   }
 
   template <typename Elasticity, typename FlowRule, typename Hardening>
-  UpdateStatus CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::update(const Tensor<2, 3>     &F,
-                                                                               std::span<const double> state_old,
-                                                                               MaterialPointResponse  &response,
-                                                                               std::span<double>       state_new,
-                                                                               const bool compute_tangent) const
+  UpdateStatus CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::update(
+      const Tensor<2, 3> &F, std::span<const double> state_old, MaterialPointResponse &response,
+      std::span<double> state_new, const bool compute_tangent) const
   {
     Assert(state_old.size() == n_state_variables(),
            dealii::ExcDimensionMismatch(state_old.size(), n_state_variables()));
     Assert(state_new.size() == n_state_variables(),
            dealii::ExcDimensionMismatch(state_new.size(), n_state_variables()));
-    return dispatch_update(std::make_index_sequence<slip_system_counts.size()>(),
-                           F, state_old, response, state_new, compute_tangent);
+    return dispatch_update(std::make_index_sequence<slip_system_counts.size()>(), F, state_old,
+                           response, state_new, compute_tangent);
   }
 
   template <typename Elasticity, typename FlowRule, typename Hardening>
   template <std::size_t... index>
   UpdateStatus CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::dispatch_update(
-    std::index_sequence<index...>,
-    const Tensor<2, 3>     &F,
-    std::span<const double> state_old,
-    MaterialPointResponse  &response,
-    std::span<double>       state_new,
-    const bool              compute_tangent) const
+      std::index_sequence<index...>, const Tensor<2, 3> &F, std::span<const double> state_old,
+      MaterialPointResponse &response, std::span<double> state_new,
+      const bool compute_tangent) const
   {
     UpdateStatus status = UpdateStatus::invalid_deformation;
     ((n_systems == slip_system_counts[index] &&
-      (status = update_impl<slip_system_counts[index]>(F, state_old, response, state_new, compute_tangent),
+      (status = update_impl<slip_system_counts[index]>(F, state_old, response, state_new,
+                                                       compute_tangent),
        true)) ||
      ...);
     return status;
@@ -213,10 +207,8 @@ namespace indentsim::materials
   template <typename Elasticity, typename FlowRule, typename Hardening>
   template <int n_slip>
   bool CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::warm_start_guess(
-    const crystal::Matrix          &F,
-    std::span<const double>         state_old,
-    std::span<const double>         hint,
-    std::array<double, 7 + n_slip> &x) const
+      const crystal::Matrix &F, std::span<const double> state_old, std::span<const double> hint,
+      std::array<double, 7 + n_slip> &x) const
   {
     using namespace crystal;
     const double delta_Gamma = hint[9 + n_slip] - state_old[9 + n_slip];
@@ -242,7 +234,7 @@ namespace indentsim::materials
           return false;
       }
     const CrystalLaws<Elasticity, FlowRule, Hardening> laws{
-      &elasticity, &flow, &hardening, schmid.data(), tau_ref, elasticity.stiffness_scale()};
+        &elasticity, &flow, &hardening, schmid.data(), tau_ref, elasticity.stiffness_scale()};
     SlipState<FlowRule, n_slip> unit;
     evaluate_slip<decltype(laws), FlowRule, n_slip>(laws, x.data(), &x[7], 1.0, unit);
     double unit_Gamma = 0.0;
@@ -257,11 +249,8 @@ namespace indentsim::materials
   template <typename Elasticity, typename FlowRule, typename Hardening>
   template <int n_slip>
   UpdateStatus CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::update_impl(
-    const Tensor<2, 3>     &F,
-    std::span<const double> state_old,
-    MaterialPointResponse  &response,
-    std::span<double>       state_new,
-    const bool              compute_tangent) const
+      const Tensor<2, 3> &F, std::span<const double> state_old, MaterialPointResponse &response,
+      std::span<double> state_new, const bool compute_tangent) const
   {
     using namespace crystal;
     using LocalProblem = CrystalLocalProblem<Elasticity, FlowRule, Hardening, n_slip>;
@@ -277,13 +266,13 @@ namespace indentsim::materials
     const double *tau_c_n = &state_old[9];
     const double  Gamma_n = state_old[9 + n_slip];
     const double  tau_ref = hardening.initial_critical_shear();
-    const typename LocalProblem::Laws laws{
-      &elasticity, &flow, &hardening, schmid.data(), tau_ref, elasticity.stiffness_scale()};
+    const typename LocalProblem::Laws laws{&elasticity,   &flow,   &hardening,
+                                           schmid.data(), tau_ref, elasticity.stiffness_scale()};
 
     // Elastic trial: C_e^tr = F_p,n^-T C F_p,n^-1 and E_e^tr.
-    const Matrix    F_e_trial = multiply(F_matrix, F_p_n_inverse);
-    const Matrix    C_e_trial = multiply_transposed_first(F_e_trial, F_e_trial);
-    const Symmetric E_trial = green_lagrange_strain(C_e_trial);
+    const Matrix               F_e_trial = multiply(F_matrix, F_p_n_inverse);
+    const Matrix               C_e_trial = multiply_transposed_first(F_e_trial, F_e_trial);
+    const Symmetric            E_trial = green_lagrange_strain(C_e_trial);
     std::array<double, n_slip> tau_c_n_scaled;
     for (int r = 0; r < n_slip; ++r)
       tau_c_n_scaled[r] = tau_c_n[r] / tau_ref;
@@ -366,8 +355,8 @@ namespace indentsim::materials
     const Matrix F_p_new_inverse = multiply(F_p_n_inverse, problem.A);
     const Matrix F_e = multiply(F_e_trial, problem.A);
     write_stress(F_e, problem.slip.S_e, F_p_new_inverse, F, response);
-    if (compute_tangent &&
-        !plastic_tangent(problem, jacobian, F_e_trial, F_e, F_p_n_inverse, F_p_new_inverse, response.dP_dF))
+    if (compute_tangent && !plastic_tangent(problem, jacobian, F_e_trial, F_e, F_p_n_inverse,
+                                            F_p_new_inverse, response.dP_dF))
       return failure();
 
     if (!crystal::store_plastic_state(problem, unknowns, state_old, state_new))
@@ -384,13 +373,9 @@ namespace indentsim::materials
   template <typename Elasticity, typename FlowRule, typename Hardening>
   template <typename LocalProblem>
   bool CrystalPlasticityModel<Elasticity, FlowRule, Hardening>::plastic_tangent(
-    LocalProblem                          &problem,
-    const typename LocalProblem::Jacobian &jacobian,
-    const crystal::Matrix                 &F_e_trial,
-    const crystal::Matrix                 &F_e,
-    const crystal::Matrix                 &F_p_n_inverse,
-    const crystal::Matrix                 &G_A,
-    Tensor<4, 3>                          &dP_dF) const
+      LocalProblem &problem, const typename LocalProblem::Jacobian &jacobian,
+      const crystal::Matrix &F_e_trial, const crystal::Matrix &F_e,
+      const crystal::Matrix &F_p_n_inverse, const crystal::Matrix &G_A, Tensor<4, 3> &dP_dF) const
   {
     using namespace crystal;
     constexpr int n_unknowns = LocalProblem::n_unknowns;

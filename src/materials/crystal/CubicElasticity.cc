@@ -11,12 +11,10 @@ namespace indentsim::materials
   //   dP_iJ/dF_kL = (C11 - C12) sum_a n^iJ_aa n^kL_aa + C12 s^iJ s^kL
   //                 + C44 sum_(a<b) n^iJ_ab n^kL_ab + d_ik (G S_e G^T)_LJ,   s = sum_a n_aa,
   // symmetric in (iJ, kL) (hyperelasticity), so only half of it is formed.
-  void CubicElasticity::elastic_tangent(const Matrix         &H,
-                                        const Matrix         &G,
-                                        const Matrix         &S_e,
+  void CubicElasticity::elastic_tangent(const Matrix &H, const Matrix &G, const Matrix &S_e,
                                         dealii::Tensor<4, 3> &dP_dF) const
   {
-    const Matrix                          Q = multiply_transposed_second(multiply(G, S_e), G);
+    const Matrix                         Q = multiply_transposed_second(multiply(G, S_e), G);
     std::array<std::array<double, 7>, 9> n_unrolled; // n_aa (3), n_ab (3), s
     for (unsigned int i = 0; i < 3; ++i)
       for (unsigned int J = 0; J < 3; ++J)

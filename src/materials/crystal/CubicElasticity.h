@@ -45,10 +45,8 @@ namespace indentsim::materials
     double reference_modulus() const { return (C11 - C12 + 3.0 * C44) / 5.0; }
 
     // dP/dF of P = H S_e G^T (H = F G, G fixed, S_e = L^e : E_e, E_e = 1/2 (H^T H - I)).
-    void elastic_tangent(const crystal::Matrix &H,
-                         const crystal::Matrix &G,
-                         const crystal::Matrix &S_e,
-                         dealii::Tensor<4, 3>  &dP_dF) const;
+    void elastic_tangent(const crystal::Matrix &H, const crystal::Matrix &G,
+                         const crystal::Matrix &S_e, dealii::Tensor<4, 3> &dP_dF) const;
 
     const char *parameter_error() const;
   };

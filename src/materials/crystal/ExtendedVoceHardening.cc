@@ -15,7 +15,8 @@ namespace indentsim::materials
   {
     if (theta0 == 0.0 || tau1 == 0.0)
       return 0.0;
-    return theta1 + (theta0 - theta1 + theta0 * theta1 * Gamma / tau1) * std::exp(-theta0 * Gamma / tau1);
+    return theta1 +
+           (theta0 - theta1 + theta0 * theta1 * Gamma / tau1) * std::exp(-theta0 * Gamma / tau1);
   }
 
   const char *ExtendedVoceHardening::parameter_error() const

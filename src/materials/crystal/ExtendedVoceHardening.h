@@ -57,14 +57,13 @@ namespace indentsim::materials
 
     // Hbar' by one forward-AD direction.
     template <int n_slip>
-    void increment(const double                      Gamma_n,
-                   const std::array<double, n_slip> &abs_delta_gamma,
-                   const double                      delta_Gamma,
-                   HardeningIncrement<n_slip>       &out) const
+    void increment(const double Gamma_n, const std::array<double, n_slip> &abs_delta_gamma,
+                   const double delta_Gamma, HardeningIncrement<n_slip> &out) const
     {
       using SecantDerivative = Sacado::Fad::SFad<double, 1>;
-      const SecantDerivative H_bar_ad = secant_modulus(Gamma_n, SecantDerivative(1, 0, delta_Gamma));
-      const double           H_bar = H_bar_ad.val(), dH_bar = H_bar_ad.fastAccessDx(0);
+      const SecantDerivative H_bar_ad =
+          secant_modulus(Gamma_n, SecantDerivative(1, 0, delta_Gamma));
+      const double H_bar = H_bar_ad.val(), dH_bar = H_bar_ad.fastAccessDx(0);
       for (int r = 0; r < n_slip; ++r)
         {
           const double latent_slip = q * delta_Gamma + (1.0 - q) * abs_delta_gamma[r];
@@ -78,7 +77,8 @@ namespace indentsim::materials
   };
 
   template <typename Number>
-  Number ExtendedVoceHardening::secant_modulus(const double Gamma_n, const Number &delta_Gamma) const
+  Number ExtendedVoceHardening::secant_modulus(const double  Gamma_n,
+                                               const Number &delta_Gamma) const
   {
     using std::exp;
     if (theta0 == 0.0 || tau1 == 0.0)

@@ -34,7 +34,8 @@ namespace indentsim::materials::crystal
 
     // The Taylor terms T_k = Y^k / k! of exp(Y) (|Y| = norm <= 1/4) until the next term is below
     // 1e-17, their sum in `sum`; returns the index K of the last term.
-    unsigned int exp_series_terms(const Matrix &Y, const double norm, SeriesTerms &terms, Matrix &sum)
+    unsigned int exp_series_terms(const Matrix &Y, const double norm, SeriesTerms &terms,
+                                  Matrix &sum)
     {
       terms[0] = identity_matrix();
       sum = identity_matrix();
@@ -83,7 +84,7 @@ namespace indentsim::materials::crystal
     unsigned int       n_squarings = 0;
     const Matrix       Y = scaled_for_series(X, norm, n_squarings);
     const double       scale = std::ldexp(1.0, -static_cast<int>(n_squarings)); // dY/dX
-    SeriesTerms        terms;                                                  // T_0 .. T_K
+    SeriesTerms        terms;                                                   // T_0 .. T_K
     const unsigned int n_terms = exp_series_terms(Y, norm, terms, A);
 
     // beta(j, m) = j! m! / (j + m + 1)!

@@ -32,9 +32,9 @@ namespace indentsim::materials
 
   dealii::Tensor<2, 3> bunge_rotation(const std::array<double, 3> &euler_deg)
   {
-    const double c1 = std::cos(euler_deg[0] * degree), s1 = std::sin(euler_deg[0] * degree);
-    const double c = std::cos(euler_deg[1] * degree), s = std::sin(euler_deg[1] * degree);
-    const double c2 = std::cos(euler_deg[2] * degree), s2 = std::sin(euler_deg[2] * degree);
+    const double         c1 = std::cos(euler_deg[0] * degree), s1 = std::sin(euler_deg[0] * degree);
+    const double         c = std::cos(euler_deg[1] * degree), s = std::sin(euler_deg[1] * degree);
+    const double         c2 = std::cos(euler_deg[2] * degree), s2 = std::sin(euler_deg[2] * degree);
     dealii::Tensor<2, 3> g;
     g[0][0] = c1 * c2 - s1 * s2 * c;
     g[0][1] = s1 * c2 + c1 * s2 * c;
@@ -70,8 +70,9 @@ namespace indentsim::materials
     return {{wrap(phi1), Phi / degree, wrap(phi2)}};
   }
 
-  dealii::Tensor<2, 3> rotation_from_surface_normal(const std::array<double, 3> &surface_normal,
-                                                    const std::array<double, 3> &reference_direction)
+  dealii::Tensor<2, 3>
+  rotation_from_surface_normal(const std::array<double, 3> &surface_normal,
+                               const std::array<double, 3> &reference_direction)
   {
     const dealii::Tensor<1, 3> z = normalized(surface_normal, "surface_normal");
     const dealii::Tensor<1, 3> x = normalized(reference_direction, "reference_direction");
@@ -97,7 +98,8 @@ namespace indentsim::materials
     return g;
   }
 
-  std::vector<dealii::Tensor<2, 3>> random_orientations(const unsigned int n, const std::uint64_t seed)
+  std::vector<dealii::Tensor<2, 3>> random_orientations(const unsigned int  n,
+                                                        const std::uint64_t seed)
   {
     std::mt19937_64 generator(seed);
     // 53 random bits -> uniform in [0, 1), identical on every platform.
@@ -130,7 +132,8 @@ namespace indentsim::materials
     return result;
   }
 
-  bool is_cubic_mirror_plane(const dealii::Tensor<2, 3> &g, const dealii::Tensor<1, 3> &sample_normal)
+  bool is_cubic_mirror_plane(const dealii::Tensor<2, 3> &g,
+                             const dealii::Tensor<1, 3> &sample_normal)
   {
     dealii::Tensor<1, 3> n = g * sample_normal;
     n /= n.norm();

@@ -27,8 +27,9 @@ namespace indentsim::materials
   // the crystal direction `reference_direction` [uvw] along the sample x axis. Throws
   // std::invalid_argument (naming the vectors) if either is zero or they are not perpendicular
   // to within 1e-6 rad.
-  dealii::Tensor<2, 3> rotation_from_surface_normal(const std::array<double, 3> &surface_normal,
-                                                    const std::array<double, 3> &reference_direction);
+  dealii::Tensor<2, 3>
+  rotation_from_surface_normal(const std::array<double, 3> &surface_normal,
+                               const std::array<double, 3> &reference_direction);
 
   // Orientations drawn uniformly on SO(3) (Shoemake's uniform unit quaternions) from a 64-bit
   // Mersenne twister seeded with `seed`. The uniform deviates are formed bit by bit, so the
@@ -38,5 +39,6 @@ namespace indentsim::materials
   // True if the plane through the origin with sample-frame normal `sample_normal` is a mirror
   // plane of the cubic lattice (m-3m: normals along <100> or <110> in the crystal frame) for
   // orientation g. The quarter model needs the planes x = 0 and y = 0 to be mirror planes.
-  bool is_cubic_mirror_plane(const dealii::Tensor<2, 3> &g, const dealii::Tensor<1, 3> &sample_normal);
+  bool is_cubic_mirror_plane(const dealii::Tensor<2, 3> &g,
+                             const dealii::Tensor<1, 3> &sample_normal);
 } // namespace indentsim::materials

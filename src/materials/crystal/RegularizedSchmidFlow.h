@@ -39,7 +39,7 @@ namespace indentsim::materials
     template <int n_slip>
     struct Response
     {
-      std::array<double, n_slip> ratio;       // rho_r = tau^r / tau_c^r
+      std::array<double, n_slip> ratio; // rho_r = tau^r / tau_c^r
       double                     Phi;
       std::array<double, n_slip> flow_power;  // (rho_r / Phi)^(2n-2)
       std::array<double, n_slip> delta_gamma; // Delta gamma^r
@@ -60,11 +60,8 @@ namespace indentsim::materials
     // system serves Phi and the flow direction: (rho_r / Phi)^(2n-2) = (rho_r / rho_max)^(2n-2)
     // sum^(-(n-1)/n), and Delta gamma^r = lambda / tau_c^r (rho_r / Phi)^(2n-1).
     template <int n_slip>
-    void evaluate(const std::array<double, n_slip> &tau,
-                  const double                     *tau_c,
-                  const double                      lambda,
-                  const double                      tau_ref,
-                  Response<n_slip>                 &out) const
+    void evaluate(const std::array<double, n_slip> &tau, const double *tau_c, const double lambda,
+                  const double tau_ref, Response<n_slip> &out) const
     {
       unsigned int largest = 0;
       for (int r = 0; r < n_slip; ++r)
@@ -103,10 +100,8 @@ namespace indentsim::materials
     //                    + lambda w_r / (tau_c^r Phi) (drho_r - d_r dPhi),
     // and the tau_c part of drho_r, -rho_r / tau_c^r dtau_c^r, moved into D_r.
     template <int n_slip>
-    void linearize(const Response<n_slip> &response,
-                   const double           *tau_c,
-                   const double            lambda,
-                   Linearization<n_slip>  &out) const
+    void linearize(const Response<n_slip> &response, const double *tau_c, const double lambda,
+                   Linearization<n_slip> &out) const
     {
       const bool yielding = response.Phi != 0.0;
       for (int r = 0; r < n_slip; ++r)
@@ -122,7 +117,8 @@ namespace indentsim::materials
           out.dPhi_dratio[r] = g;
           out.relative_ratio[r] = d;
           out.ratio_rate[r] = c;
-          out.tau_c_rate[r] = -c * response.ratio[r] / tau_c[r] - lambda * g / (tau_c[r] * tau_c[r]);
+          out.tau_c_rate[r] =
+              -c * response.ratio[r] / tau_c[r] - lambda * g / (tau_c[r] * tau_c[r]);
           out.lambda_rate[r] = g / tau_c[r];
         }
     }

@@ -15,6 +15,8 @@
 #include <array>
 #include <filesystem>
 #include <stdexcept>
+#include <string>
+#include <type_traits>
 
 namespace indentsim::problems
 {
@@ -52,6 +54,30 @@ namespace indentsim::problems
       for (const std::string &message : Utilities::MPI::all_gather(communicator, error))
         if (!message.empty())
           throw io::CaseFileError(message);
+    }
+
+    // The fields of a step record in their checkpoint order, listed once for the writer and
+    // the reader.
+    template <typename Record, typename Visit>
+    void visit_record_fields(Record &r, const Visit &visit)
+    {
+      visit(r.step);
+      visit(r.cycle);
+      visit(r.segment);
+      visit(r.depth);
+      visit(r.force);
+      visit(r.contact_radius);
+      visit(r.contact_area);
+      visit(r.n_active_nodes);
+      visit(r.n_stick_nodes);
+      visit(r.n_slip_nodes);
+      visit(r.max_pressure);
+      visit(r.newton_iterations);
+      visit(r.augmentations);
+      visit(r.cutbacks);
+      visit(r.max_penetration);
+      visit(r.bottom_reaction);
+      visit(r.wall_time);
     }
   } // namespace
 
@@ -105,25 +131,12 @@ namespace indentsim::problems
         out.value(loop);
         out.value<std::uint64_t>(records_.size());
         for (const StepRecord &r : records_)
-          {
-            out.value(r.step);
-            out.value(r.cycle);
-            out.string(r.segment);
-            out.value(r.depth);
-            out.value(r.force);
-            out.value(r.contact_radius);
-            out.value(r.contact_area);
-            out.value(r.n_active_nodes);
-            out.value(r.n_stick_nodes);
-            out.value(r.n_slip_nodes);
-            out.value(r.max_pressure);
-            out.value(r.newton_iterations);
-            out.value(r.augmentations);
-            out.value(r.cutbacks);
-            out.value(r.max_penetration);
-            out.value(r.bottom_reaction);
-            out.value(r.wall_time);
-          }
+          visit_record_fields(r, [&](const auto &field) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(field)>, std::string>)
+              out.string(field);
+            else
+              out.value(field);
+          });
         out.value<std::uint64_t>(vtu_records_.size());
         for (const auto &[index, file] : vtu_records_)
           {
@@ -220,25 +233,13 @@ namespace indentsim::problems
         loop = in.value<LoopState>();
         records.resize(in.value<std::uint64_t>());
         for (StepRecord &r : records)
-          {
-            r.step = in.value<unsigned int>();
-            r.cycle = in.value<unsigned int>();
-            r.segment = in.string();
-            r.depth = in.value<double>();
-            r.force = in.value<double>();
-            r.contact_radius = in.value<double>();
-            r.contact_area = in.value<double>();
-            r.n_active_nodes = in.value<unsigned int>();
-            r.n_stick_nodes = in.value<unsigned int>();
-            r.n_slip_nodes = in.value<unsigned int>();
-            r.max_pressure = in.value<double>();
-            r.newton_iterations = in.value<unsigned int>();
-            r.augmentations = in.value<unsigned int>();
-            r.cutbacks = in.value<unsigned int>();
-            r.max_penetration = in.value<double>();
-            r.bottom_reaction = in.value<double>();
-            r.wall_time = in.value<double>();
-          }
+          visit_record_fields(r, [&](auto &field) {
+            using Field = std::decay_t<decltype(field)>;
+            if constexpr (std::is_same_v<Field, std::string>)
+              field = in.string();
+            else
+              field = in.value<Field>();
+          });
         vtu_records.resize(in.value<std::uint64_t>());
         for (auto &[index, file] : vtu_records)
           {

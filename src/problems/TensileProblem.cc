@@ -341,6 +341,56 @@ namespace indentsim::problems
     solution_ = solution_converged_;
   }
 
+  // Solves step `step` from the converged log strain `strain` to `target` in sub-increments,
+  // halved on failure and kept halved for the rest of the step so that the record is always at
+  // the nominal strain. Counts Newton iterations and cut-backs into `record`; returns the
+  // assembly of the converged state.
+  TensileProblem::AssemblyResult TensileProblem::solve_step(const unsigned int step,
+                                                            const double target, double &strain,
+                                                            TensileRecord &record,
+                                                            std::ofstream &log)
+  {
+    const auto       &loading = case_.loading;
+    const std::string model = io::to_string(case_.material.model);
+    // Sub-increments of the step; halved on failure, and kept halved for the rest of the
+    // step so that the record is always at the nominal strain.
+    double         increment = target - strain;
+    unsigned int   halvings = 0;
+    AssemblyResult converged;
+    while (strain < target)
+      {
+        const double next =
+            (strain + increment >= target * (1 - 1e-14)) ? target : strain + increment;
+        unsigned int          iterations = 0;
+        const IncrementStatus status =
+            solve_increment(edge_length_ * std::expm1(next), iterations, converged);
+        record.newton_iterations += iterations;
+        if (status == IncrementStatus::converged)
+          {
+            accept_increment();
+            u_top_converged_ = edge_length_ * std::expm1(next);
+            strain = next;
+            continue;
+          }
+        reject_increment();
+        ++record.cutbacks;
+        ++statistics_.cutbacks;
+        ++halvings;
+        pcout_ << "    [" << model << "] step " << step << " to log strain " << next << ": "
+               << to_string(status) << "; cutting the increment back to " << increment / 2
+               << std::endl;
+        if (log.is_open())
+          log << "# step " << step << ": " << to_string(status)
+              << ", increment of log strain cut back to " << increment / 2 << '\n';
+        if (halvings > loading.max_cutbacks)
+          throw std::runtime_error("tensile increment to log strain " + std::to_string(next) +
+                                   " failed after " + std::to_string(loading.max_cutbacks) +
+                                   " cut-backs (" + to_string(status) + ")");
+        increment /= 2;
+      }
+    return converged;
+  }
+
   void TensileProblem::run(const std::string &output_directory, const std::string &csv_file_name,
                            const bool write_paraview_file)
   {
@@ -376,42 +426,7 @@ namespace indentsim::problems
         const double  target = loading.max_strain * step / loading.steps;
         TensileRecord record;
         record.step = step;
-        // Sub-increments of the step; halved on failure, and kept halved for the rest of the
-        // step so that the record is always at the nominal strain.
-        double         increment = target - strain;
-        unsigned int   halvings = 0;
-        AssemblyResult converged;
-        while (strain < target)
-          {
-            const double next =
-                (strain + increment >= target * (1 - 1e-14)) ? target : strain + increment;
-            unsigned int          iterations = 0;
-            const IncrementStatus status =
-                solve_increment(edge_length_ * std::expm1(next), iterations, converged);
-            record.newton_iterations += iterations;
-            if (status == IncrementStatus::converged)
-              {
-                accept_increment();
-                u_top_converged_ = edge_length_ * std::expm1(next);
-                strain = next;
-                continue;
-              }
-            reject_increment();
-            ++record.cutbacks;
-            ++statistics_.cutbacks;
-            ++halvings;
-            pcout_ << "    [" << model << "] step " << step << " to log strain " << next << ": "
-                   << to_string(status) << "; cutting the increment back to " << increment / 2
-                   << std::endl;
-            if (log.is_open())
-              log << "# step " << step << ": " << to_string(status)
-                  << ", increment of log strain cut back to " << increment / 2 << '\n';
-            if (halvings > loading.max_cutbacks)
-              throw std::runtime_error("tensile increment to log strain " + std::to_string(next) +
-                                       " failed after " + std::to_string(loading.max_cutbacks) +
-                                       " cut-backs (" + to_string(status) + ")");
-            increment /= 2;
-          }
+        const AssemblyResult converged = solve_step(step, target, strain, record, log);
 
         // With traction-free lateral faces and frictionless rollers, div sigma = 0 gives the
         // volume average  <sigma_zz> = (1/v) integral_boundary t_z z da = F_z H / v: only the

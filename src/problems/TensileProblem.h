@@ -40,6 +40,7 @@
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
 
+#include <fstream>
 #include <memory>
 #include <span>
 #include <string>
@@ -108,8 +109,11 @@ namespace indentsim::problems
     // Newton from the last converged state to top displacement `u_top` [um].
     nonlinear::IncrementStatus solve_increment(double u_top, unsigned int &iterations,
                                                AssemblyResult &result);
-    void                       accept_increment();
-    void                       reject_increment();
+    // One load step in sub-increments with cut-backs.
+    AssemblyResult solve_step(unsigned int step, double target, double &strain,
+                              TensileRecord &record, std::ofstream &log);
+    void           accept_increment();
+    void           reject_increment();
 
     void write_paraview(const std::string &output_directory, unsigned int index);
 

@@ -3,7 +3,7 @@
 
 Reads one or more load_penetration.csv files written by `indentsim run` (header row with at
 least the columns depth_um and force_mN) and optionally overlays Sneddon's closed-form elastic
-solution for the rounded cone of eq. 16 (see REFERENCES.md):
+solution for the rounded cone of eq. 16 (see docs/development.md):
 
     c = a * delta,  h(a_c) = (a_c / a) atan(a_c / c),
     P(a_c) = (E* / a) [ (a_c^2 - c^2) atan(a_c / c) + a_c c ].

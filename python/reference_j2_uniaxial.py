@@ -7,7 +7,7 @@ Units: stresses and moduli in GPa, strains and stretches dimensionless.
 
 It does not use the C++ code. Under monotonic uniaxial stress the principal axes are fixed and
 the flow direction is constant, so the exponential map integrates exactly and the state follows
-from the current stretch alone (REFERENCES.md, "Homogeneous uniaxial tension, finite-strain J2"):
+from the current stretch alone (docs/development.md, "Homogeneous uniaxial tension"):
 
   F = diag(lam, lam_t, lam_t),          total log strains (ln lam, ln lam_t, ln lam_t)
   plastic log strain  eps_p = alpha diag(1, -1/2, -1/2)  (alpha = equivalent plastic strain)

@@ -1,4 +1,4 @@
-// Sneddon's closed form for the rounded cone (see the header and REFERENCES.md).
+// Sneddon's closed form for the rounded cone (see the header and docs/development.md).
 #include "indenter/SneddonReference.h"
 
 #include <algorithm>

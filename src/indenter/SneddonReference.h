@@ -1,4 +1,4 @@
-// Closed-form elastic half-space solution for the rounded cone of eq. 16 (REFERENCES.md),
+// Closed-form elastic half-space solution for the rounded cone of eq. 16 (docs/development.md),
 // from Sneddon's axisymmetric integrals, for a rigid frictionless indenter:
 //   c = A delta,  x = a_c / c,
 //   h(a_c) = (a_c / A) atan(a_c / c)

@@ -1,4 +1,4 @@
-// The one shape every constitutive model has (see STYLE.md):
+// The one shape every constitutive model has (see docs/development.md, style):
 //   update(F_new, state_old) -> {P, dP/dF, state_new, status}.
 // Models know nothing about meshes, MPI or linear algebra, so each can be tested at a single
 // material point. Units: stresses and moduli in GPa, strains dimensionless.

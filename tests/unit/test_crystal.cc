@@ -1,6 +1,6 @@
 // Unit tests of the crystal-plasticity model at a single material point (paper section 2.2,
 // eqs 10-15, Table 2) and of its building blocks: FCC slip systems, orientations, directional
-// Young's moduli and initial yield stresses of REFERENCES.md, objectivity, the consistent
+// Young's moduli and initial yield stresses of docs/development.md, objectivity, the consistent
 // tangent against finite differences, and step-size independence. Units: GPa.
 #include "case/Case.h"
 #include "materials/CrystalPlasticity.h"
@@ -243,7 +243,7 @@ namespace
       }
   }
 
-  // Directional Young's moduli with Thomas's constants (REFERENCES.md): the rotation of the
+  // Directional Young's moduli with Thomas's constants (docs/development.md): the rotation of the
   // cubic stiffness with the orientation.
   TEST(CrystalElasticity, DirectionalYoungsModuliMatchThomas1968)
   {
@@ -264,7 +264,7 @@ namespace
   }
 
   // Initial yield stress in uniaxial tension along [001], [011], [111] against the regularized
-  // Schmid law of REFERENCES.md (sigma_y / tau0 = 2.20760, 2.28545, 3.35938 for n = 10). The
+  // Schmid law of docs/development.md (sigma_y / tau0 = 2.20760, 2.28545, 3.35938 for n = 10). The
   // strain at which slip starts is found by bisection. That closed form is a small-strain
   // result: the model resolves the Mandel stress on the lattice, which differs from the Cauchy
   // stress by O(elastic strain) (the factor J and the stretch of m and n). So (a) in the

@@ -1,4 +1,4 @@
-// Unit tests of the constitutive models at a single material point (STYLE.md tier 1): the
+// Unit tests of the constitutive models at a single material point (the unit tier): the
 // AD-safe tensor exp/log against spectral formulas, neo-Hookean stress and tangent against
 // finite differences of the energy and of the stress, and finite-strain J2 plasticity (paper
 // eqs 1-9): tangent against finite differences, consistency of the return mapping, and
@@ -608,7 +608,7 @@ namespace
   }
 
   // ---------------------------------------------------------------------------------------
-  // Homogeneous uniaxial tension against the independent reference (REFERENCES.md).
+  // Homogeneous uniaxial tension against the independent reference (docs/development.md).
 
   // Drives F = diag(lambda, lambda_t, lambda_t) to the reference strains in n_increments equal
   // steps; at every step lambda_t is found by a secant iteration on the lateral stress P_22 = 0

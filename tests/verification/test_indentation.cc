@@ -1,5 +1,5 @@
 // Verification of the indentation solver: elastic indentation by the paper's rounded cone
-// against Sneddon's closed form (REFERENCES.md), equilibrium of contact force and support
+// against Sneddon's closed form (docs/development.md), equilibrium of contact force and support
 // reaction, and the exactness of the augmented-Lagrangian contact. Units: um, mN, GPa.
 #include "../test_cases.h"
 #include "case/Case.h"
@@ -65,7 +65,7 @@ TEST(ElasticIndentation, HertzRegimeMatchesClosedForm)
 }
 
 // At h = delta (a_c = 2.8 um, 11 elements across it) the finite-strain solution lies above the
-// small-strain closed form by the radial-displacement excess of blunt cones (REFERENCES.md:
+// small-strain closed form by the radial-displacement excess of blunt cones (docs/development.md:
 // 0 to +10 % for sharp cones); 0 to +12 % is accepted.
 TEST(ElasticIndentation, AtTipRadiusScaleMatchesClosedForm)
 {

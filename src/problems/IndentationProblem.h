@@ -94,7 +94,6 @@ namespace indentsim::problems
     const std::vector<StepRecord> &records() const { return records_; }
     // Counters and phase times of this problem so far (setup and runs).
     const output::RunStatistics &statistics() const { return statistics_; }
-    const linalg::LinearSolver  &linear_solver() const { return linear_solver_; }
     // The contact nodes and their state at the last evaluation.
     const contact::NodeToSurfaceContact &contact() const { return *contact_; }
     const indenter::IndenterSurface     &indenter() const { return *indenter_; }

@@ -80,11 +80,8 @@ namespace indentsim::problems
              bool write_paraview_file);
 
     const std::vector<TensileRecord> &records() const { return records_; }
-    // Counters and phase times of this problem so far (the contact phase stays 0).
-    const output::RunStatistics &statistics() const { return statistics_; }
-    unsigned int                 n_cells() const;
-    unsigned int                 n_dofs() const;
-    double                       edge_length() const { return edge_length_; } // L [um]
+    unsigned int                      n_cells() const;
+    unsigned int                      n_dofs() const;
 
     // Index i + n j + n^2 k of the element whose centre lies in [i, i+1) x [j, j+1) x [k, k+1)
     // (um): the grain number, independent of the MPI partition.

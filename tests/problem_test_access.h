@@ -20,8 +20,8 @@ namespace indentsim::problems
     set_displacement(IndentationProblem                                                  &p,
                      const std::function<dealii::Tensor<1, 3>(const dealii::Point<3> &)> &u)
     {
-      dealii::PETScWrappers::MPI::Vector u_owned(p.locally_owned_, p.communicator_);
-      for (const auto &cell : p.dof_handler_.active_cell_iterators())
+      dealii::PETScWrappers::MPI::Vector u_owned(p.solid_.locally_owned, p.communicator_);
+      for (const auto &cell : p.solid_.dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           for (const unsigned int v : cell->vertex_indices())
             {
@@ -29,7 +29,7 @@ namespace indentsim::problems
               for (unsigned int d = 0; d < 3; ++d)
                 {
                   const auto dof = cell->vertex_dof_index(v, d);
-                  if (p.locally_owned_.is_element(dof))
+                  if (p.solid_.locally_owned.is_element(dof))
                     u_owned(dof) = value[d];
                 }
             }
@@ -45,9 +45,9 @@ namespace indentsim::problems
       p.contact_->evaluate(p.solution_, -1e30); // indenter far away: no contact
       p.assemble(false);
       const dealii::IndexSet boundary_dofs =
-          dealii::DoFTools::extract_boundary_dofs(p.dof_handler_);
+          dealii::DoFTools::extract_boundary_dofs(p.solid_.dof_handler);
       double local = 0;
-      for (const auto dof : p.locally_owned_)
+      for (const auto dof : p.solid_.locally_owned)
         if (!boundary_dofs.is_element(dof))
           local += p.residual_(dof) * p.residual_(dof);
       return std::sqrt(dealii::Utilities::MPI::sum(local, p.communicator_));

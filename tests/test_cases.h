@@ -12,8 +12,8 @@ namespace indentsim::test_cases
     io::Case c;
     c.material.model = "j2";
     c.indenter.delta = 0.5;
-    c.specimen.size = {60., 60., 30.};
-    c.specimen.refined_region = {16., 16., 4.};
+    c.specimen.size = {{60., 60., 30.}};
+    c.specimen.refined_region = {{16., 16., 4.}};
     c.specimen.contact_elements = 16;
     c.specimen.symmetry = symmetry;
     c.loading.max_depth = 1.0;
@@ -33,8 +33,8 @@ namespace indentsim::test_cases
     c.specimen.f_bar = false;
     c.indenter.a = 2.48;
     c.indenter.delta = 1.0;
-    c.specimen.size = {80., 80., 40.};
-    c.specimen.refined_region = {6., 6., 2.5};
+    c.specimen.size = {{80., 80., 40.}};
+    c.specimen.refined_region = {{6., 6., 2.5}};
     c.specimen.contact_elements = 32; // h = 0.1875 um: 4.2 elements across a_c at 0.1 delta
     c.specimen.symmetry = "quarter";
     c.loading.max_depth = 1.0;

@@ -114,11 +114,11 @@ namespace indentsim::problems
         out.value<std::uint32_t>(rank);
         out.value(case_fingerprint());
         out.value<std::uint32_t>(loop.step);
-        out.value<std::uint64_t>(locally_owned_.n_elements());
+        out.value<std::uint64_t>(solid_.locally_owned.n_elements());
         out.value<std::uint64_t>(history_.converged_values().size());
 
-        out.vector(owned_values(solution_converged_, locally_owned_));
-        out.vector(owned_values(solution_previous_, locally_owned_));
+        out.vector(owned_values(solution_converged_, solid_.locally_owned));
+        out.vector(owned_values(solution_previous_, solid_.locally_owned));
         out.value(depth_converged_);
         out.value(depth_previous_);
         out.value(force_converged_);
@@ -205,10 +205,11 @@ namespace indentsim::problems
               "of the stopped run; resume with the unchanged case file, or start afresh with "
               "--overwrite");
         step = in.value<std::uint32_t>();
-        if (const auto n_owned = in.value<std::uint64_t>(); n_owned != locally_owned_.n_elements())
+        if (const auto n_owned = in.value<std::uint64_t>();
+            n_owned != solid_.locally_owned.n_elements())
           throw std::runtime_error("the checkpoint '" + path + "' holds " +
                                    std::to_string(n_owned) + " DoFs of this rank, the mesh has " +
-                                   std::to_string(locally_owned_.n_elements()));
+                                   std::to_string(solid_.locally_owned.n_elements()));
         if (const auto n_state = in.value<std::uint64_t>();
             n_state != history_.converged_values().size())
           throw std::runtime_error("the checkpoint '" + path + "' holds " +
@@ -225,8 +226,8 @@ namespace indentsim::problems
         has_previous = in.value<bool>();
         state = in.vector<double>();
         contact_state = in.vector<double>();
-        if (converged.size() != locally_owned_.n_elements() ||
-            previous.size() != locally_owned_.n_elements() ||
+        if (converged.size() != solid_.locally_owned.n_elements() ||
+            previous.size() != solid_.locally_owned.n_elements() ||
             state.size() != history_.converged_values().size())
           throw std::runtime_error("'" + path + "' is inconsistent (vector sizes)");
 
@@ -266,9 +267,9 @@ namespace indentsim::problems
                               "' are of different steps (the run was killed while writing "
                               "them); it cannot be resumed");
 
-    set_owned_values(solution_converged_, locally_owned_, converged, communicator_);
-    set_owned_values(solution_, locally_owned_, converged, communicator_);
-    set_owned_values(solution_previous_, locally_owned_, previous, communicator_);
+    set_owned_values(solution_converged_, solid_.locally_owned, converged, communicator_);
+    set_owned_values(solution_, solid_.locally_owned, converged, communicator_);
+    set_owned_values(solution_previous_, solid_.locally_owned, previous, communicator_);
     depth_converged_ = depth_trial_ = depth_converged;
     depth_previous_ = depth_previous;
     force_converged_ = force_trial_ = force_converged;

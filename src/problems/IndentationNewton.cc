@@ -110,7 +110,7 @@ namespace indentsim::problems
                                                       const bool                  extrapolate,
                                                       const std::optional<double> target_force)
   {
-    NewtonIncrement increment(locally_owned_, communicator_, depth_start, target_force,
+    NewtonIncrement increment(solid_.locally_owned, communicator_, depth_start, target_force,
                               symmetry_factor(), converged_force_scale_);
     record.newton_iterations = 0;
     record.augmentations = 0;

@@ -59,17 +59,17 @@ namespace indentsim::problems
 
   void IndentationProblem::write_vtu(const unsigned int index)
   {
-    const unsigned int n_cells_local = triangulation_.n_active_cells();
+    const unsigned int n_cells_local = solid_.triangulation.n_active_cells();
     Vector<float> von_mises(n_cells_local), plastic_strain(n_cells_local), subdomain(n_cells_local);
     std::vector<Vector<float>> cauchy(6, Vector<float>(n_cells_local));
     compute_cell_fields(von_mises, plastic_strain, cauchy);
-    for (const auto &cell : triangulation_.active_cell_iterators())
-      subdomain[cell->active_cell_index()] = triangulation_.locally_owned_subdomain();
+    for (const auto &cell : solid_.triangulation.active_cell_iterators())
+      subdomain[cell->active_cell_index()] = solid_.triangulation.locally_owned_subdomain();
 
     // Nodal contact fields on a scalar Q1 field: pressure p [GPa], status (0 open, 1 stick,
     // 2 slip) and the magnitude of the friction traction |t| [GPa], all nominal (per reference
     // area).
-    DoFHandler<3> scalar_dofs(triangulation_);
+    DoFHandler<3> scalar_dofs(solid_.triangulation);
     const FE_Q<3> fe_scalar(1);
     scalar_dofs.distribute_dofs(fe_scalar);
     const IndexSet owned = scalar_dofs.locally_owned_dofs();
@@ -79,11 +79,11 @@ namespace indentsim::problems
       std::map<types::global_dof_index, double> value_by_dof; // vector dof x -> value
       for (const auto &node : contact_->nodes())
         value_by_dof[node.dofs[0]] = value(node);
-      for (const auto &cell : dof_handler_.active_cell_iterators())
+      for (const auto &cell : solid_.dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
             const typename DoFHandler<3>::active_cell_iterator scalar_cell(
-                &triangulation_, cell->level(), cell->index(), &scalar_dofs);
+                &solid_.triangulation, cell->level(), cell->index(), &scalar_dofs);
             for (const unsigned int v : cell->vertex_indices())
               {
                 const auto it = value_by_dof.find(cell->vertex_dof_index(v, 0));
@@ -105,10 +105,10 @@ namespace indentsim::problems
     const GhostedVector traction_readable =
         nodal_field([](const contact::ContactNode &node) { return node.traction.norm(); });
     const GhostedVector u =
-        to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
+        to_thread_readable(solution_, solid_.locally_owned, solid_.locally_relevant, communicator_);
 
     DataOut<3> data_out;
-    data_out.attach_dof_handler(dof_handler_);
+    data_out.attach_dof_handler(solid_.dof_handler);
     const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
         3, DataComponentInterpretation::component_is_part_of_vector);
     data_out.add_data_vector(u, std::vector<std::string>(3, "displacement_um"),
@@ -125,7 +125,7 @@ namespace indentsim::problems
     data_out.add_data_vector(subdomain, "mpi_rank");
 
     // The geometry is written in the deformed configuration.
-    const MappingQEulerian<3, GhostedVector> deformed(1, dof_handler_, u);
+    const MappingQEulerian<3, GhostedVector> deformed(1, solid_.dof_handler, u);
     data_out.build_patches(deformed, 1);
     const std::string pvtu = data_out.write_vtu_with_pvtu_record(
         output_directory_ + "/", "specimen", index, communicator_, 4, 8);
@@ -145,7 +145,7 @@ namespace indentsim::problems
     // vertices lexicographically, 0 (0,0), 1 (1,0), 2 (0,1), 3 (1,1): cyclic is 0, 1, 3, 2.
     constexpr unsigned int n_values = 5, cyclic[4] = {0, 1, 3, 2};
     std::vector<double>    local;
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    for (const auto &cell : solid_.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const auto &face : cell->face_iterators())
           if (face->at_boundary() && face->boundary_id() == mesh::boundary::top)

@@ -50,10 +50,7 @@ namespace indentsim::problems
     : case_(the_case)
     , communicator_(communicator)
     , pcout_(std::cout, verbose && Utilities::MPI::this_mpi_process(communicator) == 0)
-    , triangulation_(communicator, Triangulation<3>::limit_level_difference_at_vertices,
-                     parallel::distributed::Triangulation<3>::default_setting)
-    , fe_(FE_Q<3>(1), 3)
-    , dof_handler_(triangulation_)
+    , solid_(communicator, Triangulation<3>::limit_level_difference_at_vertices)
     , material_(materials::create_material(the_case.material))
     , indenter_(indenter::create_indenter(the_case.indenter))
     , use_f_bar_(the_case.specimen.f_bar)
@@ -61,37 +58,25 @@ namespace indentsim::problems
   {
   }
 
-  IndentationProblem::~IndentationProblem()
-  {
-    dof_handler_.clear();
-  }
+  IndentationProblem::~IndentationProblem() = default;
 
   unsigned int IndentationProblem::n_cells() const
   {
-    return triangulation_.n_global_active_cells();
+    return solid_.n_cells();
   }
   unsigned int IndentationProblem::n_dofs() const
   {
-    return dof_handler_.n_dofs();
-  }
-  unsigned int
-  IndentationProblem::count_owned_constraints(const AffineConstraints<double> &constraints) const
-  {
-    unsigned int local = 0;
-    for (const auto &line : constraints.get_lines())
-      if (locally_owned_.is_element(line.index))
-        ++local;
-    return Utilities::MPI::sum(local, communicator_);
+    return solid_.n_dofs();
   }
 
   unsigned int IndentationProblem::n_constrained_dofs() const
   {
-    return count_owned_constraints(constraints_all_);
+    return solid_.n_constrained_dofs(constraints_all_);
   }
 
   unsigned int IndentationProblem::n_hanging_node_constraints() const
   {
-    return count_owned_constraints(constraints_hanging_);
+    return solid_.n_constrained_dofs(constraints_hanging_);
   }
 
   // Hanging-node constraints, then the supports (bottom face, symmetry planes) on top of them,
@@ -99,30 +84,29 @@ namespace indentsim::problems
   void IndentationProblem::make_constraints()
   {
     constraints_hanging_.clear();
-    constraints_hanging_.reinit(locally_relevant_);
-    DoFTools::make_hanging_node_constraints(dof_handler_, constraints_hanging_);
+    constraints_hanging_.reinit(solid_.locally_relevant);
+    DoFTools::make_hanging_node_constraints(solid_.dof_handler, constraints_hanging_);
     constraints_hanging_.close();
 
     constraints_all_.clear();
-    constraints_all_.reinit(locally_relevant_);
+    constraints_all_.reinit(solid_.locally_relevant);
     constraints_all_.merge(constraints_hanging_);
     const Functions::ZeroFunction<3> zero(3);
-    VectorTools::interpolate_boundary_values(dof_handler_, mesh::boundary::bottom, zero,
+    VectorTools::interpolate_boundary_values(solid_.dof_handler, mesh::boundary::bottom, zero,
                                              constraints_all_);
     if (mesh_info_.quarter)
       {
-        const FEValuesExtractors::Scalar ux(0), uy(1);
-        VectorTools::interpolate_boundary_values(dof_handler_, mesh::boundary::x_min, zero,
-                                                 constraints_all_, fe_.component_mask(ux));
-        VectorTools::interpolate_boundary_values(dof_handler_, mesh::boundary::y_min, zero,
-                                                 constraints_all_, fe_.component_mask(uy));
+        VectorTools::interpolate_boundary_values(solid_.dof_handler, mesh::boundary::x_min, zero,
+                                                 constraints_all_, solid_.component_mask(0));
+        VectorTools::interpolate_boundary_values(solid_.dof_handler, mesh::boundary::y_min, zero,
+                                                 constraints_all_, solid_.component_mask(1));
       }
     // The surface node under the apex stays on the indentation axis (u_x = u_y = 0; in the
     // quarter model the symmetry planes impose it already). Node-to-surface contact only keeps
     // nodes out of the indenter; a sharp tip pushing an anisotropic crystal's apex node aside
     // would pass between the nodes unchecked (on (111) the surface under the tip
     // lags microns behind the apex). Holding that one node is the usual remedy.
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    for (const auto &cell : solid_.dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
         for (const unsigned int v : cell->vertex_indices())
           if (cell->vertex(v).norm() < 1e-9 * case_.specimen.size[0])
@@ -138,29 +122,23 @@ namespace indentsim::problems
   void IndentationProblem::setup()
   {
     const RunStatistics::Scope timer(statistics_.setup);
-    mesh_info_ = mesh::build_indentation_mesh(triangulation_, case_.specimen);
+    mesh_info_ = mesh::build_indentation_mesh(solid_.triangulation, case_.specimen);
     balance_plastic_zone();
-    dof_handler_.distribute_dofs(fe_);
-    locally_owned_ = dof_handler_.locally_owned_dofs();
-    locally_relevant_ = DoFTools::extract_locally_relevant_dofs(dof_handler_);
+    solid_.distribute_dofs();
 
     make_constraints();
 
-    DynamicSparsityPattern dsp(locally_relevant_);
-    DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_all_, false);
-    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_, communicator_,
-                                               locally_relevant_);
-    matrix_.reinit(locally_owned_, locally_owned_, dsp, communicator_);
+    solid_.reinit_matrix(constraints_all_, matrix_);
     matrix_.compress(VectorOperation::insert); // final pattern, off-diagonal columns compressed
-    scatter_.build(dof_handler_, constraints_all_, matrix_);
+    scatter_.build(solid_.dof_handler, constraints_all_, matrix_);
 
-    solution_.reinit(locally_owned_, locally_relevant_, communicator_);
-    solution_readable_.reinit(locally_owned_, locally_relevant_, communicator_);
-    solution_converged_.reinit(locally_owned_, locally_relevant_, communicator_);
-    solution_previous_.reinit(locally_owned_, communicator_);
-    residual_.reinit(locally_owned_, communicator_);
+    solid_.reinit_ghosted(solution_);
+    solution_readable_.reinit(solid_.locally_owned, solid_.locally_relevant, communicator_);
+    solid_.reinit_ghosted(solution_converged_);
+    solid_.reinit_owned(solution_previous_);
+    solid_.reinit_owned(residual_);
 
-    history_.reinit(triangulation_.n_active_cells(), 8, material_->n_state_variables());
+    history_.reinit(solid_.triangulation.n_active_cells(), 8, material_->n_state_variables());
     // A single crystal: one lattice orientation everywhere (isotropic models ignore it).
     const dealii::Tensor<2, 3> orientation =
         materials::create_orientation(case_.material.orientation);
@@ -174,10 +152,10 @@ namespace indentsim::problems
     contact_ = std::make_unique<contact::NodeToSurfaceContact>(*indenter_, penalty,
                                                                case_.contact.friction_coefficient);
     contact_->set_predictor_activation_depth(case_.contact.penetration_tolerance);
-    contact_->setup(dof_handler_, constraints_hanging_, mesh::boundary::top,
+    contact_->setup(solid_.dof_handler, constraints_hanging_, mesh::boundary::top,
                     mesh_info_.refined_half_x, mesh_info_.refined_half_y, communicator_);
 
-    linear_solver_.setup(dof_handler_,
+    linear_solver_.setup(solid_.dof_handler,
                          LinearSolver::choose_kind(case_.solver.linear_solver, n_dofs()),
                          material_->symmetric_tangent() && contact_->symmetric_tangent());
 
@@ -213,8 +191,8 @@ namespace indentsim::problems
       return static_cast<unsigned int>(1000 *
                                        (1.0 + (cell->center().norm() < radius ? extra_cost : 0.0)));
     };
-    auto connection = triangulation_.signals.weight.connect(weight);
-    triangulation_.repartition();
+    auto connection = solid_.triangulation.signals.weight.connect(weight);
+    solid_.triangulation.repartition();
     connection.disconnect();
   }
 
@@ -247,8 +225,9 @@ namespace indentsim::problems
       contribution.sums[0] = 0;
       for (const unsigned int f : cell->face_indices())
         if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == mesh::boundary::bottom)
-          for (unsigned int a = 0; a < fe_.n_dofs_per_cell(); ++a)
-            if (fe_.system_to_component_index(a).first == 2 && fe_.has_support_on_face(a, f))
+          for (unsigned int a = 0; a < solid_.fe.n_dofs_per_cell(); ++a)
+            if (solid_.fe.system_to_component_index(a).first == 2 &&
+                solid_.fe.has_support_on_face(a, f))
               contribution.sums[0] += contribution.vector[a];
     };
     const auto copier = [&](const CellContribution &contribution) {
@@ -275,7 +254,7 @@ namespace indentsim::problems
       const RunStatistics::Scope cell_loop_timer(statistics_.cell_loop);
       if (with_matrix)
         scatter_.begin(matrix_);
-      run_on_owned_cells(dof_handler_, history_.n_q_points(), worker, copier);
+      run_on_owned_cells(solid_.dof_handler, history_.n_q_points(), worker, copier);
     }
     // After the cell loop's timer: end() waits for the other ranks, so that the cell loop's
     // spread over the ranks shows their imbalance.
@@ -347,7 +326,7 @@ namespace indentsim::problems
   {
     // The indicator phi (x dof of each contact node) and a marker (y dof) distinguishing contact
     // nodes from the rest, made readable on the ghost vertices of the owned faces.
-    PETScWrappers::MPI::Vector indicator(locally_owned_, communicator_);
+    PETScWrappers::MPI::Vector indicator(solid_.locally_owned, communicator_);
     for (const contact::ContactNode &node : contact_->nodes())
       {
         indicator(node.dofs[0]) =
@@ -355,13 +334,14 @@ namespace indentsim::problems
         indicator(node.dofs[1]) = 1;
       }
     indicator.compress(VectorOperation::insert);
-    PETScWrappers::MPI::Vector ghosted(locally_owned_, locally_relevant_, communicator_);
+    PETScWrappers::MPI::Vector ghosted(solid_.locally_owned, solid_.locally_relevant,
+                                       communicator_);
     ghosted = indicator;
 
     // deal.II numbers a face's vertices lexicographically; cyclic order is 0, 1, 3, 2.
     constexpr unsigned int cyclic[4] = {0, 1, 3, 2};
     contact::ContactPatch  local;
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    for (const auto &cell : solid_.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const auto &face : cell->face_iterators())
           {
@@ -415,12 +395,12 @@ namespace indentsim::problems
       const std::function<void(const DoFHandler<3>::active_cell_iterator &,
                                const std::vector<Tensor<2, 3>> &, std::span<const double>)> &visit)
   {
-    CellWorkspace             workspace(fe_, history_.n_q_points());
+    CellWorkspace             workspace(solid_.fe, history_.n_q_points());
     std::vector<Tensor<2, 3>> cauchy(history_.n_q_points());
     std::vector<double>       state(history_.cell_length());
     const GhostedVector       u =
-        to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+        to_thread_readable(solution_, solid_.locally_owned, solid_.locally_relevant, communicator_);
+    for (const auto &cell : solid_.dof_handler.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
           continue;

@@ -17,6 +17,7 @@
 #include "fem/CellWorkspace.h"
 #include "fem/FiniteStrainElement.h"
 #include "fem/QuadraturePointHistory.h"
+#include "fem/SolidDiscretisation.h"
 #include "indenter/IndenterSurface.h"
 #include "linalg/LinearSolver.h"
 #include "linalg/MatrixScatter.h"
@@ -110,7 +111,7 @@ namespace indentsim::problems
     unsigned int                 n_hanging_node_constraints() const;
     const mesh::MeshInfo        &mesh_info() const { return mesh_info_; }
     double                       symmetry_factor() const { return mesh_info_.quarter ? 4.0 : 1.0; }
-    const dealii::DoFHandler<3> &dof_handler() const { return dof_handler_; }
+    const dealii::DoFHandler<3> &dof_handler() const { return solid_.dof_handler; }
     const dealii::PETScWrappers::MPI::Vector &solution() const { return solution_; }
 
   private:
@@ -135,9 +136,6 @@ namespace indentsim::problems
     // weighted by the material's relative plastic cost.
     void balance_plastic_zone();
     void make_constraints();
-    // Number of constrained dofs owned by this rank, summed over ranks.
-    unsigned int
-    count_owned_constraints(const dealii::AffineConstraints<double> &constraints) const;
 
     // The augmented-Lagrangian Newton of one increment, in steps (IndentationNewton.cc).
     struct NewtonIncrement;
@@ -217,16 +215,13 @@ namespace indentsim::problems
     std::uint64_t case_fingerprint() const;
     std::string   checkpoint_directory() const;
 
-    const io::Case                                 &case_;
-    MPI_Comm                                        communicator_;
-    dealii::ConditionalOStream                      pcout_;
-    dealii::parallel::distributed::Triangulation<3> triangulation_;
-    mesh::MeshInfo                                  mesh_info_;
-    dealii::FESystem<3>                             fe_;
-    dealii::DoFHandler<3>                           dof_handler_;
-    dealii::IndexSet                                locally_owned_, locally_relevant_;
-    dealii::AffineConstraints<double>               constraints_hanging_;
-    dealii::AffineConstraints<double>               constraints_all_; // Dirichlet and hanging nodes
+    const io::Case                   &case_;
+    MPI_Comm                          communicator_;
+    dealii::ConditionalOStream        pcout_;
+    fem::SolidDiscretisation          solid_; // mesh, elements, DoFs, index sets
+    mesh::MeshInfo                    mesh_info_;
+    dealii::AffineConstraints<double> constraints_hanging_;
+    dealii::AffineConstraints<double> constraints_all_; // Dirichlet and hanging nodes
 
     std::unique_ptr<materials::MaterialModel>      material_;
     std::unique_ptr<indenter::IndenterSurface>     indenter_;

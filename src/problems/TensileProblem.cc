@@ -4,6 +4,7 @@
 #include "io/Version.h"
 #include "materials/MaterialFactory.h"
 #include "materials/crystal/Orientation.h"
+#include "output/RunRecorder.h"
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/multithread_info.h>
@@ -50,14 +51,6 @@ namespace indentsim::problems
       constexpr types::boundary_id x_min = 0, y_min = 2, z_min = 4, z_max = 5;
     }
 
-    std::string format_duration(const double seconds)
-    {
-      std::ostringstream s;
-      const long         total = std::lround(seconds);
-      s << total / 60 << "m" << std::setw(2) << std::setfill('0') << total % 60 << "s";
-      return s.str();
-    }
-
     void write_csv_header(std::ostream &out)
     {
       out << "step,log_strain,true_stress_GPa,engineering_strain,force_mN,newton_iterations,"
@@ -78,30 +71,25 @@ namespace indentsim::problems
     : case_(the_case)
     , communicator_(communicator)
     , pcout_(std::cout, verbose && Utilities::MPI::this_mpi_process(communicator) == 0)
-    , triangulation_(communicator)
-    , fe_(FE_Q<3>(1), 3)
-    , dof_handler_(triangulation_)
+    , solid_(communicator)
     , material_(materials::create_material(the_case.material))
     , use_f_bar_(the_case.specimen.f_bar)
-    , linear_solver_(communicator)
     , n_per_side_(the_case.specimen.elements_per_side)
     , edge_length_(the_case.specimen.elements_per_side) // elements of 1 um
+    , linear_solver_(communicator)
   {
   }
 
-  TensileProblem::~TensileProblem()
-  {
-    dof_handler_.clear();
-  }
+  TensileProblem::~TensileProblem() = default;
 
   unsigned int TensileProblem::n_cells() const
   {
-    return triangulation_.n_global_active_cells();
+    return solid_.n_cells();
   }
 
   unsigned int TensileProblem::n_dofs() const
   {
-    return dof_handler_.n_dofs();
+    return solid_.n_dofs();
   }
 
   unsigned int TensileProblem::lexicographic_index(const Point<3> &cell_centre) const
@@ -117,24 +105,18 @@ namespace indentsim::problems
   void TensileProblem::setup()
   {
     const RunStatistics::Scope timer(statistics_.setup);
-    GridGenerator::subdivided_hyper_cube(triangulation_, n_per_side_, 0., edge_length_, true);
-    dof_handler_.distribute_dofs(fe_);
-    locally_owned_ = dof_handler_.locally_owned_dofs();
-    locally_relevant_ = DoFTools::extract_locally_relevant_dofs(dof_handler_);
+    GridGenerator::subdivided_hyper_cube(solid_.triangulation, n_per_side_, 0., edge_length_, true);
+    solid_.distribute_dofs();
 
     make_dirichlet_constraints(0., constraints_homogeneous_);
-
-    DynamicSparsityPattern dsp(locally_relevant_);
-    DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_homogeneous_, false);
-    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_, communicator_,
-                                               locally_relevant_);
-    matrix_.reinit(locally_owned_, locally_owned_, dsp, communicator_);
+    solid_.reinit_matrix(constraints_homogeneous_, matrix_);
     linear_solver_.setup(
-        dof_handler_, LinearSolver::choose_kind(case_.solver.linear_solver, dof_handler_.n_dofs()),
+        solid_.dof_handler,
+        LinearSolver::choose_kind(case_.solver.linear_solver, solid_.dof_handler.n_dofs()),
         material_->symmetric_tangent());
-    solution_.reinit(locally_owned_, locally_relevant_, communicator_);
-    solution_converged_.reinit(locally_owned_, locally_relevant_, communicator_);
-    rhs_.reinit(locally_owned_, communicator_);
+    solid_.reinit_ghosted(solution_);
+    solid_.reinit_ghosted(solution_converged_);
+    solid_.reinit_owned(rhs_);
     u_top_converged_ = 0;
 
     // Orientations: one for the whole cube, or one random orientation per element numbered by
@@ -147,10 +129,10 @@ namespace indentsim::problems
             ? materials::random_orientations(n_cells_total, specimen.seed)
             : std::vector<Tensor<2, 3>>{materials::create_orientation(case_.material.orientation)};
 
-    history_.reinit(triangulation_.n_active_cells(), 8, material_->n_state_variables());
+    history_.reinit(solid_.triangulation.n_active_cells(), 8, material_->n_state_variables());
     const unsigned int n_q_points = history_.n_q_points(), n_state = history_.n_state();
-    grain_of_cell_.assign(triangulation_.n_active_cells(), 0);
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    grain_of_cell_.assign(solid_.triangulation.n_active_cells(), 0);
+    for (const auto &cell : solid_.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           const unsigned int grain = lexicographic_index(cell->center());
@@ -174,19 +156,17 @@ namespace indentsim::problems
                                                   AffineConstraints<double> &constraints) const
   {
     constraints.clear();
-    constraints.reinit(locally_relevant_);
+    constraints.reinit(solid_.locally_relevant);
     const Functions::ZeroFunction<3>     zero(3);
     const Functions::ConstantFunction<3> top(std::vector<double>{0., 0., top_increment});
-    const auto                           component = [this](const unsigned int c) {
-      return fe_.component_mask(FEValuesExtractors::Scalar(c));
-    };
-    VectorTools::interpolate_boundary_values(dof_handler_, face::x_min, zero, constraints,
+    const auto component = [this](const unsigned int c) { return solid_.component_mask(c); };
+    VectorTools::interpolate_boundary_values(solid_.dof_handler, face::x_min, zero, constraints,
                                              component(0));
-    VectorTools::interpolate_boundary_values(dof_handler_, face::y_min, zero, constraints,
+    VectorTools::interpolate_boundary_values(solid_.dof_handler, face::y_min, zero, constraints,
                                              component(1));
-    VectorTools::interpolate_boundary_values(dof_handler_, face::z_min, zero, constraints,
+    VectorTools::interpolate_boundary_values(solid_.dof_handler, face::z_min, zero, constraints,
                                              component(2));
-    VectorTools::interpolate_boundary_values(dof_handler_, face::z_max, top, constraints,
+    VectorTools::interpolate_boundary_values(solid_.dof_handler, face::z_max, top, constraints,
                                              component(2));
     constraints.close();
   }
@@ -202,7 +182,7 @@ namespace indentsim::problems
     matrix_ = 0;
     rhs_ = 0;
     const GhostedVector u =
-        to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
+        to_thread_readable(solution_, solid_.locally_owned, solid_.locally_relevant, communicator_);
     const auto worker = [&](const DoFHandler<3>::active_cell_iterator &cell,
                             CellWorkspace &workspace, CellContribution &contribution) {
       workspace.reinit(cell, u);
@@ -216,8 +196,9 @@ namespace indentsim::problems
       contribution.sums = {{0., 0.}};
       for (const unsigned int f : cell->face_indices())
         if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == face::z_max)
-          for (unsigned int a = 0; a < fe_.n_dofs_per_cell(); ++a)
-            if (fe_.system_to_component_index(a).first == 2 && fe_.has_support_on_face(a, f))
+          for (unsigned int a = 0; a < solid_.fe.n_dofs_per_cell(); ++a)
+            if (solid_.fe.system_to_component_index(a).first == 2 &&
+                solid_.fe.has_support_on_face(a, f))
               contribution.sums[0] += r_local[a];
       // Current volume: integral of det F over the reference cell (exact for Q1 with 2x2x2
       // Gauss points, det F being of degree 2 in each coordinate).
@@ -242,7 +223,7 @@ namespace indentsim::problems
     };
     {
       const RunStatistics::Scope cell_loop_timer(statistics_.cell_loop);
-      run_on_owned_cells(dof_handler_, history_.n_q_points(), worker, copier);
+      run_on_owned_cells(solid_.dof_handler, history_.n_q_points(), worker, copier);
     }
     matrix_.compress(VectorOperation::add);
     rhs_.compress(VectorOperation::add);
@@ -260,7 +241,7 @@ namespace indentsim::problems
   double TensileProblem::free_residual_norm(const AffineConstraints<double> &constraints) const
   {
     double local = 0;
-    for (const auto dof : locally_owned_)
+    for (const auto dof : solid_.locally_owned)
       if (!constraints.is_constrained(dof))
         local += rhs_(dof) * rhs_(dof);
     return std::sqrt(Utilities::MPI::sum(local, communicator_));
@@ -273,8 +254,8 @@ namespace indentsim::problems
 
     const auto                &tolerances = case_.solver;
     double                     reference = tolerances.absolute_tolerance;
-    PETScWrappers::MPI::Vector du(locally_owned_, communicator_);
-    PETScWrappers::MPI::Vector u_owned(locally_owned_, communicator_);
+    PETScWrappers::MPI::Vector du(solid_.locally_owned, communicator_);
+    PETScWrappers::MPI::Vector u_owned(solid_.locally_owned, communicator_);
     iterations = 0;
     for (unsigned int it = 0; it <= tolerances.max_newton_iterations; ++it)
       {
@@ -448,8 +429,8 @@ namespace indentsim::problems
                << "  log strain " << std::setprecision(6) << record.log_strain << "  true stress "
                << record.true_stress << " GPa  force " << record.force << " mN  Newton "
                << record.newton_iterations << "  cut " << record.cutbacks << "  wall "
-               << format_duration(record.wall_time) << "  ETA ~" << format_duration(eta)
-               << std::endl;
+               << output::format_duration(record.wall_time) << "  ETA ~"
+               << output::format_duration(eta) << std::endl;
         if (csv.is_open())
           write_csv_row(csv, record);
         if (log.is_open())
@@ -458,7 +439,7 @@ namespace indentsim::problems
               << record.cutbacks << ' ' << std::setprecision(4) << record.wall_time << std::endl;
       }
     pcout_ << "[" << model << "] finished: " << loading.steps << " steps, " << total_newton
-           << " Newton iterations, wall time " << format_duration(wall_timer_.wall_time())
+           << " Newton iterations, wall time " << output::format_duration(wall_timer_.wall_time())
            << std::endl;
     if (log.is_open())
       log << "# finished: " << loading.steps << " steps, " << total_newton << " Newton iterations, "
@@ -488,16 +469,16 @@ namespace indentsim::problems
 
   void TensileProblem::write_paraview(const std::string &output_directory, const unsigned int index)
   {
-    const unsigned int n_cells_local = triangulation_.n_active_cells();
+    const unsigned int n_cells_local = solid_.triangulation.n_active_cells();
     Vector<float> sigma_zz(n_cells_local), von_mises(n_cells_local), plastic_strain(n_cells_local),
         grain(n_cells_local), rank(n_cells_local);
     const unsigned int        n_q_points = history_.n_q_points(), n_state = history_.n_state();
-    CellWorkspace             workspace(fe_, n_q_points);
+    CellWorkspace             workspace(solid_.fe, n_q_points);
     std::vector<Tensor<2, 3>> cauchy(n_q_points);
     std::vector<double>       state(history_.cell_length());
     const GhostedVector       u =
-        to_thread_readable(solution_, locally_owned_, locally_relevant_, communicator_);
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+        to_thread_readable(solution_, solid_.locally_owned, solid_.locally_relevant, communicator_);
+    for (const auto &cell : solid_.dof_handler.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
           continue;
@@ -518,11 +499,11 @@ namespace indentsim::problems
                 n_q_points;
           }
         grain[index_of_cell] = grain_of_cell_[index_of_cell];
-        rank[index_of_cell] = triangulation_.locally_owned_subdomain();
+        rank[index_of_cell] = solid_.triangulation.locally_owned_subdomain();
       }
 
     DataOut<3> data_out;
-    data_out.attach_dof_handler(dof_handler_);
+    data_out.attach_dof_handler(solid_.dof_handler);
     const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
         3, DataComponentInterpretation::component_is_part_of_vector);
     data_out.add_data_vector(u, std::vector<std::string>(3, "displacement_um"),
@@ -533,7 +514,7 @@ namespace indentsim::problems
     data_out.add_data_vector(grain, "grain");
     data_out.add_data_vector(rank, "mpi_rank");
     // DataOut works on threads: it reads the thread-readable copy, not the PETSc vector.
-    const MappingQEulerian<3, GhostedVector> deformed(1, dof_handler_, u);
+    const MappingQEulerian<3, GhostedVector> deformed(1, solid_.dof_handler, u);
     data_out.build_patches(deformed, 1);
     data_out.write_vtu_with_pvtu_record(output_directory + "/", io::output_files::paraview_basename,
                                         index, communicator_, 4, 8);

@@ -25,6 +25,7 @@
 #include "fem/CellWorkspace.h"
 #include "fem/FiniteStrainElement.h"
 #include "fem/QuadraturePointHistory.h"
+#include "fem/SolidDiscretisation.h"
 #include "linalg/LinearSolver.h"
 #include "materials/MaterialModel.h"
 #include "nonlinear/IncrementStatus.h"
@@ -114,15 +115,12 @@ namespace indentsim::problems
 
     void write_paraview(const std::string &output_directory, unsigned int index);
 
-    const io::Case                                  case_;
-    MPI_Comm                                        communicator_;
-    dealii::ConditionalOStream                      pcout_;
-    dealii::parallel::distributed::Triangulation<3> triangulation_;
-    dealii::FESystem<3>                             fe_;
-    dealii::DoFHandler<3>                           dof_handler_;
-    dealii::IndexSet                                locally_owned_, locally_relevant_;
-    dealii::AffineConstraints<double>               constraints_homogeneous_;
-    dealii::AffineConstraints<double>               constraints_increment_;
+    const io::Case                    case_;
+    MPI_Comm                          communicator_;
+    dealii::ConditionalOStream        pcout_;
+    fem::SolidDiscretisation          solid_; // mesh, elements, DoFs, index sets
+    dealii::AffineConstraints<double> constraints_homogeneous_;
+    dealii::AffineConstraints<double> constraints_increment_;
 
     std::unique_ptr<materials::MaterialModel> material_;
     bool                                      use_f_bar_;

@@ -58,8 +58,8 @@ TEST(Mpi, OneVersusManyRanksGiveTheSameCurve)
 TEST(Mpi, FrictionUnderForceControlMatchesOneRank)
 {
   io::Case c = test_cases::elastic_rounded_cone_case();
-  c.specimen.size = {40., 40., 20.};
-  c.specimen.refined_region = {4., 4., 2.};
+  c.specimen.size = {{40., 40., 20.}};
+  c.specimen.refined_region = {{4., 4., 2.}};
   c.specimen.contact_elements = 16;
   c.contact.friction_coefficient = 0.2;
   c.loading.control = "force";

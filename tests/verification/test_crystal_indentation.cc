@@ -21,8 +21,8 @@ namespace
   io::Case tiny_crystal_case(const std::string &symmetry, const std::array<double, 3> &euler)
   {
     io::Case c = test_cases::small_crystal_case(symmetry, euler);
-    c.specimen.size = {30., 30., 15.};
-    c.specimen.refined_region = {8., 8., 2.};
+    c.specimen.size = {{30., 30., 15.}};
+    c.specimen.refined_region = {{8., 8., 2.}};
     c.specimen.contact_elements = 8;
     return c;
   }

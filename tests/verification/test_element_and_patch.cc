@@ -117,8 +117,8 @@ namespace
   {
     io::Case c;
     c.material = paper_material(model);
-    c.specimen.size = {40., 40., 20.};
-    c.specimen.refined_region = {16., 16., 4.};
+    c.specimen.size = {{40., 40., 20.}};
+    c.specimen.refined_region = {{16., 16., 4.}};
     c.specimen.contact_elements = 8;
     c.specimen.symmetry = "full";
     c.specimen.f_bar = f_bar;

@@ -355,7 +355,9 @@ TEST(FrictionIndentation, CoulombConditionsHoldAtConvergence)
               ++n_slip;
               EXPECT_NEAR(node.traction.norm(), limit, 1e-12 * (1 + limit));
               if (node.slip.norm() > 1e-9)
-                EXPECT_LT(node.traction * node.slip, 0.0);
+                {
+                  EXPECT_LT(node.traction * node.slip, 0.0);
+                }
             }
         }
       EXPECT_EQ(n_stick, record.n_stick_nodes);

@@ -57,7 +57,7 @@ namespace
 TEST(ElasticIndentation, HertzRegimeMatchesClosedForm)
 {
   io::Case c = elastic_case();
-  c.specimen.refined_region = {4., 4., 2.};
+  c.specimen.refined_region = {{4., 4., 2.}};
   c.specimen.contact_elements = 24;
   c.loading.max_depth = 0.1;
   c.loading.steps = 1;
@@ -70,7 +70,7 @@ TEST(ElasticIndentation, HertzRegimeMatchesClosedForm)
 TEST(ElasticIndentation, AtTipRadiusScaleMatchesClosedForm)
 {
   io::Case c = elastic_case();
-  c.specimen.refined_region = {10., 10., 3.};
+  c.specimen.refined_region = {{10., 10., 3.}};
   c.specimen.contact_elements = 40;
   c.loading.max_depth = 1.0;
   c.loading.steps = 5;
@@ -108,7 +108,7 @@ TEST(ElasticIndentation, EquilibriumAndExactContact)
 TEST(ElasticIndentation, InterpolatedContactAreaFollowsClosedForm)
 {
   io::Case c = elastic_case();
-  c.specimen.refined_region = {6., 6., 2.5};
+  c.specimen.refined_region = {{6., 6., 2.5}};
   c.specimen.contact_elements = 24; // 0.25 um
   c.loading.max_depth = 0.6;
   c.loading.steps = 4;

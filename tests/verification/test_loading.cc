@@ -16,8 +16,8 @@ namespace
   io::Case elastic_case()
   {
     io::Case c = test_cases::elastic_rounded_cone_case();
-    c.specimen.size = {40., 40., 20.};
-    c.specimen.refined_region = {4., 4., 2.};
+    c.specimen.size = {{40., 40., 20.}};
+    c.specimen.refined_region = {{4., 4., 2.}};
     c.specimen.contact_elements = 16;
     c.loading.max_depth = 0.3;
     c.loading.steps = 3;

@@ -259,7 +259,7 @@ TEST(OliverPharr, CsvColumnsAndUnits)
 TEST(OliverPharr, ElasticIndentationRecoversTheReducedModulus)
 {
   io::Case c = test_cases::elastic_rounded_cone_case();
-  c.specimen.refined_region = {4., 4., 2.};
+  c.specimen.refined_region = {{4., 4., 2.}};
   c.specimen.contact_elements = 24;
   c.loading.max_depth = 0.1;
   c.loading.steps = 4;

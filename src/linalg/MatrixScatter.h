@@ -36,6 +36,8 @@
 
 namespace indentsim::linalg
 {
+  class MatrixPattern; // where this rank finds a global entry (MatrixScatter.cc)
+
   class MatrixScatter
   {
   public:
@@ -85,6 +87,17 @@ namespace indentsim::linalg
                                     : send_values_[position - n_local_];
     }
     void release_communicator();
+
+    // The steps of build(): empties the plan; plans one owned cell (false: it takes the slow
+    // path); groups the send slots by destination rank (returns the (row, column) of each slot
+    // in the new order); learns from the other ranks what they send and where it goes.
+    struct CellScratch;
+    void                  reset(unsigned int n_active_cells, unsigned int n_cell_dofs);
+    bool                  plan_cell(const dealii::DoFHandler<3>::active_cell_iterator &cell,
+                                    const dealii::AffineConstraints<double> &constraints, MatrixPattern &pattern,
+                                    CellScratch &scratch);
+    std::vector<PetscInt> group_send_slots(const MatrixPattern &pattern);
+    void plan_receives(MatrixPattern &pattern, const std::vector<PetscInt> &send_entries);
     // Sends slots [send_offsets_[k], send_offsets_[k + 1]) of `send` (width values of `type`
     // per slot) to send_ranks_[k] and receives likewise into `receive`.
     void exchange(const void *send, void *receive, int width, MPI_Datatype type) const;

@@ -1,13 +1,12 @@
 #include "materials/J2Plasticity.h"
 #include "materials/ImplicitLocalProblem.h"
 #include "materials/TensorFunctions.h"
-#include <cstdio>
-#include <cstdlib>
 
 #include <Sacado.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -65,6 +64,183 @@ namespace indentsim::materials
                                (yield_stress_n + hardening_modulus * x[delta_gamma_index]) / mu;
       }
     };
+
+    // The return mapping's parameters eps_e^tr = 1/2 log b_e^tr (6, unrolled) and J; when the
+    // tangent is wanted, also as forward-AD functions of the components of F.
+    struct TrialParameters
+    {
+      ReturnMapping::Parameters           values;
+      dealii::Tensor<2, 3, ADNumberF>     F_ad;
+      std::array<ADNumberF, n_parameters> ad;
+    };
+
+    TrialParameters trial_parameters(const dealii::Tensor<2, 3>          &F,
+                                     const dealii::SymmetricTensor<2, 3> &C_p_inverse_n,
+                                     const dealii::SymmetricTensor<2, 3> &b_e_trial, const double J,
+                                     const bool with_derivatives)
+    {
+      TrialParameters trial;
+      if (with_derivatives)
+        {
+          for (unsigned int k = 0; k < 3; ++k)
+            for (unsigned int L = 0; L < 3; ++L)
+              trial.F_ad[k][L] = ADNumberF(9, 3 * k + L, F[k][L]);
+          const auto log_b_e_trial = log_spd(push_forward_symmetric(trial.F_ad, C_p_inverse_n));
+          for (unsigned int k = 0; k < 6; ++k)
+            trial.ad[k] = 0.5 * log_b_e_trial.access_raw_entry(k);
+          trial.ad[J_index] = determinant_3x3(trial.F_ad);
+          trial.ad[J_index].val() = J; // same value, without the cancellation of det F
+          for (unsigned int a = 0; a < n_parameters; ++a)
+            trial.values[a] = trial.ad[a].val();
+        }
+      else
+        {
+          const auto log_b_e_trial = log_spd(b_e_trial);
+          for (unsigned int k = 0; k < 6; ++k)
+            trial.values[k] = 0.5 * log_b_e_trial.access_raw_entry(k);
+          trial.values[J_index] = J;
+        }
+      return trial;
+    }
+
+    enum class ReturnOutcome
+    {
+      plastic,          // Delta gamma > 0
+      on_yield_surface, // Delta gamma = 0 to round-off: the elastic solution
+      not_converged
+    };
+
+    // The local Newton of the return mapping. First initial guess: the radial return of the
+    // Hencky approximation dev tau ~ 2 mu dev eps_e, for which
+    // sigma_HMH = sqrt(3/2) 2 mu |dev eps_e| / J^m drops by 3 mu Delta gamma / J^m along N
+    // (exact for small elastic strains, so Newton starts in its quadratic range; the
+    // neo-Hookean f^tr would overshoot for large trial strains, where exp(2 eps) >> 1 + 2 eps,
+    // and could land on the spurious reversed-flow root). Fallback: Newton from the trial state
+    // itself (Delta gamma = 0).
+    ReturnOutcome solve_return_mapping(const ReturnMappingResidual     &residual,
+                                       const ReturnMapping::Parameters &parameters,
+                                       const double J_m, ReturnMapping::Unknowns &unknowns)
+    {
+      const double mu = residual.mu, yield_stress_n = residual.yield_stress_n;
+      const auto   set_hencky_guess = [&]() {
+        const double                  mean = (parameters[0] + parameters[1] + parameters[2]) / 3.0;
+        dealii::SymmetricTensor<2, 3> dev_eps_trial;
+        for (unsigned int k = 0; k < 6; ++k)
+          dev_eps_trial.access_raw_entry(k) = parameters[k] - (k < 3 ? mean : 0.0);
+        const double norm_dev = norm_symmetric(dev_eps_trial);
+        const double delta_gamma_0 =
+            std::max(sqrt_3_2 * 2.0 * mu * norm_dev / J_m - yield_stress_n, 0.0) /
+            (3.0 * mu / J_m + residual.hardening_modulus);
+        for (unsigned int k = 0; k < 6; ++k)
+          unknowns[k] = parameters[k] -
+                        delta_gamma_0 * sqrt_3_2 * dev_eps_trial.access_raw_entry(k) / norm_dev;
+        unknowns[delta_gamma_index] = delta_gamma_0;
+      };
+      const auto set_trial_guess = [&]() {
+        for (unsigned int k = 0; k < 6; ++k)
+          unknowns[k] = parameters[k];
+        unknowns[delta_gamma_index] = 0.0;
+      };
+
+      LocalNewtonSettings settings;
+      // Round-off of the residual is ~1e-16 of the largest strain involved.
+      double strain_scale = yield_stress_n / mu;
+      for (unsigned int k = 0; k < 6; ++k)
+        strain_scale = std::max(strain_scale, std::abs(parameters[k]));
+      settings.tolerance = 1e-14 * strain_scale;
+      settings.stagnation_tolerance = 1e-11 * strain_scale;
+      for (unsigned int attempt = 0; attempt < 2; ++attempt)
+        {
+          if (attempt == 0)
+            set_hencky_guess();
+          else
+            set_trial_guess();
+          const LocalNewtonResult newton =
+              ReturnMapping::solve(residual, parameters, unknowns, settings);
+          // Delta gamma > 0 is guaranteed for f^tr > 0 (KKT); anything else is a spurious root.
+          if (newton.converged && unknowns[delta_gamma_index] > 0.0)
+            return ReturnOutcome::plastic;
+          // A trial state on the yield surface to round-off returns Delta gamma = 0
+          // (+- round-off): that is the elastic solution, not a failure.
+          if (newton.converged && std::abs(unknowns[delta_gamma_index]) <= 1e-10 * strain_scale)
+            return ReturnOutcome::on_yield_surface;
+        }
+      return ReturnOutcome::not_converged;
+    }
+
+    // Consistent tangent: eps_e(F) through the implicit function theorem, then
+    // P = tau(b_e) F^-T differentiated by forward AD over the components of F. Fills `response`
+    // and returns b_e, or nothing if the local Jacobian is singular.
+    std::optional<dealii::SymmetricTensor<2, 3>>
+    stress_and_tangent(const NeoHookean &elasticity, const double J_minus_one,
+                       const ReturnMappingResidual &residual, const TrialParameters &trial,
+                       const ReturnMapping::Unknowns &unknowns, MaterialPointResponse &response)
+    {
+      ReturnMapping::Sensitivity dx_dp;
+      if (!ReturnMapping::sensitivity(residual, trial.values, unknowns, dx_dp))
+        return std::nullopt;
+      const auto unknowns_ad = ReturnMapping::linearized_solution(unknowns, dx_dp, trial.ad);
+      dealii::SymmetricTensor<2, 3, ADNumberF> two_eps_e_ad;
+      for (unsigned int k = 0; k < 6; ++k)
+        two_eps_e_ad.access_raw_entry(k) = 2.0 * unknowns_ad[k];
+      const auto b_e_ad = exp_symmetric(two_eps_e_ad);
+
+      // tau = mu (b_e - 1) + lambda/2 (J^2 - 1) 1 (eq. 3); the pressure value is taken from
+      // J - 1, its derivative lambda J dJ/dF from AD.
+      const double     mu = elasticity.shear_modulus();
+      const ADNumberF &J_ad = trial.ad[J_index];
+      ADNumberF        pressure_term = 0.5 * elasticity.lame_lambda() * (J_ad * J_ad - 1.0);
+      pressure_term.val() = 0.5 * elasticity.lame_lambda() * J_minus_one * (J_minus_one + 2.0);
+      dealii::Tensor<2, 3, ADNumberF> tau_ad;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          {
+            tau_ad[i][j] = mu * b_e_ad[i][j];
+            if (i == j)
+              tau_ad[i][j] += pressure_term - mu;
+          }
+      const auto F_inverse_ad = inverse_3x3(trial.F_ad);
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int J_col = 0; J_col < 3; ++J_col)
+          {
+            ADNumberF P_iJ = tau_ad[i][0] * F_inverse_ad[J_col][0];
+            for (unsigned int m = 1; m < 3; ++m)
+              P_iJ += tau_ad[i][m] * F_inverse_ad[J_col][m];
+            response.P[i][J_col] = P_iJ.val();
+            response.tau[i][J_col] = tau_ad[i][J_col].val();
+            for (unsigned int k = 0; k < 3; ++k)
+              for (unsigned int L = 0; L < 3; ++L)
+                response.dP_dF[i][J_col][k][L] = P_iJ.dx(3 * k + L);
+          }
+      dealii::SymmetricTensor<2, 3> b_e;
+      for (unsigned int k = 0; k < 6; ++k)
+        b_e.access_raw_entry(k) = b_e_ad.access_raw_entry(k).val();
+      return b_e;
+    }
+
+    // tau(b_e) and P = tau F^-T without the tangent; returns b_e.
+    dealii::SymmetricTensor<2, 3> stress(const NeoHookean           &elasticity,
+                                         const dealii::Tensor<2, 3> &F, const double J_minus_one,
+                                         const ReturnMapping::Unknowns &unknowns,
+                                         MaterialPointResponse         &response)
+    {
+      dealii::SymmetricTensor<2, 3> two_eps_e;
+      for (unsigned int k = 0; k < 6; ++k)
+        two_eps_e.access_raw_entry(k) = 2.0 * unknowns[k];
+      const dealii::SymmetricTensor<2, 3> b_e = exp_symmetric(two_eps_e);
+      const dealii::SymmetricTensor<2, 3> tau = elasticity.kirchhoff_stress(b_e, J_minus_one);
+      const dealii::Tensor<2, 3>          F_inverse = inverse_3x3(F);
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int J_col = 0; J_col < 3; ++J_col)
+          {
+            double P_iJ = 0.0;
+            for (unsigned int m = 0; m < 3; ++m)
+              P_iJ += tau[i][m] * F_inverse[J_col][m];
+            response.P[i][J_col] = P_iJ;
+            response.tau[i][J_col] = tau[i][J_col];
+          }
+      return b_e;
+    }
   } // namespace
 
   J2Plasticity::J2Plasticity(const double young_modulus, const double poisson_ratio,
@@ -130,194 +306,52 @@ namespace indentsim::materials
     const dealii::SymmetricTensor<2, 3> C_p_inverse_n = plastic_metric_inverse(state_old);
     const double                        gamma_p_n = state_old[gamma_p_index];
     const double                        yield_stress_n = flow_stress(gamma_p_n);
+    // Elastic step (KKT, eq. 8, with Delta gamma = 0): the neo-Hookean response in
+    // b_e = F C_p^-1 F^T with the plastic state frozen.
+    const auto elastic_step = [&]() {
+      elasticity.elastic_response(F, C_p_inverse_n, J_minus_one, response, compute_tangent);
+      std::copy(state_old.begin(), state_old.end(), state_new.begin());
+      return UpdateStatus::success;
+    };
 
     // Elastic predictor: tau(b_e^tr) directly, no logarithm needed (dev tau = mu dev b_e).
     const dealii::SymmetricTensor<2, 3> b_e_trial = push_forward_symmetric(F, C_p_inverse_n);
-    const dealii::SymmetricTensor<2, 3> dev_b_e_trial = deviator_symmetric(b_e_trial);
-    const double                        norm_dev_b_e_trial = norm_symmetric(dev_b_e_trial);
-    const double                        trial_yield_function =
+    const double norm_dev_b_e_trial = norm_symmetric(deviator_symmetric(b_e_trial));
+    const double trial_yield_function =
         sqrt_3_2 * mu * norm_dev_b_e_trial / (cauchy ? J : 1.0) - yield_stress_n;
-
     if (trial_yield_function <= 0.0)
-      {
-        // Elastic step (KKT, eq. 8, with Delta gamma = 0): the neo-Hookean response in
-        // b_e = F C_p^-1 F^T with the plastic state frozen.
-        elasticity.elastic_response(F, C_p_inverse_n, J_minus_one, response, compute_tangent);
-        std::copy(state_old.begin(), state_old.end(), state_new.begin());
-        return UpdateStatus::success;
-      }
+      return elastic_step();
 
-    // Plastic corrector. Trial log strain eps_e^tr = 1/2 log b_e^tr; when the tangent is
-    // wanted it is computed once with derivatives with respect to F.
-    dealii::Tensor<2, 3, ADNumberF>     F_ad;
-    std::array<ADNumberF, n_parameters> parameters_ad;
-    ReturnMapping::Parameters           parameters;
-    if (compute_tangent)
-      {
-        for (unsigned int k = 0; k < 3; ++k)
-          for (unsigned int L = 0; L < 3; ++L)
-            F_ad[k][L] = ADNumberF(9, 3 * k + L, F[k][L]);
-        const auto log_b_e_trial = log_spd(push_forward_symmetric(F_ad, C_p_inverse_n));
-        for (unsigned int k = 0; k < 6; ++k)
-          parameters_ad[k] = 0.5 * log_b_e_trial.access_raw_entry(k);
-        parameters_ad[J_index] = determinant_3x3(F_ad);
-        parameters_ad[J_index].val() = J; // same value, without the cancellation of det F
-        for (unsigned int a = 0; a < n_parameters; ++a)
-          parameters[a] = parameters_ad[a].val();
-      }
-    else
-      {
-        const auto log_b_e_trial = log_spd(b_e_trial);
-        for (unsigned int k = 0; k < 6; ++k)
-          parameters[k] = 0.5 * log_b_e_trial.access_raw_entry(k);
-        parameters[J_index] = J;
-      }
-
-    // Local Newton. First initial guess: the radial return of the Hencky approximation
-    // dev tau ~ 2 mu dev eps_e, for which sigma_HMH = sqrt(3/2) 2 mu |dev eps_e| / J^m drops by
-    // 3 mu Delta gamma / J^m along N (exact for small elastic strains, so Newton starts in its
-    // quadratic range; the neo-Hookean f^tr would overshoot for large trial strains, where
-    // exp(2 eps) >> 1 + 2 eps, and could land on the spurious reversed-flow root).
-    // Fallback: Newton from the trial state itself (Delta gamma = 0).
-    const double            J_m = cauchy ? J : 1.0;
-    ReturnMapping::Unknowns unknowns;
-    const auto              set_hencky_guess = [&]() {
-      const double                  mean = (parameters[0] + parameters[1] + parameters[2]) / 3.0;
-      dealii::SymmetricTensor<2, 3> dev_eps_trial;
-      for (unsigned int k = 0; k < 6; ++k)
-        dev_eps_trial.access_raw_entry(k) = parameters[k] - (k < 3 ? mean : 0.0);
-      const double norm_dev = norm_symmetric(dev_eps_trial);
-      const double delta_gamma_0 =
-          std::max(sqrt_3_2 * 2.0 * mu * norm_dev / J_m - yield_stress_n, 0.0) /
-          (3.0 * mu / J_m + hardening_modulus);
-      for (unsigned int k = 0; k < 6; ++k)
-        unknowns[k] =
-            parameters[k] - delta_gamma_0 * sqrt_3_2 * dev_eps_trial.access_raw_entry(k) / norm_dev;
-      unknowns[delta_gamma_index] = delta_gamma_0;
-    };
-    const auto set_trial_guess = [&]() {
-      for (unsigned int k = 0; k < 6; ++k)
-        unknowns[k] = parameters[k];
-      unknowns[delta_gamma_index] = 0.0;
-    };
-
+    // Plastic corrector: the return mapping from eps_e^tr.
+    const TrialParameters trial = trial_parameters(F, C_p_inverse_n, b_e_trial, J, compute_tangent);
     const ReturnMappingResidual residual{mu, yield_stress_n, hardening_modulus, cauchy};
-    LocalNewtonSettings         settings;
-    // Round-off of the residual is ~1e-16 of the largest strain involved.
-    double strain_scale = yield_stress_n / mu;
-    for (unsigned int k = 0; k < 6; ++k)
-      strain_scale = std::max(strain_scale, std::abs(parameters[k]));
-    settings.tolerance = 1e-14 * strain_scale;
-    settings.stagnation_tolerance = 1e-11 * strain_scale;
-    bool converged = false;
-    for (unsigned int attempt = 0; attempt < 2 && !converged; ++attempt)
+    ReturnMapping::Unknowns     unknowns;
+    switch (solve_return_mapping(residual, trial.values, cauchy ? J : 1.0, unknowns))
       {
-        if (attempt == 0)
-          set_hencky_guess();
-        else
-          set_trial_guess();
-        const LocalNewtonResult newton =
-            ReturnMapping::solve(residual, parameters, unknowns, settings);
-        // Delta gamma > 0 is guaranteed for f^tr > 0 (KKT); anything else is a spurious root.
-        converged = newton.converged && unknowns[delta_gamma_index] > 0.0;
-        // A trial state on the yield surface to round-off returns Delta gamma = 0 (+- round-off):
-        // that is the elastic solution, not a failure.
-        if (newton.converged && !converged &&
-            std::abs(unknowns[delta_gamma_index]) <= 1e-10 * strain_scale)
-          {
-            elasticity.elastic_response(F, C_p_inverse_n, J_minus_one, response, compute_tangent);
-            std::copy(state_old.begin(), state_old.end(), state_new.begin());
-            return UpdateStatus::success;
-          }
+      case ReturnOutcome::on_yield_surface:
+        return elastic_step();
+      case ReturnOutcome::not_converged:
+        std::copy(state_old.begin(), state_old.end(), state_new.begin());
+        return UpdateStatus::local_newton_failed;
+      case ReturnOutcome::plastic:
+        break;
       }
-    const double delta_gamma = unknowns[delta_gamma_index];
-    if (!converged)
+
+    std::optional<dealii::SymmetricTensor<2, 3>> b_e =
+        compute_tangent
+            ? stress_and_tangent(elasticity, J_minus_one, residual, trial, unknowns, response)
+            : stress(elasticity, F, J_minus_one, unknowns, response);
+    if (!b_e)
       {
-        if (std::getenv("INDENTSIM_DEBUG_J2"))
-          {
-            std::fprintf(stderr, "J2FAIL F");
-            for (unsigned int k = 0; k < 3; ++k)
-              for (unsigned int L = 0; L < 3; ++L)
-                std::fprintf(stderr, " %.17g", F[k][L]);
-            std::fprintf(stderr, " state");
-            for (const double v : state_old)
-              std::fprintf(stderr, " %.17g", v);
-            std::fprintf(stderr, "\n");
-          }
         std::copy(state_old.begin(), state_old.end(), state_new.begin());
         return UpdateStatus::local_newton_failed;
       }
 
-    dealii::SymmetricTensor<2, 3> b_e;
-    if (compute_tangent)
-      {
-        // Consistent tangent: eps_e(F) through the implicit function theorem, then
-        // P = tau(b_e) F^-T differentiated by forward AD over the components of F.
-        ReturnMapping::Sensitivity dx_dp;
-        if (!ReturnMapping::sensitivity(residual, parameters, unknowns, dx_dp))
-          {
-            std::copy(state_old.begin(), state_old.end(), state_new.begin());
-            return UpdateStatus::local_newton_failed;
-          }
-        const auto unknowns_ad = ReturnMapping::linearized_solution(unknowns, dx_dp, parameters_ad);
-        dealii::SymmetricTensor<2, 3, ADNumberF> two_eps_e_ad;
-        for (unsigned int k = 0; k < 6; ++k)
-          two_eps_e_ad.access_raw_entry(k) = 2.0 * unknowns_ad[k];
-        const auto b_e_ad = exp_symmetric(two_eps_e_ad);
-
-        // tau = mu (b_e - 1) + lambda/2 (J^2 - 1) 1 (eq. 3); the pressure value is taken from
-        // J - 1, its derivative lambda J dJ/dF from AD.
-        const ADNumberF &J_ad = parameters_ad[J_index];
-        ADNumberF        pressure_term = 0.5 * elasticity.lame_lambda() * (J_ad * J_ad - 1.0);
-        pressure_term.val() = 0.5 * elasticity.lame_lambda() * J_minus_one * (J_minus_one + 2.0);
-        dealii::Tensor<2, 3, ADNumberF> tau_ad;
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int j = 0; j < 3; ++j)
-            {
-              tau_ad[i][j] = mu * b_e_ad[i][j];
-              if (i == j)
-                tau_ad[i][j] += pressure_term - mu;
-            }
-        const auto F_inverse_ad = inverse_3x3(F_ad);
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int J_col = 0; J_col < 3; ++J_col)
-            {
-              ADNumberF P_iJ = tau_ad[i][0] * F_inverse_ad[J_col][0];
-              for (unsigned int m = 1; m < 3; ++m)
-                P_iJ += tau_ad[i][m] * F_inverse_ad[J_col][m];
-              response.P[i][J_col] = P_iJ.val();
-              response.tau[i][J_col] = tau_ad[i][J_col].val();
-              for (unsigned int k = 0; k < 3; ++k)
-                for (unsigned int L = 0; L < 3; ++L)
-                  response.dP_dF[i][J_col][k][L] = P_iJ.dx(3 * k + L);
-            }
-        for (unsigned int k = 0; k < 6; ++k)
-          b_e.access_raw_entry(k) = b_e_ad.access_raw_entry(k).val();
-      }
-    else
-      {
-        dealii::SymmetricTensor<2, 3> two_eps_e;
-        for (unsigned int k = 0; k < 6; ++k)
-          two_eps_e.access_raw_entry(k) = 2.0 * unknowns[k];
-        b_e = exp_symmetric(two_eps_e);
-        const dealii::SymmetricTensor<2, 3> tau = elasticity.kirchhoff_stress(b_e, J_minus_one);
-        const Tensor<2, 3>                  F_inverse = inverse_3x3(F);
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int J_col = 0; J_col < 3; ++J_col)
-            {
-              double P_iJ = 0.0;
-              for (unsigned int m = 0; m < 3; ++m)
-                P_iJ += tau[i][m] * F_inverse[J_col][m];
-              response.P[i][J_col] = P_iJ;
-              response.tau[i][J_col] = tau[i][J_col];
-            }
-      }
-
     // Updated plastic metric C_p^-1 = F^-1 b_e F^-T (eq. 9 pulled back) and gamma_p.
-    const dealii::SymmetricTensor<2, 3> C_p_inverse = push_forward_symmetric(inverse_3x3(F), b_e);
+    const dealii::SymmetricTensor<2, 3> C_p_inverse = push_forward_symmetric(inverse_3x3(F), *b_e);
     for (unsigned int k = 0; k < 6; ++k)
       state_new[k] = C_p_inverse.access_raw_entry(k);
-    state_new[gamma_p_index] = gamma_p_n + delta_gamma;
+    state_new[gamma_p_index] = gamma_p_n + unknowns[delta_gamma_index];
     return UpdateStatus::success;
   }
 } // namespace indentsim::materials

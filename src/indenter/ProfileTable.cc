@@ -383,6 +383,112 @@ namespace indentsim::indenter
     return std::numbers::pi * radius * radius;
   }
 
+  void ProfileTable::Closest::consider(const double radius, const double height)
+  {
+    const double distance = std::hypot(radius - rho, height - zeta);
+    if (distance < best)
+      {
+        best = distance;
+        foot_r = radius;
+        foot_z = height;
+      }
+  }
+
+  void ProfileTable::closest_on_piece(const std::size_t k, Closest &closest) const
+  {
+    const double rho = closest.rho, zeta = closest.zeta;
+    // Skip the piece if its bounding box is farther than the best point so far.
+    const double below = std::max({0., r[k] - rho, rho - r[k + 1]});
+    const double beside = std::max({0., box_low[k] - zeta, zeta - box_high[k]});
+    if (!(std::hypot(below, beside) < closest.best))
+      return;
+    // The stationary points of (r - rho)^2 + (f(r) - zeta)^2 are the roots of
+    // g = (r - rho) + (f - zeta) f'. In t on [0, 1], G = width g is the quintic
+    //   width (r_k - rho) + width^2 t + (F(t) - zeta) F'(t),  F(t) = f(r_k + width t).
+    const double          width = r[k + 1] - r[k];
+    const auto            F = hermite_coefficients(z[k], z[k + 1], dz_dr[k], dz_dr[k + 1], width);
+    std::array<double, 4> P = F;
+    P[0] -= zeta;
+    const std::array<double, 3> Q = {{F[1], 2. * F[2], 3. * F[3]}};
+    std::array<double, 6>       power{};
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 3; ++j)
+        power[i + j] += P[i] * Q[j];
+    power[0] += width * (r[k] - rho);
+    power[1] += width * width;
+
+    // Bernstein coefficients b_i = sum_{j <= i} C(i, j) / C(5, j) p_j.
+    static constexpr double binomial[6][6] = {{1, 0, 0, 0, 0, 0}, {1, 1, 0, 0, 0, 0},
+                                              {1, 2, 1, 0, 0, 0}, {1, 3, 3, 1, 0, 0},
+                                              {1, 4, 6, 4, 1, 0}, {1, 5, 10, 10, 5, 1}};
+    std::array<double, 6>   bernstein{};
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j <= i; ++j)
+        bernstein[i] += binomial[i][j] / binomial[5][j] * power[j];
+
+    const auto G = [&](const double t) {
+      double value = 0.;
+      for (int i = 5; i >= 0; --i)
+        value = value * t + power[i];
+      return value;
+    };
+    const auto dG = [&](const double t) {
+      double value = 0.;
+      for (int i = 5; i >= 1; --i)
+        value = value * t + i * power[i];
+      return value;
+    };
+    const auto foot_at = [&](const double t) { closest.consider(r[k] + width * t, horner(F, t)); };
+    // The single root in [t0, t1] (G(t0) and G(t1) of opposite signs): Newton safeguarded
+    // by bisection.
+    const auto refine = [&](double lo, double hi) {
+      const bool rising = G(lo) < 0.;
+      double     t = 0.5 * (lo + hi);
+      for (unsigned int iteration = 0; iteration < 200; ++iteration)
+        {
+          const double value = G(t);
+          if (value == 0.)
+            break;
+          ((value < 0.) == rising ? lo : hi) = t;
+          const double slope = dG(t);
+          double       next = slope != 0. ? t - value / slope : 0.5 * (lo + hi);
+          if (!(next > lo && next < hi))
+            next = 0.5 * (lo + hi);
+          const bool done = std::abs(next - t) <= 2. * std::numeric_limits<double>::epsilon() ||
+                            hi - lo <= 2. * std::numeric_limits<double>::epsilon();
+          t = next;
+          if (done)
+            break;
+        }
+      return t;
+    };
+    // Root isolation by midpoint subdivision of the Bernstein form.
+    const auto isolate = [&](const auto &self, const std::array<double, 6> &b, const double t0,
+                             const double t1, const int level) -> void {
+      if (b[0] == 0.)
+        foot_at(t0);
+      const int changes = sign_changes(b);
+      if (changes == 0)
+        return;
+      if (changes == 1 && b[0] != 0. && b[5] != 0.)
+        {
+          foot_at(refine(t0, t1));
+          return;
+        }
+      if (level >= 52) // interval at round-off width: a multiple root
+        {
+          foot_at(0.5 * (t0 + t1));
+          return;
+        }
+      std::array<double, 6> left{}, right{};
+      split(b, left, right);
+      const double middle = 0.5 * (t0 + t1);
+      self(self, left, t0, middle, level + 1);
+      self(self, right, middle, t1, level + 1);
+    };
+    isolate(isolate, bernstein, 0., 1., 0);
+  }
+
   SurfaceProjection ProfileTable::project(const Point<3> &x, const double depth) const
   {
     const double zeta = x[2] + depth; // height above the apex
@@ -393,124 +499,25 @@ namespace indentsim::indenter
     const double cos_phi = rho > 0. ? x[0] / rho : 1.;
     const double sin_phi = rho > 0. ? x[1] / rho : 0.;
 
-    double     best = std::numeric_limits<double>::infinity();
-    double     foot_r = 0., foot_z = 0.;
-    const auto consider = [&](const double radius, const double height) {
-      const double distance = std::hypot(radius - rho, height - zeta);
-      if (distance < best)
-        {
-          best = distance;
-          foot_r = radius;
-          foot_z = height;
-        }
-    };
-
+    Closest closest{rho, zeta};
     // The rows (the apex among them) bound the distance from above.
     const std::size_t n = r.size(), last = n - 1;
     for (std::size_t i = 0; i < n; ++i)
-      consider(r[i], z[i]);
+      closest.consider(r[i], z[i]);
     // The straight continuation z = z_N + s (r - r_N), r >= r_N.
     {
       const double s = dz_dr[last];
       const double along = ((rho - r[last]) + s * (zeta - z[last])) / (1. + s * s);
       if (along > 0.)
-        consider(r[last] + along, z[last] + s * along);
+        closest.consider(r[last] + along, z[last] + s * along);
     }
-    // Each cubic piece: the stationary points of (r - rho)^2 + (f(r) - zeta)^2 are the roots of
-    // g = (r - rho) + (f - zeta) f'. In t on [0, 1], G = width g is the quintic
-    //   width (r_k - rho) + width^2 t + (F(t) - zeta) F'(t),  F(t) = f(r_k + width t).
+    // Each cubic piece.
     for (std::size_t k = 0; k < last; ++k)
-      {
-        const double below = std::max({0., r[k] - rho, rho - r[k + 1]});
-        const double beside = std::max({0., box_low[k] - zeta, zeta - box_high[k]});
-        if (!(std::hypot(below, beside) < best))
-          continue;
-        const double width = r[k + 1] - r[k];
-        const auto   F = hermite_coefficients(z[k], z[k + 1], dz_dr[k], dz_dr[k + 1], width);
-        std::array<double, 4> P = F;
-        P[0] -= zeta;
-        const std::array<double, 3> Q = {{F[1], 2. * F[2], 3. * F[3]}};
-        std::array<double, 6>       power{};
-        for (int i = 0; i < 4; ++i)
-          for (int j = 0; j < 3; ++j)
-            power[i + j] += P[i] * Q[j];
-        power[0] += width * (r[k] - rho);
-        power[1] += width * width;
+      closest_on_piece(k, closest);
 
-        // Bernstein coefficients b_i = sum_{j <= i} C(i, j) / C(5, j) p_j.
-        static constexpr double binomial[6][6] = {{1, 0, 0, 0, 0, 0}, {1, 1, 0, 0, 0, 0},
-                                                  {1, 2, 1, 0, 0, 0}, {1, 3, 3, 1, 0, 0},
-                                                  {1, 4, 6, 4, 1, 0}, {1, 5, 10, 10, 5, 1}};
-        std::array<double, 6>   bernstein{};
-        for (int i = 0; i < 6; ++i)
-          for (int j = 0; j <= i; ++j)
-            bernstein[i] += binomial[i][j] / binomial[5][j] * power[j];
-
-        const auto G = [&](const double t) {
-          double value = 0.;
-          for (int i = 5; i >= 0; --i)
-            value = value * t + power[i];
-          return value;
-        };
-        const auto dG = [&](const double t) {
-          double value = 0.;
-          for (int i = 5; i >= 1; --i)
-            value = value * t + i * power[i];
-          return value;
-        };
-        const auto foot_at = [&](const double t) { consider(r[k] + width * t, horner(F, t)); };
-        // The single root in [t0, t1] (G(t0) and G(t1) of opposite signs): Newton safeguarded
-        // by bisection.
-        const auto refine = [&](double lo, double hi) {
-          const bool rising = G(lo) < 0.;
-          double     t = 0.5 * (lo + hi);
-          for (unsigned int iteration = 0; iteration < 200; ++iteration)
-            {
-              const double value = G(t);
-              if (value == 0.)
-                break;
-              ((value < 0.) == rising ? lo : hi) = t;
-              const double slope = dG(t);
-              double       next = slope != 0. ? t - value / slope : 0.5 * (lo + hi);
-              if (!(next > lo && next < hi))
-                next = 0.5 * (lo + hi);
-              const bool done = std::abs(next - t) <= 2. * std::numeric_limits<double>::epsilon() ||
-                                hi - lo <= 2. * std::numeric_limits<double>::epsilon();
-              t = next;
-              if (done)
-                break;
-            }
-          return t;
-        };
-        // Root isolation by midpoint subdivision of the Bernstein form.
-        const auto isolate = [&](const auto &self, const std::array<double, 6> &b, const double t0,
-                                 const double t1, const int level) -> void {
-          if (b[0] == 0.)
-            foot_at(t0);
-          const int changes = sign_changes(b);
-          if (changes == 0)
-            return;
-          if (changes == 1 && b[0] != 0. && b[5] != 0.)
-            {
-              foot_at(refine(t0, t1));
-              return;
-            }
-          if (level >= 52) // interval at round-off width: a multiple root
-            {
-              foot_at(0.5 * (t0 + t1));
-              return;
-            }
-          std::array<double, 6> left{}, right{};
-          split(b, left, right);
-          const double middle = 0.5 * (t0 + t1);
-          self(self, left, t0, middle, level + 1);
-          self(self, right, middle, t1, level + 1);
-        };
-        isolate(isolate, bernstein, 0., 1., 0);
-      }
-
+    const double      best = closest.best, foot_r = closest.foot_r;
     SurfaceProjection result;
-    result.closest_point = Point<3>(foot_r * cos_phi, foot_r * sin_phi, foot_z - depth);
+    result.closest_point = Point<3>(foot_r * cos_phi, foot_r * sin_phi, closest.foot_z - depth);
     const bool inside = zeta > profile_at_radius(rho);
     if (foot_r == 0. && dz_dr[0] > 0. && best > 0.)
       {

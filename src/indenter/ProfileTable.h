@@ -22,6 +22,7 @@
 
 #include "indenter/IndenterSurface.h"
 
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -94,5 +95,16 @@ namespace indentsim::indenter
     void build();
     // The piece index k with r[k] <= radius < r[k+1] (n_rows - 1 beyond the table).
     std::size_t piece_of(double radius) const;
+
+    // The closest point so far of the profile to the meridian point (rho, zeta) [um].
+    struct Closest
+    {
+      double rho = 0., zeta = 0.;
+      double best = std::numeric_limits<double>::infinity(); // its distance
+      double foot_r = 0., foot_z = 0.;
+      void   consider(double radius, double height);
+    };
+    // Offers `closest` the stationary points of the distance on cubic piece k.
+    void closest_on_piece(std::size_t k, Closest &closest) const;
   };
 } // namespace indentsim::indenter

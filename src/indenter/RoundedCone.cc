@@ -64,6 +64,89 @@ namespace indentsim::indenter
     return std::numbers::pi * r * r;
   }
 
+  RoundedCone::Foot RoundedCone::foot_on_sharp_cone(const double rho, const double zeta) const
+  {
+    // Sharp cone z = r/a: the foot on the flank line solves (r - rho) + (r/a - zeta)/a = 0; if
+    // it falls behind the apex, the apex itself is the closest point.
+    const double r_foot = a * (a * rho + zeta) / (a * a + 1.);
+    if (r_foot > 0.)
+      return {r_foot, 1. / a, false, true};
+    return {0., 0., true, true};
+  }
+
+  RoundedCone::Foot RoundedCone::foot_on_rounded_cone(const double rho, const double zeta) const
+  {
+    // Stationarity of the squared distance (r - rho)^2 + (f(r) - zeta)^2:
+    //   g(r) = (r - rho) + (f(r) - zeta) f'(r) = 0,
+    //   g'(r) = 1 + f'^2 + (f - zeta) f''.
+    const auto g = [&](const double r) {
+      return (r - rho) + (profile_at_radius(r) - zeta) * slope(r);
+    };
+    const auto dg = [&](const double r) {
+      const double fp = slope(r);
+      return 1. + fp * fp + (profile_at_radius(r) - zeta) * curvature_term(r);
+    };
+
+    // Bracket [lo, hi] with g(lo) <= 0 < g(hi) holding the unique minimizer:
+    //  - outside (zeta <= f(rho)): g < 0 wherever f < zeta, g' > 0 wherever f >= zeta, and
+    //    g(rho) >= 0, so the root is unique in [0, rho];
+    //  - inside (zeta > f(rho)): g < 0 on [0, rho), g(r_zeta) = r_zeta - rho > 0 at
+    //    f(r_zeta) = zeta, and g'' = 3 f' f'' + (f - zeta) f''' >= 0 (f''' <= 0) on
+    //    [rho, r_zeta]: the convex g has one root there.
+    //  - on the axis inside, r = 0 is the foot while zeta <= R = a^2 delta (g'(0) >= 0);
+    //    above the centre of curvature the feet form a circle of radius r > 0.
+    const bool inside = zeta > profile_at_radius(rho);
+    double     lo = 0., hi = 0.;
+    if (!inside)
+      {
+        hi = rho;
+        if (!(rho > 0. && g(rho) > 0.))
+          return {rho, slope(rho), false, true}; // the apex, or exactly on the surface
+      }
+    else
+      {
+        if (rho == 0. && zeta <= tip_radius())
+          return {0., slope(0.), false, true};
+        lo = rho;
+        hi = radius_at_height(zeta);
+        // Guard against round-off in radius_at_height for points just inside.
+        while (!(g(hi) > 0.))
+          hi = 2. * hi + std::numeric_limits<double>::min();
+      }
+
+    // Newton safeguarded by bisection. Start from the end of the bracket where |g| is smaller
+    // (near the surface the foot is close to rho); on the axis g(0) = 0 is the distance
+    // maximum, so start from hi, where Newton on the convex g descends monotonically to the
+    // foot.
+    const double tolerance =
+        4. * std::numeric_limits<double>::epsilon() * std::max({hi, std::abs(zeta), a * delta});
+    const double           g_lo = g(lo), g_hi = g(hi);
+    double                 r = (rho > 0. && std::abs(g_lo) < std::abs(g_hi)) ? lo : hi;
+    bool                   converged = false;
+    constexpr unsigned int max_iterations = 200;
+    for (unsigned int iteration = 0; iteration < max_iterations && !converged; ++iteration)
+      {
+        const double value = g(r);
+        if (value == 0.)
+          {
+            converged = true;
+            break;
+          }
+        if (value < 0.)
+          lo = r;
+        else
+          hi = r;
+        const double derivative = dg(r);
+        double       r_next = r - value / derivative;
+        if (!(derivative > 0.) || !(r_next > lo && r_next < hi))
+          r_next = 0.5 * (lo + hi);
+        const double step = std::abs(r_next - r);
+        r = r_next;
+        converged = step <= tolerance || hi - lo <= tolerance;
+      }
+    return {r, slope(r), false, converged};
+  }
+
   SurfaceProjection RoundedCone::project(const Point<3> &x, const double depth) const
   {
     SurfaceProjection result;
@@ -80,114 +163,13 @@ namespace indentsim::indenter
     const double cos_phi = rho > 0. ? x[0] / rho : 1.;
     const double sin_phi = rho > 0. ? x[1] / rho : 0.;
 
-    double r_foot = 0.;     // radius of the closest point
-    double foot_slope = 0.; // f'(r_foot)
-    bool   foot_is_sharp_apex = false;
-
-    if (delta == 0.)
-      {
-        // Sharp cone z = r/a: the foot on the flank line solves (r - rho) + (r/a - zeta)/a = 0;
-        // if it falls behind the apex, the apex itself is the closest point.
-        r_foot = a * (a * rho + zeta) / (a * a + 1.);
-        if (r_foot > 0.)
-          foot_slope = 1. / a;
-        else
-          {
-            r_foot = 0.;
-            foot_is_sharp_apex = true;
-          }
-      }
-    else
-      {
-        // Stationarity of the squared distance (r - rho)^2 + (f(r) - zeta)^2:
-        //   g(r) = (r - rho) + (f(r) - zeta) f'(r) = 0,
-        //   g'(r) = 1 + f'^2 + (f - zeta) f''.
-        const auto g = [&](const double r) {
-          return (r - rho) + (profile_at_radius(r) - zeta) * slope(r);
-        };
-        const auto dg = [&](const double r) {
-          const double fp = slope(r);
-          return 1. + fp * fp + (profile_at_radius(r) - zeta) * curvature_term(r);
-        };
-
-        // Bracket [lo, hi] with g(lo) <= 0 < g(hi) holding the unique minimizer:
-        //  - outside (zeta <= f(rho)): g < 0 wherever f < zeta, g' > 0 wherever f >= zeta, and
-        //    g(rho) >= 0, so the root is unique in [0, rho];
-        //  - inside (zeta > f(rho)): g < 0 on [0, rho), g(r_zeta) = r_zeta - rho > 0 at
-        //    f(r_zeta) = zeta, and g'' = 3 f' f'' + (f - zeta) f''' >= 0 (f''' <= 0) on
-        //    [rho, r_zeta]: the convex g has one root there.
-        //  - on the axis inside, r = 0 is the foot while zeta <= R = a^2 delta (g'(0) >= 0);
-        //    above the centre of curvature the feet form a circle of radius r > 0.
-        const bool inside = zeta > profile_at_radius(rho);
-        double     lo = 0., hi = 0.;
-        bool       solve = true;
-        if (!inside)
-          {
-            lo = 0.;
-            hi = rho;
-            solve = rho > 0. && g(rho) > 0.;
-            r_foot = rho; // rho == 0 (apex) or exactly on the surface
-          }
-        else
-          {
-            lo = rho;
-            hi = radius_at_height(zeta);
-            if (rho == 0. && zeta <= tip_radius())
-              {
-                solve = false;
-                r_foot = 0.;
-              }
-            // Guard against round-off in radius_at_height for points just inside.
-            while (solve && !(g(hi) > 0.))
-              hi = 2. * hi + std::numeric_limits<double>::min();
-          }
-
-        if (solve)
-          {
-            const double tolerance = 4. * std::numeric_limits<double>::epsilon() *
-                                     std::max({hi, std::abs(zeta), a * delta});
-            // Start from the end of the bracket where |g| is smaller (near the surface the
-            // foot is close to rho); on the axis g(0) = 0 is the distance maximum, so start
-            // from hi, where Newton on the convex g descends monotonically to the foot.
-            const double           g_lo = g(lo), g_hi = g(hi);
-            double                 r = (rho > 0. && std::abs(g_lo) < std::abs(g_hi)) ? lo : hi;
-            bool                   converged = false;
-            constexpr unsigned int max_iterations = 200;
-            for (unsigned int iteration = 0; iteration < max_iterations; ++iteration)
-              {
-                const double value = g(r);
-                if (value == 0.)
-                  {
-                    converged = true;
-                    break;
-                  }
-                if (value < 0.)
-                  lo = r;
-                else
-                  hi = r;
-                const double derivative = dg(r);
-                double       r_next = r - value / derivative;
-                if (!(derivative > 0.) || !(r_next > lo && r_next < hi))
-                  r_next = 0.5 * (lo + hi);
-                const double step = std::abs(r_next - r);
-                r = r_next;
-                if (step <= tolerance || hi - lo <= tolerance)
-                  {
-                    converged = true;
-                    break;
-                  }
-              }
-            r_foot = r;
-            result.converged = converged;
-          }
-        foot_slope = slope(r_foot);
-      }
-
-    const double z_foot = profile_at_radius(r_foot) - depth;
-    result.closest_point = Point<3>(r_foot * cos_phi, r_foot * sin_phi, z_foot);
+    const Foot foot = delta == 0. ? foot_on_sharp_cone(rho, zeta) : foot_on_rounded_cone(rho, zeta);
+    result.converged = foot.converged;
+    const double z_foot = profile_at_radius(foot.r) - depth;
+    result.closest_point = Point<3>(foot.r * cos_phi, foot.r * sin_phi, z_foot);
 
     const Tensor<1, 3> offset = x - result.closest_point;
-    if (foot_is_sharp_apex)
+    if (foot.is_sharp_apex)
       {
         // The sharp apex has no tangent plane: the normal is the direction to the point.
         const double distance = offset.norm();
@@ -199,9 +181,9 @@ namespace indentsim::indenter
     else
       {
         // Meridian normal (f', -1)/sqrt(1 + f'^2): from the indenter into the specimen.
-        const double norm = std::sqrt(1. + foot_slope * foot_slope);
+        const double norm = std::sqrt(1. + foot.slope * foot.slope);
         result.normal =
-            Tensor<1, 3>({foot_slope * cos_phi / norm, foot_slope * sin_phi / norm, -1. / norm});
+            Tensor<1, 3>({foot.slope * cos_phi / norm, foot.slope * sin_phi / norm, -1. / norm});
       }
     // x - closest_point is parallel to the normal at the exact foot, so this is the signed
     // distance: > 0 outside the indenter, < 0 inside.

@@ -41,6 +41,16 @@ namespace indentsim::indenter
     const double a;
     const double delta;
 
+    // The closest point of the profile to the meridian point (rho, zeta): its radius, the
+    // slope f' there, whether it is the apex of a sharp cone, and whether the search converged.
+    struct Foot
+    {
+      double r = 0., slope = 0.;
+      bool   is_sharp_apex = false, converged = true;
+    };
+    Foot foot_on_sharp_cone(double rho, double zeta) const;   // delta = 0
+    Foot foot_on_rounded_cone(double rho, double zeta) const; // delta > 0
+
     // f'(r) and f''(r) for r >= 0 (delta > 0).
     double slope(double r) const;
     double curvature_term(double r) const;

@@ -265,6 +265,36 @@ namespace indentsim::study
 
         StudyCase result;
         result.line = line_of(node);
+        read_name(node, where, result);
+        const std::string the_case = "case '" + result.name + "'";
+        result.label = result.name;
+        if (const YAML::Node label = node["label"]; label.IsDefined())
+          result.label = read_word(label, the_case + ": label", "a legend label (text)");
+        read_groups(node, the_case, result);
+
+        const YAML::Node base = node["base"];
+        if (!base.IsDefined())
+          fail(result.line, the_case + ": missing key 'base', the case file the overrides "
+                                       "apply to (relative to the study file)");
+        const std::string base_as_written =
+            read_word(base, the_case + ": base", "a case file path (relative to the study file)");
+        const YAML::Node base_root = read_base(base, base_as_written, the_case, result);
+        const YAML::Node overrides = read_overrides(node, the_case, result);
+        resolve(merge_overrides(base_root, overrides), base_as_written, the_case, result);
+        check_groups_fit(the_case, result);
+
+        result.resolved.source_file =
+            source + ", case '" + result.name + "' (base " + result.base_file + ")";
+        result.key = case_key(result.resolved);
+        result.directory =
+            (fs::path(output_directory) / "cases" / (result.name + "-" + result.key)).string();
+        result.resolved.output.directory = result.directory;
+        return result;
+      }
+
+      // name: letters, digits, _ and - (it names a directory), and not a group's name.
+      void read_name(const YAML::Node &node, const std::string &where, StudyCase &result) const
+      {
         const YAML::Node name = node["name"];
         if (!name.IsDefined())
           fail(result.line, where + ": missing key 'name' (letters, digits, _ and -)");
@@ -281,43 +311,40 @@ namespace indentsim::study
                                   ": a group's name; choose another (--only accepts both names "
                                   "and groups: " +
                                   join(known_groups) + ")");
-        const std::string the_case = "case '" + result.name + "'";
+      }
 
-        result.label = result.name;
-        if (const YAML::Node label = node["label"]; label.IsDefined())
-          result.label = read_word(label, the_case + ": label", "a legend label (text)");
-
-        if (const YAML::Node group = node["group"]; group.IsDefined() && !group.IsNull())
+      // group: one known group or a list of them, each once.
+      void read_groups(const YAML::Node &node, const std::string &the_case, StudyCase &result) const
+      {
+        const YAML::Node group = node["group"];
+        if (!group.IsDefined() || group.IsNull())
+          return;
+        std::vector<YAML::Node> items;
+        if (group.IsSequence())
+          for (const auto &item : group)
+            items.push_back(item);
+        else
+          items.push_back(group);
+        for (const auto &item : items)
           {
-            std::vector<YAML::Node> items;
-            if (group.IsSequence())
-              for (const auto &item : group)
-                items.push_back(item);
-            else
-              items.push_back(group);
-            for (const auto &item : items)
+            const std::string value = item.IsScalar() ? item.Scalar() : flow_text(item);
+            if (!item.IsScalar() || !contains(known_groups, value))
               {
-                const std::string value = item.IsScalar() ? item.Scalar() : flow_text(item);
-                if (!item.IsScalar() || !contains(known_groups, value))
-                  {
-                    const std::string guess = io::closest_name(value, known_groups);
-                    fail(line_of(item),
-                         the_case + ": group = " + value +
-                             ": allowed groups: " + join(known_groups) +
-                             (guess.empty() ? "" : " (did you mean '" + guess + "'?)"));
-                  }
-                if (contains(result.groups, value))
-                  fail(line_of(item), the_case + ": group " + value + " given twice");
-                result.groups.push_back(value);
+                const std::string guess = io::closest_name(value, known_groups);
+                fail(line_of(item), the_case + ": group = " + value +
+                                        ": allowed groups: " + join(known_groups) +
+                                        (guess.empty() ? "" : " (did you mean '" + guess + "'?)"));
               }
+            if (contains(result.groups, value))
+              fail(line_of(item), the_case + ": group " + value + " given twice");
+            result.groups.push_back(value);
           }
+      }
 
-        const YAML::Node base = node["base"];
-        if (!base.IsDefined())
-          fail(result.line, the_case + ": missing key 'base', the case file the overrides "
-                                       "apply to (relative to the study file)");
-        const std::string base_as_written =
-            read_word(base, the_case + ": base", "a case file path (relative to the study file)");
+      // The base case file (relative to the study file) as a YAML tree; sets result.base_file.
+      YAML::Node read_base(const YAML::Node &base, const std::string &base_as_written,
+                           const std::string &the_case, StudyCase &result) const
+      {
         fs::path base_path(base_as_written);
         if (base_path.is_relative())
           base_path = fs::path(source).parent_path() / base_path;
@@ -332,10 +359,9 @@ namespace indentsim::study
                                   "' cannot be opened for reading");
         std::ostringstream base_text;
         base_text << input.rdbuf();
-        YAML::Node base_root;
         try
           {
-            base_root = YAML::Load(base_text.str());
+            return YAML::Load(base_text.str());
           }
         catch (const YAML::ParserException &e)
           {
@@ -345,25 +371,34 @@ namespace indentsim::study
                 ": YAML syntax error: " + e.msg + " (the base of " + the_case + " in " + source +
                 ")");
           }
+      }
 
+      // overrides: a mapping merged onto the base; output.directory belongs to the study.
+      YAML::Node read_overrides(const YAML::Node &node, const std::string &the_case,
+                                StudyCase &result) const
+      {
         YAML::Node overrides = node["overrides"];
         result.overrides_text = "{}";
-        if (overrides.IsDefined() && !overrides.IsNull())
-          {
-            if (!overrides.IsMap())
-              fail(line_of(overrides),
-                   the_case + ": overrides = " + flow_text(overrides) +
-                       ": expected a mapping merged onto the base case, e.g. {specimen: "
-                       "{contact_elements: 48}}");
-            const YAML::Node output = overrides["output"];
-            if (output.IsDefined() && output.IsMap() && output["directory"].IsDefined())
-              fail(line_of(output["directory"]),
-                   the_case + ": overrides.output.directory = " + flow_text(output["directory"]) +
-                       ": set by the study (<output>/cases/<name>-<key>); remove it");
-            result.overrides_text = flow_text(overrides);
-          }
-        const YAML::Node merged = merge_overrides(base_root, overrides);
+        if (!overrides.IsDefined() || overrides.IsNull())
+          return overrides;
+        if (!overrides.IsMap())
+          fail(line_of(overrides), the_case + ": overrides = " + flow_text(overrides) +
+                                       ": expected a mapping merged onto the base case, e.g. "
+                                       "{specimen: {contact_elements: 48}}");
+        const YAML::Node output = overrides["output"];
+        if (output.IsDefined() && output.IsMap() && output["directory"].IsDefined())
+          fail(line_of(output["directory"]),
+               the_case + ": overrides.output.directory = " + flow_text(output["directory"]) +
+                   ": set by the study (<output>/cases/<name>-<key>); remove it");
+        result.overrides_text = flow_text(overrides);
+        return overrides;
+      }
 
+      // The merged case through the case-file reader (defaults, validation) into
+      // result.resolved. Its messages name the study's entry.
+      void resolve(const YAML::Node &merged, const std::string &base_as_written,
+                   const std::string &the_case, StudyCase &result) const
+      {
         YAML::Emitter emitter;
         emitter << merged;
         try
@@ -394,7 +429,11 @@ namespace indentsim::study
             fail(result.line, the_case + " (base " + base_as_written + ", overrides " +
                                   result.overrides_text + "): " + message);
           }
+      }
 
+      // Each group's plots need cases of its kind.
+      void check_groups_fit(const std::string &the_case, const StudyCase &result) const
+      {
         const auto &test = result.resolved.test;
         const auto &model = result.resolved.material.model;
         for (const auto &group : result.groups)
@@ -414,14 +453,6 @@ namespace indentsim::study
                                     "; this case has test: " + io::to_string(test) +
                                     ", material.model: " + io::to_string(model));
           }
-
-        result.resolved.source_file =
-            source + ", case '" + result.name + "' (base " + result.base_file + ")";
-        result.key = case_key(result.resolved);
-        result.directory =
-            (fs::path(output_directory) / "cases" / (result.name + "-" + result.key)).string();
-        result.resolved.output.directory = result.directory;
-        return result;
       }
 
       void check_across_cases(const Study &study) const

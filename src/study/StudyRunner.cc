@@ -349,17 +349,18 @@ namespace indentsim::study
         throw StudyFileError("indentsim study starts each case itself and must not run under "
                              "mpirun; use --ranks N to run every case on N MPI ranks");
 
-    std::vector<CaseState> states;
+    Progress progress;
     for (const auto &c : study_.cases)
-      states.push_back(case_state(c));
-    print_plan(states);
+      progress.states.push_back(case_state(c));
+    progress.ran_now.assign(study_.cases.size(), false);
+    print_plan(progress.states);
 
     std::vector<std::size_t> to_run;
     std::size_t              n_skipped = 0;
     for (std::size_t i = 0; i < study_.cases.size(); ++i)
       if (selected_[i])
         {
-          if (states[i] == CaseState::finished)
+          if (progress.states[i] == CaseState::finished)
             ++n_skipped;
           else
             to_run.push_back(i);
@@ -375,24 +376,51 @@ namespace indentsim::study
         return exit_ok;
       }
 
+    prepare_output_directory();
+    const auto study_start = Clock::now();
+    progress.n_to_run = to_run.size();
+    out_ << n_skipped << " finished case(s) skipped, " << to_run.size() << " to run\n"
+         << std::flush;
+    if (!run_cases(to_run, child_environment(start_variables), progress))
+      return exit_interrupted;
+
+    write_index(progress.states, progress.ran_now);
+    const int report_status = write_report();
+
+    const double total = std::chrono::duration<double>(Clock::now() - study_start).count();
+    out_ << "Study done in " << seconds_text(total) << ": " << (progress.n_done - progress.n_failed)
+         << " case(s) run, " << n_skipped << " skipped (finished earlier), " << progress.n_failed
+         << " failed.\n";
+    if (report_status == 0)
+      out_ << "Report: " << (fs::path(study_.output_directory) / "report.md").string() << "\n";
+    out_ << std::flush;
+    if (progress.n_failed > 0)
+      return exit_case_failed;
+    return report_status == 0 ? exit_ok : exit_report_failed;
+  }
+
+  void StudyRunner::prepare_output_directory() const
+  {
     // The output directory, a copy of the study file, and the case directories.
     std::error_code error;
     fs::create_directories(fs::path(study_.output_directory) / "cases", error);
     if (error)
       throw StudyFileError("study output directory '" + study_.output_directory +
                            "' cannot be created: " + error.message());
-    {
-      std::ofstream copy(fs::path(study_.output_directory) / study_files::study_copy);
-      copy << "# Copy of the study file " << fs::absolute(study_.source_file).string()
-           << "\n# (base paths are relative to that file's directory).\n"
-           << read_text(study_.source_file);
-      if (!copy)
-        throw StudyFileError("study output directory '" + study_.output_directory +
-                             "' is not writable");
-    }
+    std::ofstream copy(fs::path(study_.output_directory) / study_files::study_copy);
+    copy << "# Copy of the study file " << fs::absolute(study_.source_file).string()
+         << "\n# (base paths are relative to that file's directory).\n"
+         << read_text(study_.source_file);
+    if (!copy)
+      throw StudyFileError("study output directory '" + study_.output_directory +
+                           "' is not writable");
+  }
 
-    // Children: the starting environment, one BLAS thread, and the cores shared among the
-    // cases running side by side (deal.II takes the smaller of this and its own count).
+  std::vector<std::string>
+  StudyRunner::child_environment(const std::vector<std::string> &start_variables) const
+  {
+    // The starting environment, one BLAS thread, and the cores shared among the cases running
+    // side by side (deal.II takes the smaller of this and its own count).
     std::vector<std::string> variables = start_variables;
     const unsigned int       cores = std::max(1u, std::thread::hardware_concurrency());
     set_default(variables, "OMP_NUM_THREADS", "1");
@@ -409,58 +437,12 @@ namespace indentsim::study
         if (settings_.ranks > cores)
           set_default(variables, "OMPI_MCA_rmaps_base_oversubscribe", "1");
       }
+    return variables;
+  }
 
-    struct Running
-    {
-      std::size_t       index;
-      pid_t             pid;
-      Clock::time_point start;
-    };
-    std::vector<Running> running;
-    std::vector<bool>    ran_now(study_.cases.size(), false);
-    std::size_t          next = 0, n_done = 0, n_failed = 0;
-    const std::size_t    n_to_run = to_run.size();
-    const auto           study_start = Clock::now();
-
-    out_ << n_skipped << " finished case(s) skipped, " << n_to_run << " to run\n" << std::flush;
-
-    const auto finish_case = [&](const Running &job, const int exit_code) {
-      const StudyCase &c = study_.cases[job.index];
-      const double     seconds = std::chrono::duration<double>(Clock::now() - job.start).count();
-      const fs::path   directory(c.directory);
-      const bool       completed =
-          exit_code == 0 && fs::exists(directory / io::output_files::run_summary);
-      std::ofstream mark(directory / study_files::case_mark);
-      mark << "{\n"
-           << "  \"units\": \"times in s\",\n"
-           << "  \"name\": " << json_string(c.name) << ",\n"
-           << "  \"key\": " << json_string(c.key) << ",\n"
-           << "  \"completed\": " << (completed ? "true" : "false") << ",\n"
-           << "  \"exit_code\": " << exit_code << ",\n"
-           << "  \"wall_time_s\": " << json_number_text(seconds) << ",\n"
-           << "  \"mpi_ranks\": " << settings_.ranks << ",\n"
-           << "  \"command\": " << json_string(shell_words(case_command(c))) << ",\n"
-           << "  \"version\": " << json_string(std::string("indentsim ") + indentsim::version())
-           << "\n}\n";
-      mark.close();
-      ++n_done;
-      ran_now[job.index] = true;
-      states[job.index] = completed ? CaseState::finished : CaseState::failed;
-      if (completed)
-        out_ << "[" << n_done << "/" << n_to_run << "] " << c.name << ": finished in "
-             << seconds_text(seconds) << "; " << result_summary(c) << "\n";
-      else
-        {
-          ++n_failed;
-          out_ << "[" << n_done << "/" << n_to_run << "] " << c.name << ": FAILED (exit code "
-               << exit_code << (exit_code == 0 ? ", but no run_summary.json" : std::string())
-               << ") after " << seconds_text(seconds) << "; console output in "
-               << (directory / study_files::console_log).string() << ", last lines:\n"
-               << last_lines(directory / study_files::console_log, 12);
-        }
-      out_ << std::flush;
-    };
-
+  bool StudyRunner::run_cases(const std::vector<std::size_t> &to_run,
+                              const std::vector<std::string> &variables, Progress &progress)
+  {
     struct sigaction action = {}, old_interrupt = {}, old_terminate = {};
     action.sa_handler = request_stop;
     sigemptyset(&action.sa_mask);
@@ -468,41 +450,14 @@ namespace indentsim::study
     sigaction(SIGINT, &action, &old_interrupt);
     sigaction(SIGTERM, &action, &old_terminate);
 
+    // Up to settings_.jobs children at a time, polled every 50 ms.
+    std::vector<Running> running;
+    std::size_t          next = 0;
     while ((next < to_run.size() || !running.empty()) && stop_requested == 0)
       {
         while (next < to_run.size() && running.size() < settings_.jobs)
-          {
-            const std::size_t index = to_run[next++];
-            const StudyCase  &c = study_.cases[index];
-            const fs::path    directory(c.directory);
-            fs::create_directories(directory, error);
-            fs::remove(directory / study_files::case_mark, error);
-            Running     job{index, -1, Clock::now()};
-            std::string problem;
-            try
-              {
-                io::write_resolved_case(c.resolved, (directory / study_files::case_input).string());
-                const auto command = case_command(c);
-                out_ << "run  " << c.name << " (" << to_string(states[index])
-                     << "): " << shell_words(command) << "\n"
-                     << std::flush;
-                job.pid = spawn(command, variables, (directory / study_files::console_log).string(),
-                                problem);
-              }
-            catch (const std::exception &e)
-              {
-                problem = e.what();
-              }
-            if (job.pid < 0)
-              {
-                std::ofstream log(directory / study_files::console_log);
-                log << "indentsim study: " << problem << "\n";
-                log.close();
-                finish_case(job, 127);
-              }
-            else
-              running.push_back(job);
-          }
+          if (const auto job = start_case(to_run[next++], variables, progress))
+            running.push_back(*job);
 
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
         for (auto job = running.begin(); job != running.end();)
@@ -511,7 +466,7 @@ namespace indentsim::study
             const pid_t done = ::waitpid(job->pid, &status, WNOHANG);
             if (done == job->pid || (done < 0 && errno != EINTR))
               {
-                finish_case(*job, done == job->pid ? exit_code_of(status) : 255);
+                finish_case(*job, done == job->pid ? exit_code_of(status) : 255, progress);
                 job = running.erase(job);
               }
             else
@@ -519,7 +474,8 @@ namespace indentsim::study
           }
       }
 
-    if (stop_requested != 0)
+    const bool interrupted = stop_requested != 0;
+    if (interrupted)
       {
         out_ << "Interrupted: stopping " << running.size() << " running case(s); "
              << "rerun the same command to continue (finished cases are kept).\n"
@@ -534,22 +490,80 @@ namespace indentsim::study
       }
     sigaction(SIGINT, &old_interrupt, nullptr);
     sigaction(SIGTERM, &old_terminate, nullptr);
-    if (stop_requested != 0)
-      return exit_interrupted;
+    return !interrupted;
+  }
 
-    write_index(states, ran_now);
-    const int report_status = write_report();
+  std::optional<StudyRunner::Running>
+  StudyRunner::start_case(const std::size_t index, const std::vector<std::string> &variables,
+                          Progress &progress)
+  {
+    const StudyCase &c = study_.cases[index];
+    const fs::path   directory(c.directory);
+    std::error_code  error;
+    fs::create_directories(directory, error);
+    fs::remove(directory / study_files::case_mark, error);
+    Running     job{index, -1, Clock::now()};
+    std::string problem;
+    try
+      {
+        io::write_resolved_case(c.resolved, (directory / study_files::case_input).string());
+        const auto command = case_command(c);
+        out_ << "run  " << c.name << " (" << to_string(progress.states[index])
+             << "): " << shell_words(command) << "\n"
+             << std::flush;
+        job.pid =
+            spawn(command, variables, (directory / study_files::console_log).string(), problem);
+      }
+    catch (const std::exception &e)
+      {
+        problem = e.what();
+      }
+    if (job.pid >= 0)
+      return job;
+    std::ofstream log(directory / study_files::console_log);
+    log << "indentsim study: " << problem << "\n";
+    log.close();
+    finish_case(job, 127, progress);
+    return std::nullopt;
+  }
 
-    const double total = std::chrono::duration<double>(Clock::now() - study_start).count();
-    out_ << "Study done in " << seconds_text(total) << ": " << (n_done - n_failed)
-         << " case(s) run, " << n_skipped << " skipped (finished earlier), " << n_failed
-         << " failed.\n";
-    if (report_status == 0)
-      out_ << "Report: " << (fs::path(study_.output_directory) / "report.md").string() << "\n";
+  void StudyRunner::finish_case(const Running &job, const int exit_code, Progress &progress)
+  {
+    const StudyCase &c = study_.cases[job.index];
+    const double     seconds = std::chrono::duration<double>(Clock::now() - job.start).count();
+    const fs::path   directory(c.directory);
+    const bool completed = exit_code == 0 && fs::exists(directory / io::output_files::run_summary);
+    std::ofstream mark(directory / study_files::case_mark);
+    mark << "{\n"
+         << "  \"units\": \"times in s\",\n"
+         << "  \"name\": " << json_string(c.name) << ",\n"
+         << "  \"key\": " << json_string(c.key) << ",\n"
+         << "  \"completed\": " << (completed ? "true" : "false") << ",\n"
+         << "  \"exit_code\": " << exit_code << ",\n"
+         << "  \"wall_time_s\": " << json_number_text(seconds) << ",\n"
+         << "  \"mpi_ranks\": " << settings_.ranks << ",\n"
+         << "  \"command\": " << json_string(shell_words(case_command(c))) << ",\n"
+         << "  \"version\": " << json_string(std::string("indentsim ") + indentsim::version())
+         << "\n}\n";
+    mark.close();
+    ++progress.n_done;
+    progress.ran_now[job.index] = true;
+    progress.states[job.index] = completed ? CaseState::finished : CaseState::failed;
+    const std::string counter =
+        "[" + std::to_string(progress.n_done) + "/" + std::to_string(progress.n_to_run) + "] ";
+    if (completed)
+      out_ << counter << c.name << ": finished in " << seconds_text(seconds) << "; "
+           << result_summary(c) << "\n";
+    else
+      {
+        ++progress.n_failed;
+        out_ << counter << c.name << ": FAILED (exit code " << exit_code
+             << (exit_code == 0 ? ", but no run_summary.json" : std::string()) << ") after "
+             << seconds_text(seconds) << "; console output in "
+             << (directory / study_files::console_log).string() << ", last lines:\n"
+             << last_lines(directory / study_files::console_log, 12);
+      }
     out_ << std::flush;
-    if (n_failed > 0)
-      return exit_case_failed;
-    return report_status == 0 ? exit_ok : exit_report_failed;
   }
 
   void StudyRunner::write_index(const std::vector<CaseState> &states,

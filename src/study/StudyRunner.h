@@ -17,6 +17,10 @@
 
 #include "study/StudyFile.h"
 
+#include <sys/types.h>
+
+#include <chrono>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -77,6 +81,33 @@ namespace indentsim::study
     StudyRunSettings  settings_;
     std::ostream     &out_;
     std::vector<bool> selected_; // per case of the study
+
+    // Where the run stands: per case its state and whether it ran now; counts of this run.
+    struct Progress
+    {
+      std::vector<CaseState> states;
+      std::vector<bool>      ran_now;
+      std::size_t            n_to_run = 0, n_done = 0, n_failed = 0;
+    };
+    // A child process running a case.
+    struct Running
+    {
+      std::size_t                           index; // in study_.cases
+      pid_t                                 pid;
+      std::chrono::steady_clock::time_point start;
+    };
+
+    void                     prepare_output_directory() const;
+    std::vector<std::string> child_environment(const std::vector<std::string> &start) const;
+    // Runs the cases `to_run` (indices), settings_.jobs at a time; false if SIGINT or SIGTERM
+    // stopped them.
+    bool run_cases(const std::vector<std::size_t> &to_run,
+                   const std::vector<std::string> &variables, Progress &progress);
+    // Starts a case's child; if it cannot start, the case is finished as failed (exit 127).
+    std::optional<Running> start_case(std::size_t index, const std::vector<std::string> &variables,
+                                      Progress &progress);
+    // Writes the case's study_case.json mark and reports the outcome.
+    void finish_case(const Running &job, int exit_code, Progress &progress);
 
     void                     print_plan(const std::vector<CaseState> &states) const;
     std::vector<std::string> case_command(const StudyCase &study_case) const;

@@ -101,7 +101,7 @@ def plot_map(xs, ys, grid, info, title, output):
     axes.set_aspect("equal")
     axes.set_xlabel("x [um]")
     axes.set_ylabel("y [um]")
-    axes.set_title(f"{title}\n{fold_title(info)}, "
+    axes.set_title(f"{title}\n{fold_title(info)}\n"
                    f"max pile-up {info.get('max_pileup_um', 0.0):.4g} um "
                    f"at r = {info.get('max_pileup_radius_um', 0.0):.3g} um, "
                    f"{info.get('max_pileup_azimuth_deg', 0.0):.3g} deg", fontsize="medium")

@@ -42,7 +42,7 @@ MARKERS = ("o", "s", "^", "v", "D", "x")
 
 def read_rows(path, columns):
     """The rows of a CSV file as dicts; checks that the header holds `columns`."""
-    with open(path, newline="") as stream:
+    with open(path, newline="", encoding="utf-8-sig") as stream:
         reader = csv.DictReader(row for row in stream if not row.lstrip().startswith("#"))
         if reader.fieldnames is None:
             raise ValueError(f"{path}: empty file, expected a header row with {','.join(columns)}")

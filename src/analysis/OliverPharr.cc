@@ -381,7 +381,6 @@ namespace indentsim::analysis
     result.unloading_end = static_cast<unsigned int>(end);
     result.max_depth = curve.depth[begin];
     result.max_force = curve.force[begin];
-    const double h_max = result.max_depth;
 
     std::vector<double> fit_depth, fit_force;
     for (std::size_t i = begin; i < end; ++i)
@@ -394,10 +393,10 @@ namespace indentsim::analysis
     if (fit_depth.size() < min_fit_points)
       throw std::invalid_argument(
           where + ": the unloading branch (" + std::to_string(end - begin) + " points from " +
-          format(h_max) + " um) has " + std::to_string(fit_depth.size()) + " points between " +
-          format(100 * settings.fit_lower) + " % and " + format(100 * settings.fit_upper) +
-          " % of P_max = " + format(result.max_force) + " mN; the power-law fit needs at least " +
-          std::to_string(min_fit_points) +
+          depth_at(curve, begin) + ") has " + std::to_string(fit_depth.size()) +
+          " points between " + format(100 * settings.fit_lower) + " % and " +
+          format(100 * settings.fit_upper) + " % of P_max = " + format(result.max_force) +
+          " mN; the power-law fit needs at least " + std::to_string(min_fit_points) +
           ": record more unloading points "
           "(loading.unload_points) or widen the fit range");
     result.fit = fit_power_law(fit_depth, fit_force);

@@ -32,7 +32,7 @@ import numpy as np  # noqa: E402
 
 def read_curve(path):
     """Depth [um] and force [mN] columns of a load_penetration.csv file."""
-    with open(path, newline="") as stream:
+    with open(path, newline="", encoding="utf-8-sig") as stream:
         rows = [row for row in stream if not row.lstrip().startswith("#")]
     reader = csv.DictReader(rows)
     if reader.fieldnames is None:

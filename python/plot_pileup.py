@@ -6,7 +6,8 @@ Reads, from the output directory of `indentsim run`:
                                              current in-plane position (columns x_um, y_um,
                                              height_um; empty height where no surface lies)
   pileup_profiles.csv                        radial profiles (stage, azimuth_deg, r_um, height_um)
-  pileup.json                                contact and analysis radii, dominant fold, max pile-up
+  pileup.json                                contact and analysis radii, fold and its source,
+                                             max pile-up
 and writes pileup_max_depth.png and pileup_unloaded.png (colour maps of h, diverging colour map
 centred at h = 0, equal aspect; the dashed circle is the contact radius at maximum depth, the
 dotted one the analysis radius of the Fourier spectrum) and pileup_profiles.png (h(r) along the
@@ -41,7 +42,7 @@ MARKERS = ("o", "s", "^", "v", "D", "x")
 
 def read_rows(path, columns):
     """The rows of a CSV file as dicts; checks that the header holds `columns`."""
-    with open(path, newline="") as stream:
+    with open(path, newline="", encoding="utf-8-sig") as stream:
         reader = csv.DictReader(row for row in stream if not row.lstrip().startswith("#"))
         if reader.fieldnames is None:
             raise ValueError(f"{path}: empty file, expected a header row with {','.join(columns)}")
@@ -100,12 +101,8 @@ def plot_map(xs, ys, grid, info, title, output):
     axes.set_aspect("equal")
     axes.set_xlabel("x [um]")
     axes.set_ylabel("y [um]")
-    fold = info.get("dominant_fold", 0)
-    symmetry_fold = info.get("symmetry_fold", fold)
-    fold_text = f"{fold}-fold" if fold else "no dominant fold"
-    if symmetry_fold != fold:
-        fold_text += f" ({symmetry_fold}-fold beyond the mesh's 4/8-fold imprint)"
-    axes.set_title(f"{title}\n{fold_text}, max pile-up {info.get('max_pileup_um', 0.0):.4g} um "
+    axes.set_title(f"{title}\n{fold_title(info)}\n"
+                   f"max pile-up {info.get('max_pileup_um', 0.0):.4g} um "
                    f"at r = {info.get('max_pileup_radius_um', 0.0):.3g} um, "
                    f"{info.get('max_pileup_azimuth_deg', 0.0):.3g} deg", fontsize="medium")
     axes.legend(fontsize="x-small", loc="upper right")
@@ -113,6 +110,31 @@ def plot_map(xs, ys, grid, info, title, output):
     figure.savefig(output)
     plt.close(figure)
     print(f"wrote {output}")
+
+
+def fold_title(info):
+    """The fold and where it comes from (pileup.json's symmetry_fold and fold_source), e.g.
+    "axisymmetric, no fold (4-fold mesh imprint)" for an isotropic material under a cone,
+    "3-fold (from the crystal)" for (111).
+    """
+    fold = info.get("dominant_fold", 0)
+    symmetry_fold = info.get("symmetry_fold", fold)
+    source = info.get("fold_source")
+    if source == "axisymmetric":
+        if fold and fold % 4 == 0:
+            return f"axisymmetric, no fold ({fold}-fold mesh imprint)"
+        return "axisymmetric, no fold"
+    if source is None:  # a pileup.json without the source
+        text = f"{fold}-fold" if fold else "no dominant fold"
+        if symmetry_fold != fold:
+            text += f" ({symmetry_fold}-fold beyond the mesh's 4/8-fold imprint)"
+        return text
+    origin = {"crystal": "from the crystal",
+              "indenter": "from the indenter",
+              "crystal_or_indenter": "from the crystal or the indenter",
+              "mesh_imprint_possible": "may be the square mesh's imprint",
+              "numerical": "numerical asymmetry"}.get(source, source)
+    return f"{symmetry_fold}-fold ({origin})"
 
 
 def plot_profiles(path, azimuths, output):

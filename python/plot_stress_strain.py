@@ -26,7 +26,7 @@ import numpy as np  # noqa: E402
 
 def read_curve(path):
     """Logarithmic strain [-] and true stress [GPa] columns of a stress_strain.csv file."""
-    with open(path, newline="") as stream:
+    with open(path, newline="", encoding="utf-8-sig") as stream:
         rows = [row for row in stream if not row.lstrip().startswith("#")]
     reader = csv.DictReader(rows)
     if reader.fieldnames is None:

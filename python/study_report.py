@@ -265,7 +265,7 @@ def read_json(path):
 
 def read_columns(path, numeric, text=()):
     """Columns of a CSV file: numbers for `numeric`, strings for `text` (missing: absent)."""
-    with open(path, newline="") as stream:
+    with open(path, newline="", encoding="utf-8-sig") as stream:
         rows = [row for row in stream if not row.lstrip().startswith("#")]
     reader = csv.DictReader(rows)
     fields = [name.strip() for name in (reader.fieldnames or [])]

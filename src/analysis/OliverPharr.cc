@@ -17,6 +17,8 @@ namespace indentsim::analysis
 {
   namespace
   {
+    // Bounds of the power-law fit's search (wider than the physical range below, so that a
+    // defective curve shows its exponent in the refusal).
     constexpr double min_exponent = 1.0, max_exponent = 6.0;
 
     double sum_of_squares(const std::vector<double> &depth, const std::vector<double> &force,
@@ -124,6 +126,146 @@ namespace indentsim::analysis
       out << std::setprecision(10) << value;
       return out.str();
     }
+
+    std::string depth_at(const LoadCurve &curve, const std::size_t i)
+    {
+      return format(curve.depth[i]) + " um (" + curve.row_name(i) + ")";
+    }
+
+    // The analysed unloading [begin, end) of a curve after the checks of its order (see
+    // analyze() in OliverPharr.h and the user guide): rows [0, begin] are the loading (with
+    // earlier cycles and holds), begin is the last point of the largest depth.
+    struct UnloadingBranch
+    {
+      std::size_t begin = 0, end = 0;
+      double      depth_tolerance = 0; // [um]
+    };
+
+    UnloadingBranch identify_branches(const LoadCurve &curve)
+    {
+      const std::string where = curve.source.empty() ? "the curve" : curve.source;
+      const std::size_t n = curve.depth.size();
+      if (curve.force.size() != n || n < 4)
+        throw std::invalid_argument(where +
+                                    ": a load-penetration curve with unloading needs at "
+                                    "least 4 points (it has " +
+                                    std::to_string(n) + ")");
+      for (std::size_t i = 0; i < n; ++i)
+        if (!std::isfinite(curve.depth[i]) || !std::isfinite(curve.force[i]))
+          throw std::invalid_argument(where + ", " + curve.row_name(i) + ": depth " +
+                                      format(curve.depth[i]) + " um, force " +
+                                      format(curve.force[i]) + " mN: not finite numbers");
+      const auto [lowest, highest] = std::minmax_element(curve.depth.begin(), curve.depth.end());
+      const double    h_max = *highest;
+      UnloadingBranch branch;
+      branch.depth_tolerance = depth_noise_fraction * (h_max - *lowest);
+      const double tolerance = branch.depth_tolerance;
+
+      // The unloading starts at the last point of the largest depth (after a hold at it).
+      std::size_t begin = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        if (curve.depth[i] >= h_max - 1e-12 * std::abs(h_max))
+          begin = i;
+      if (!(curve.force[begin] > 0))
+        throw std::invalid_argument(where + ": the force at the largest depth " + format(h_max) +
+                                    " um (" + curve.row_name(begin) + ") is " +
+                                    format(curve.force[begin]) +
+                                    " mN; an indentation curve needs a positive maximum force");
+
+      // Loading: a depth that falls for a single row while the next row is deeper than the one
+      // before the fall is a pair of rows out of order (a cycle's unloading takes more rows).
+      for (std::size_t i = 1; i + 1 <= begin; ++i)
+        if (curve.depth[i] < curve.depth[i - 1] - tolerance &&
+            curve.depth[i + 1] > curve.depth[i - 1])
+          throw std::invalid_argument(
+              where + ", " + curve.row_name(i) + ": the loading's depth falls to " +
+              depth_at(curve, i) + " after " + depth_at(curve, i - 1) +
+              " and rises at once beyond it to " + depth_at(curve, i + 1) +
+              ": two rows out of order. The depth must grow on the loading in the recorded "
+              "order (the rows are never re-sorted); restore the recorded order");
+
+      // Unloading: the depth falls from h_max until the force reaches zero (the contact is
+      // lost: later rows are ignored) or the curve reloads (a later cycle that stays below
+      // h_max). A rise that falls back at once is a pair of rows out of order.
+      std::size_t end = begin + 1;
+      double      shallowest = curve.depth[begin];
+      std::size_t shallowest_index = begin;
+      while (end < n && curve.force[end - 1] > 0)
+        {
+          const double h = curve.depth[end];
+          if (h > shallowest + tolerance)
+            {
+              const bool reload = end + 1 < n && curve.depth[end + 1] >= h - tolerance;
+              if (!reload)
+                throw std::invalid_argument(
+                    where + ", " + curve.row_name(end) + ": on the unloading from h_max = " +
+                    depth_at(curve, begin) + " the depth rises to " + depth_at(curve, end) +
+                    " after " + depth_at(curve, shallowest_index) +
+                    (end + 1 < n ? " and falls again to " + depth_at(curve, end + 1) : "") +
+                    ": rows out of order. The depth must fall on the unloading in the recorded "
+                    "order (by at most " +
+                    format(tolerance) +
+                    " um of noise, 0.1 % of the depth range; the rows are never re-sorted)");
+              break;
+            }
+          if (h < shallowest)
+            {
+              shallowest = h;
+              shallowest_index = end;
+            }
+          ++end;
+        }
+
+      // A curve starts at the surface with its loading: a first row deeper than the end of the
+      // unloading is a file in reverse order (or one whose loading is missing).
+      if (curve.depth.front() > curve.depth[end - 1] + tolerance)
+        throw std::invalid_argument(
+            where + ": the curve starts at depth " + depth_at(curve, 0) +
+            " and its unloading from h_max = " + depth_at(curve, begin) + " ends at " +
+            depth_at(curve, end - 1) +
+            ", shallower than its start: are the rows in reverse order, or is the start of "
+            "the loading missing? A curve must begin at the surface with the loading and end "
+            "with the unloading, in the recorded order (it is never re-sorted)");
+      branch.begin = begin;
+      branch.end = end;
+      return branch;
+    }
+
+    // Results outside the bounds of an elasto-plastic indentation are refused (see
+    // OliverPharr.h): they come from a curve that is not one (columns, units, order, fit
+    // range), never from a material.
+    // With `stage_fit_only` only the fit's exponent (checked before anything is derived from it).
+    void check_physical_bounds(const OliverPharrResult &r, const std::string &where,
+                               const double depth_tolerance, const bool stage_fit_only)
+    {
+      const auto refuse = [&](const std::string &what) {
+        throw std::invalid_argument(where + ": " + what +
+                                    "; the Oliver-Pharr result is not written. Check the order "
+                                    "of the rows, the depth and force columns and their units, "
+                                    "and the fit range (--fit-range)");
+      };
+      if (r.fit.m > max_physical_exponent)
+        refuse("the fitted unloading exponent m = " + format(r.fit.m) +
+               " (P = alpha (h - h_f)^m, " + std::to_string(r.fit.n_points) +
+               " points) is outside 1 <= m <= " + format(max_physical_exponent) +
+               " (elastic unloading: 1 for a flat punch, 1.5 for a paraboloid, 2 for a cone)");
+      if (!stage_fit_only)
+        {
+          if (!(r.contact_depth >= 0 && r.contact_depth <= r.max_depth))
+            refuse("the contact depth h_c = " + format(r.contact_depth) +
+                   " um is outside 0 <= h_c <= h_max = " + format(r.max_depth) + " um");
+          if (!(r.residual_depth >= -depth_tolerance &&
+                r.residual_depth <= r.max_depth + depth_tolerance))
+            refuse("the residual depth h_r = " + format(r.residual_depth) + " um (" +
+                   r.residual_depth_source +
+                   ") is outside 0 <= h_r <= h_max = " + format(r.max_depth) + " um");
+          if (!(r.plastic_work_ratio >= -work_ratio_tolerance && r.plastic_work_ratio <= 1.0))
+            refuse("the plastic work ratio W_p/W_t = " + format(r.plastic_work_ratio) +
+                   " (W_t = " + format(r.total_work) + ", W_e = " + format(r.elastic_work) +
+                   " mN um) is outside 0 <= W_p/W_t <= 1 (tolerance " +
+                   format(work_ratio_tolerance) + " for the trapezoid rule)");
+        }
+    }
   } // namespace
 
   double PowerLawFit::force(const double h) const
@@ -227,35 +369,18 @@ namespace indentsim::analysis
                             const OliverPharrSettings           &settings)
   {
     const std::string where = curve.source.empty() ? "the curve" : curve.source;
-    const std::size_t n = curve.depth.size();
-    if (curve.force.size() != n || n < 4)
-      throw std::invalid_argument(where +
-                                  ": a load-penetration curve with unloading needs at "
-                                  "least 4 points (it has " +
-                                  std::to_string(n) + ")");
     if (!(settings.fit_lower >= 0 && settings.fit_lower < settings.fit_upper &&
           settings.fit_upper <= 1.0))
       throw std::invalid_argument("the fit range [" + format(settings.fit_lower) + ", " +
                                   format(settings.fit_upper) +
                                   "] of P_max is not allowed: 0 <= lower < upper <= 1");
-    OliverPharrResult result;
-    // The unloading starts at the last point of the largest depth (after a hold at it).
-    const double h_max = *std::max_element(curve.depth.begin(), curve.depth.end());
-    std::size_t  begin = 0;
-    for (std::size_t i = 0; i < n; ++i)
-      if (curve.depth[i] >= h_max - 1e-12 * std::abs(h_max))
-        begin = i;
-    std::size_t end = begin + 1;
-    while (end < n && curve.depth[end] <= curve.depth[end - 1])
-      ++end;
+    const UnloadingBranch branch = identify_branches(curve);
+    const std::size_t     begin = branch.begin, end = branch.end;
+    OliverPharrResult     result;
     result.unloading_begin = static_cast<unsigned int>(begin);
     result.unloading_end = static_cast<unsigned int>(end);
     result.max_depth = curve.depth[begin];
     result.max_force = curve.force[begin];
-    if (!(result.max_force > 0))
-      throw std::invalid_argument(where + ": the force at the largest depth " + format(h_max) +
-                                  " um is " + format(result.max_force) +
-                                  " mN; an indentation curve needs a positive maximum force");
 
     std::vector<double> fit_depth, fit_force;
     for (std::size_t i = begin; i < end; ++i)
@@ -265,15 +390,17 @@ namespace indentsim::analysis
           fit_depth.push_back(curve.depth[i]);
           fit_force.push_back(curve.force[i]);
         }
-    if (fit_depth.size() < 3)
+    if (fit_depth.size() < min_fit_points)
       throw std::invalid_argument(
           where + ": the unloading branch (" + std::to_string(end - begin) + " points from " +
-          format(h_max) + " um) has " + std::to_string(fit_depth.size()) + " points between " +
-          format(100 * settings.fit_lower) + " % and " + format(100 * settings.fit_upper) +
-          " % of P_max = " + format(result.max_force) +
-          " mN; the power-law fit needs at least 3: record more unloading points "
+          depth_at(curve, begin) + ") has " + std::to_string(fit_depth.size()) +
+          " points between " + format(100 * settings.fit_lower) + " % and " +
+          format(100 * settings.fit_upper) + " % of P_max = " + format(result.max_force) +
+          " mN; the power-law fit needs at least " + std::to_string(min_fit_points) +
+          ": record more unloading points "
           "(loading.unload_points) or widen the fit range");
     result.fit = fit_power_law(fit_depth, fit_force);
+    check_physical_bounds(result, where, branch.depth_tolerance, true);
     result.stiffness = result.fit.stiffness(result.max_depth);
     if (!(result.stiffness > 0))
       throw std::invalid_argument(where + ": the fitted unloading stiffness at h_max is " +
@@ -340,6 +467,7 @@ namespace indentsim::analysis
       }
     result.plastic_work_ratio =
         result.total_work > 0 ? (result.total_work - result.elastic_work) / result.total_work : 0.0;
+    check_physical_bounds(result, where, branch.depth_tolerance, false);
 
     if (!curve.contact_area.empty() && curve.contact_area[begin] > 0)
       {

@@ -33,6 +33,21 @@ namespace indentsim::analysis
   using io::LoadCurve;
   using io::read_load_curve_csv;
 
+  // The checks of analyze() on the curve and its results (user guide, "Oliver-Pharr analysis").
+  // At least this many unloading points in the fit range: the fit has 3 parameters, and 2 more
+  // points leave a residual that measures how well a power law describes the unloading.
+  inline constexpr unsigned int min_fit_points = 5;
+  // Depth reversals up to this fraction of the depth range (max - min depth) are measurement
+  // noise; a larger one is a row out of order (or, on the unloading, a reload).
+  inline constexpr double depth_noise_fraction = 1e-3;
+  // The unloading exponent of an elastic contact (Sneddon; Oliver and Pharr 1992, 2004): m = 1
+  // for a flat punch, 1.5 for a paraboloid, 2 for a cone, 1 + 1/n for a profile z ~ r^n; a real
+  // tip lies between flat punch and cone. The bound leaves 0.5 for the correlation of m with h_f
+  // in the fit (the fit itself keeps m >= 1).
+  inline constexpr double max_physical_exponent = 2.5;
+  // W_p/W_t may fall below 0 by this much on an elastic curve (trapezoid rule on coarse steps).
+  inline constexpr double work_ratio_tolerance = 0.02;
+
   // P = alpha (h - h_f)^m on the fitted points.
   struct PowerLawFit
   {
@@ -88,9 +103,17 @@ namespace indentsim::analysis
   };
 
   // The unloading branch is the one that starts at the largest depth (the last cycle's
-  // maximum; a hold ends there) and runs while the depth falls. `area_function` maps a contact
-  // depth [um] to a projected area [um^2]. Throws std::invalid_argument naming curve.source if
-  // the curve has no unloading branch with at least three points in the fit range.
+  // maximum; a hold ends there) and runs while the depth falls, until the force reaches zero
+  // (later rows are ignored) or the curve reloads. `area_function` maps a contact depth [um] to
+  // a projected area [um^2]. The curve is checked before the fit, in its recorded order (it is
+  // never re-sorted): two rows out of order on the loading or the unloading (a depth reversal
+  // beyond depth_noise_fraction of the depth range that is undone at the next row), a first
+  // row deeper than the end of the unloading (a file in reverse order), fewer than
+  // min_fit_points unloading points in the fit range; and the results are checked against the
+  // bounds of an indentation: 1 <= m <= max_physical_exponent, 0 <= h_c <= h_max,
+  // 0 <= h_r <= h_max, 0 <= W_p/W_t <= 1 (within work_ratio_tolerance). Any of these throws
+  // std::invalid_argument naming curve.source, the row (LoadCurve::row_name), the values and
+  // the rule: nothing outside the bounds is returned.
   OliverPharrResult analyze(const LoadCurve                     &curve,
                             const std::function<double(double)> &area_function,
                             const OliverPharrSettings           &settings);

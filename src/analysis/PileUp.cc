@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <limits>
 #include <numbers>
+#include <sstream>
 
 namespace indentsim::analysis::pileup
 {
@@ -145,6 +146,7 @@ namespace indentsim::analysis::pileup
       out << ",\n";
       field("dominant_fold") << r.spectrum.dominant_fold << ",\n";
       field("symmetry_fold") << r.spectrum.symmetry_fold << ",\n";
+      field("fold_source") << '"' << r.spectrum.fold_source << "\",\n";
       field("noise_level_um");
       write_number(out, r.spectrum.noise_level);
       out << ",\n";
@@ -348,7 +350,7 @@ namespace indentsim::analysis::pileup
   }
 
   AzimuthalSpectrum spectrum_of_samples(const std::vector<double> &samples,
-                                        const unsigned int         max_fold)
+                                        const unsigned int max_fold, const SymmetrySources &sources)
   {
     AzimuthalSpectrum spectrum;
     spectrum.samples = samples;
@@ -407,6 +409,25 @@ namespace indentsim::analysis::pileup
         largest_off_mesh >= mesh_free_fraction * largest)
       spectrum.symmetry_fold = off_mesh_fold;
 
+    // Where the fold comes from. An isotropic material under an axisymmetric indenter has no
+    // fold: the square mesh is then the only thing that is not axisymmetric, and it imprints
+    // k = 4, 8, 12 only (the reported fold of such a pile-up would be the mesh's). A harmonic
+    // beyond the imprint above the noise level is then a numerical asymmetry.
+    if (!sources.anisotropic_material && !sources.non_axisymmetric_indenter)
+      {
+        const bool asymmetric = largest_off_mesh > spectrum.noise_level;
+        spectrum.symmetry_fold = asymmetric ? off_mesh_fold : 0;
+        spectrum.fold_source = asymmetric ? "numerical" : "axisymmetric";
+      }
+    else if (spectrum.symmetry_fold == 0)
+      spectrum.fold_source = "axisymmetric";
+    else if (spectrum.symmetry_fold % 4 == 0)
+      spectrum.fold_source = "mesh_imprint_possible";
+    else
+      spectrum.fold_source = !sources.non_axisymmetric_indenter ? "crystal"
+                             : !sources.anisotropic_material    ? "indenter"
+                                                                : "crystal_or_indenter";
+
     // Local maxima of the cyclic sample sequence (a plateau counts once, at its centre) that
     // stand above the mean by more than the noise level.
     struct Peak
@@ -432,12 +453,13 @@ namespace indentsim::analysis::pileup
   std::optional<AzimuthalSpectrum> azimuthal_spectrum(const SurfaceInterpolator &surface,
                                                       const double               radius,
                                                       const unsigned int         n_azimuths,
-                                                      const unsigned int         max_fold)
+                                                      const unsigned int         max_fold,
+                                                      const SymmetrySources     &sources)
   {
     const auto samples = circle_samples(surface, radius, n_azimuths);
     if (!samples)
       return std::nullopt;
-    AzimuthalSpectrum spectrum = spectrum_of_samples(*samples, max_fold);
+    AzimuthalSpectrum spectrum = spectrum_of_samples(*samples, max_fold, sources);
     spectrum.radius = radius;
     return spectrum;
   }
@@ -496,8 +518,9 @@ namespace indentsim::analysis::pileup
           }
       }
     if (result.analysis_radius > 0)
-      result.spectrum = *azimuthal_spectrum(interpolator, result.analysis_radius,
-                                            parameters.n_azimuths, parameters.max_fold);
+      result.spectrum =
+          *azimuthal_spectrum(interpolator, result.analysis_radius, parameters.n_azimuths,
+                              parameters.max_fold, parameters.sources);
 
     // The largest height outside the contact: a piecewise-linear surface takes its maximum at a
     // node, so the nodes with current radius > a_c are searched.
@@ -515,6 +538,45 @@ namespace indentsim::analysis::pileup
             }
         }
     return result;
+  }
+
+  std::string describe_fold(const AzimuthalSpectrum &spectrum)
+  {
+    std::ostringstream out;
+    out << std::setprecision(3);
+    const unsigned int largest = spectrum.dominant_fold;
+    const auto         harmonic = [&](const unsigned int k) -> std::ostream         &{
+      return out << "A_" << k << " = " << spectrum.amplitudes[k] << " um";
+    };
+    if (spectrum.fold_source == "axisymmetric")
+      {
+        out << "axisymmetric (no fold): no harmonic ";
+        if (largest != 0 && largest % 4 == 0)
+          {
+            out << "beyond the square mesh's 4/8/12-fold imprint stands above the noise level "
+                << spectrum.noise_level << " um; the largest, ";
+            harmonic(largest) << ", is the mesh's imprint";
+          }
+        else
+          out << "stands above the noise level " << spectrum.noise_level << " um";
+        return out.str();
+      }
+    out << spectrum.symmetry_fold << "-fold (";
+    if (spectrum.fold_source == "crystal")
+      out << "the crystal's: the square mesh imprints multiples of 4 only";
+    else if (spectrum.fold_source == "indenter")
+      out << "the indenter's: the square mesh imprints multiples of 4 only";
+    else if (spectrum.fold_source == "crystal_or_indenter")
+      out << "the crystal's or the indenter's: the square mesh imprints multiples of 4 only";
+    else if (spectrum.fold_source == "mesh_imprint_possible")
+      out << "a multiple of 4: the crystal's or indenter's fold and the square mesh's imprint "
+             "cannot be told apart on one mesh";
+    else
+      out << "numerical asymmetry: an isotropic material under an axisymmetric indenter has no "
+             "fold";
+    out << "; ";
+    harmonic(spectrum.symmetry_fold) << ", largest harmonic " << largest << ")";
+    return out.str();
   }
 
   void write_json(std::ostream &out, const std::vector<PileUpResult> &stages,

@@ -29,9 +29,16 @@
 //    the noise level and at least 10 % of the largest harmonic, else the dominant fold. The
 //    tensor-product mesh has the square's symmetry and imprints only k = 4, 8, 12 on a pile-up
 //    (on coarse meshes as strongly as the (011) 2-fold or the (111) 3-fold pattern itself), so
-//    a significant harmonic outside that set is the material's; a pattern with none is
-//    compatible with the square ((001), or an isotropic material seen through the mesh: run the
-//    J2 case on the same mesh to see the imprint's size);
+//    a significant harmonic outside that set is the material's or the indenter's; a pattern
+//    with none is compatible with the square ((001), a Vickers pyramid);
+//  - the fold's source (SymmetrySources: what besides the mesh can break the axial symmetry).
+//    An isotropic material under an axisymmetric indenter has no fold: if no harmonic beyond
+//    the mesh imprint (k not a multiple of 4) stands above the noise level, the symmetry fold
+//    is 0 and the source "axisymmetric", whatever the imprint's size; one that does is a
+//    numerical asymmetry ("numerical"). Otherwise the source is "crystal", "indenter" or
+//    "crystal_or_indenter" for a fold that is not a multiple of 4, "mesh_imprint_possible" for
+//    one that is (the crystal's or pyramid's 4-fold and the mesh's imprint cannot be told apart
+//    on one mesh), "axisymmetric" when no harmonic stands above the noise at all;
 //  - the largest height outside the contact (over the surface nodes with current radius > a_c,
 //    where the piecewise-linear maximum is attained) and its radius and azimuth;
 //  - the azimuths of the local maxima of h on the circle r_c that stand above the circle's mean by
@@ -113,6 +120,15 @@ namespace indentsim::analysis::pileup
   std::vector<ProfilePoint> radial_profile(const SurfaceInterpolator &surface, double azimuth_deg,
                                            double r_max, double dr);
 
+  // What besides the square mesh can make the pile-up non-axisymmetric. The defaults assume
+  // both (nothing is attributed to the mesh alone).
+  struct SymmetrySources
+  {
+    bool anisotropic_material = true;      // crystal; false for J2 and neo-Hookean
+    bool non_axisymmetric_indenter = true; // pyramids; false for cones, spheres, flat punches,
+                                           // profile tables
+  };
+
   struct AzimuthalSpectrum
   {
     double              radius = 0;        // [um]
@@ -120,15 +136,23 @@ namespace indentsim::analysis::pileup
     std::vector<double> amplitudes;        // A_0 ... A_max_fold [um] (see the file comment)
     unsigned int        dominant_fold = 0; // 0: no harmonic k >= 2 above the noise level
     unsigned int        symmetry_fold = 0; // the fold beyond the square mesh's imprint
-    double              noise_level = 0;   // max(1e-3 |A_0|, 1e-6) [um]
+    std::string         fold_source = "axisymmetric"; // see the file comment
+    double              noise_level = 0;              // max(1e-3 |A_0|, 1e-6) [um]
     std::vector<double> peak_azimuths_deg; // local maxima above mean + noise level, merged
   };
   // The spectrum on the circle of radius `radius`; std::nullopt if a sample is not covered.
   std::optional<AzimuthalSpectrum> azimuthal_spectrum(const SurfaceInterpolator &surface,
                                                       double radius, unsigned int n_azimuths = 360,
-                                                      unsigned int max_fold = 12);
+                                                      unsigned int           max_fold = 12,
+                                                      const SymmetrySources &sources = {});
   // The fold and peak analysis of given equally spaced samples (used by azimuthal_spectrum).
-  AzimuthalSpectrum spectrum_of_samples(const std::vector<double> &samples, unsigned int max_fold);
+  AzimuthalSpectrum spectrum_of_samples(const std::vector<double> &samples, unsigned int max_fold,
+                                        const SymmetrySources &sources = {});
+
+  // One line for the console: the fold, its source and, for an imprint, the harmonic that is
+  // the mesh's (e.g. "axisymmetric: no harmonic beyond the square mesh's imprint above the noise
+  // level 0.0004 um (A_4 = 0.153 um is the imprint)").
+  std::string describe_fold(const AzimuthalSpectrum &spectrum);
 
   struct PileUpParameters
   {
@@ -139,6 +163,7 @@ namespace indentsim::analysis::pileup
     double              grid_spacing = 0;   // [um]; 0: min(h_min / 2, R / 50)
     unsigned int        n_azimuths = 360;   // M
     unsigned int        max_fold = 12;
+    SymmetrySources     sources; // what besides the mesh can break axial symmetry
     std::vector<double> profile_azimuths_deg = {0,   15,  30,  45,  60,  75,  90,  105,
                                                 120, 135, 150, 165, 180, 195, 210, 225,
                                                 240, 255, 270, 285, 300, 315, 330, 345};
@@ -166,8 +191,7 @@ namespace indentsim::analysis::pileup
 
   // pileup.json: {"units", the fields of `top_level`, "<stage>": {the fields of that stage}...}
   // with the fields stage, depth_um, contact_radius_um, analysis_radius_um, dominant_fold,
-  // symmetry_fold,
-  // noise_level_um, fourier_amplitudes_um [A_0 ... A_max_fold], max_pileup_um,
+  // symmetry_fold, fold_source, noise_level_um, fourier_amplitudes_um [A_0 ... A_max_fold], max_pileup_um,
   // max_pileup_radius_um, max_pileup_azimuth_deg, axis_height_um (null if not covered),
   // peak_azimuths_deg, grid_half_width_um, grid_spacing_um, n_azimuths.
   void write_json(std::ostream &out, const std::vector<PileUpResult> &stages,

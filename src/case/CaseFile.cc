@@ -10,8 +10,10 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <system_error>
+#include <utility>
 
 namespace indentsim::io
 {
@@ -94,12 +96,106 @@ namespace indentsim::io
     return best_distance <= threshold ? best : std::string();
   }
 
+  std::optional<std::pair<int, std::string>> yaml_text_problem(const std::string &text)
+  {
+    int         line = 0;
+    std::size_t line_start = 0;
+    for (std::size_t i = 0; i < text.size();)
+      {
+        const unsigned char byte = static_cast<unsigned char>(text[i]);
+        const std::string   column = std::to_string(i - line_start + 1);
+        if (byte == 0)
+          return std::pair{line, "binary content (a NUL byte at column " + column +
+                                     "): a case or study file is YAML text; is this the "
+                                     "right file?"};
+        // UTF-8: the length of the sequence from its lead byte, then continuation bytes
+        // 10xxxxxx (overlong and surrogate forms are not checked: they do not occur in files
+        // written by editors).
+        const std::size_t length = byte < 0x80                           ? 1
+                                   : (byte >> 5) == 0x6 && byte >= 0xC2  ? 2
+                                   : (byte >> 4) == 0xE                  ? 3
+                                   : (byte >> 3) == 0x1E && byte <= 0xF4 ? 4
+                                                                         : 0;
+        bool              valid = length > 0 && i + length <= text.size();
+        for (std::size_t k = 1; valid && k < length; ++k)
+          valid = (static_cast<unsigned char>(text[i + k]) >> 6) == 0x2;
+        if (!valid)
+          {
+            static const char *hex = "0123456789ABCDEF";
+            return std::pair{line, std::string("binary content (byte 0x") + hex[byte >> 4] +
+                                       hex[byte & 0xF] + " at column " + column +
+                                       " is not UTF-8 text): a case or study file is YAML text "
+                                       "in UTF-8; is this the right file, or was it saved in "
+                                       "another encoding (e.g. Latin-1)?"};
+          }
+        if (byte == '\n')
+          {
+            ++line;
+            line_start = i + 1;
+          }
+        i += length;
+      }
+
+    // Tabs in the indentation (YAML indents with spaces only) of lines with content.
+    std::istringstream lines(text);
+    std::string        content;
+    for (int number = 0; std::getline(lines, content); ++number)
+      {
+        const std::size_t first = content.find_first_not_of(" \t\r");
+        if (first == std::string::npos || content[first] == '#')
+          continue;
+        if (const std::size_t tab = content.find('\t'); tab < first)
+          return std::pair{number, "a tab in the indentation (column " + std::to_string(tab + 1) +
+                                       "): YAML indents with spaces only; replace the tab by "
+                                       "spaces"};
+      }
+    return std::nullopt;
+  }
+
+  int second_document_line(const std::string &text)
+  {
+    std::istringstream lines(text);
+    std::string        content;
+    bool               seen_content = false;
+    for (int number = 0; std::getline(lines, content); ++number)
+      {
+        if (!content.empty() && content.back() == '\r')
+          content.pop_back();
+        const bool marker =
+            content.rfind("---", 0) == 0 && (content.size() == 3 || content[3] == ' ');
+        if (marker && seen_content)
+          return number;
+        // Content after a marker ("--- key: value") starts the document on the marker's line.
+        const std::size_t from = marker ? 3 : 0;
+        const std::size_t first = content.find_first_not_of(" \t", from);
+        if (first != std::string::npos && content[first] != '#' &&
+            !(from == 0 && content[first] == '%'))
+          seen_content = true;
+      }
+    return -1;
+  }
+
   Case parse_case_yaml(const std::string &yaml_text, const std::string &source_name)
   {
+    if (const auto problem = yaml_text_problem(yaml_text))
+      fail(source_name, problem->first, problem->second);
     YAML::Node root;
     try
       {
-        root = YAML::Load(yaml_text);
+        const std::vector<YAML::Node> documents = YAML::LoadAll(yaml_text);
+        if (!documents.empty())
+          root = documents.front();
+        for (std::size_t d = 1; d < documents.size(); ++d)
+          if (documents[d].IsDefined() && !documents[d].IsNull())
+            {
+              int line = second_document_line(yaml_text);
+              if (line < 0 && !documents[d].Mark().is_null())
+                line = documents[d].Mark().line;
+              fail(source_name, line,
+                   "a second YAML document (after '---'): a case file holds one document, and "
+                   "the keys of a second one would be ignored; merge them into the first "
+                   "document or put each case into its own file");
+            }
       }
     catch (const YAML::ParserException &error)
       {

@@ -3,7 +3,9 @@
 // A case file is YAML in um, mN, GPa. Only two keys are required: `test` and `material.model`;
 // every other key has the default declared in the schema (Schema.cc, listed in
 // docs/case-file-reference.md). `specimen.f_bar`, when
-// absent, defaults to true for `j2` and `crystal` and false for `neo_hookean`. A relative
+// absent, defaults to true for `j2` and `crystal` and for `neo_hookean` with poisson_ratio >
+// 0.45 (plain hexahedra lock when nearly incompressible), false for other `neo_hookean` cases.
+// A case file holds one YAML document; binary content and tabs in the indentation are named. A relative
 // `output.directory` is relative to the current working directory (not to the case file).
 // The crystal keys (material.lattice, .elastic, .hardening, .yield_exponent_n, .orientation)
 // are read and checked for every model but used only by `crystal`; `material.orientation` is
@@ -22,8 +24,10 @@
 #include "case/OutputDirectory.h"
 
 #include <array>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace YAML
@@ -39,6 +43,10 @@ namespace indentsim::io
   public:
     using std::runtime_error::runtime_error;
   };
+
+  // Above this Poisson ratio a neo-Hookean case gets the F-bar element by default
+  // (specimen.f_bar not given): plain trilinear hexahedra lock when nearly incompressible.
+  inline constexpr double nearly_incompressible_poisson_ratio = 0.45;
 
   // Parses, fills defaults and validates. Throws CaseFileError.
   Case read_case_file(const std::string &path);
@@ -64,6 +72,15 @@ namespace indentsim::io
   // The candidate closest to `word` if it is plausibly a typo of it, else "" (the "did you
   // mean" of the messages; also used by the study file reader).
   std::string closest_name(const std::string &word, const std::vector<std::string> &candidates);
+
+  // What the YAML parser would report only generically, found in the text of a case or study
+  // file: binary content (a NUL byte, or bytes that are not UTF-8) or a tab in the indentation
+  // of a line. The first one as {0-based line, message}; std::nullopt if none.
+  std::optional<std::pair<int, std::string>> yaml_text_problem(const std::string &text);
+
+  // The 0-based line of the '---' that starts a second YAML document in `text` (a '---' after
+  // the first document's content), -1 if there is none.
+  int second_document_line(const std::string &text);
 
   // Writes resolved_case_yaml() to `path`. Throws CaseFileError if it cannot be written.
   void write_resolved_case(const Case &resolved_case, const std::string &path);

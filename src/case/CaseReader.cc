@@ -57,11 +57,16 @@ namespace indentsim::io
                        "' (allowed: " + join(key.choice.words(true)) + ")");
           }
 
-        // F-bar by default for plasticity (isochoric flow locks plain hexahedra), plain
-        // displacement element by default for hyperelasticity.
+        // F-bar by default for plasticity (isochoric flow locks plain hexahedra) and for nearly
+        // incompressible hyperelasticity (nu > 0.45: the volumetric stiffness locks them as
+        // well, e.g. H = 242 GPa instead of a few GPa at nu = 0.4999); the plain displacement
+        // element otherwise, which is exact for the compressible elastic patch tests.
         if (value_origins.count("specimen.f_bar") == 0)
-          result.specimen.f_bar = (result.material.model == ModelKind::j2 ||
-                                   result.material.model == ModelKind::crystal);
+          result.specimen.f_bar =
+              result.material.model == ModelKind::j2 ||
+              result.material.model == ModelKind::crystal ||
+              (result.material.model == ModelKind::neo_hookean &&
+               result.material.poisson_ratio > nearly_incompressible_poisson_ratio);
         return result;
       }
 

@@ -139,11 +139,20 @@ namespace indentsim::io
                        constants);
           }
         if (m.theta0 > 0. && !(m.tau1 > 0.))
-          reject(given_or_first({"material.hardening.tau1", "material.hardening.theta0"}),
-                 "tau1 = " + format_number(m.tau1) + ", theta0 = " + format_number(m.theta0),
-                 "tau1 must be > 0 when theta0 > 0: the Voce law tau_c = tau0 + (tau1 + theta1 "
-                 "Gamma)(1 - exp(-theta0 Gamma / tau1)) divides by tau1 (for linear hardening "
-                 "set theta0 = 0 and use theta1)");
+          {
+            // The message names the key given (or the first) with its value, and the other
+            // key's value in the rule (never the key twice).
+            const std::string path =
+                given_or_first({"material.hardening.tau1", "material.hardening.theta0"});
+            const bool tau1 = path == "material.hardening.tau1";
+            reject(path, format_number(tau1 ? m.tau1 : m.theta0),
+                   "tau1 must be > 0 when theta0 > 0 (here " +
+                       (tau1 ? "theta0 = " + format_number(m.theta0)
+                             : "tau1 = " + format_number(m.tau1)) +
+                       " GPa): the Voce law tau_c = tau0 + (tau1 + theta1 Gamma)(1 - exp(-theta0 "
+                       "Gamma / tau1)) divides by tau1 (for linear hardening set theta0 = 0 and "
+                       "use theta1)");
+          }
 
         const auto &o = m.orientation;
         if (!o.kind.known())
@@ -174,11 +183,16 @@ namespace indentsim::io
       {
         const auto &ind = checked.indenter;
         if (!(ind.edge_radius >= 0. && ind.edge_radius <= ind.radius))
-          reject(given_or_first({"indenter.edge_radius", "indenter.radius"}),
-                 "edge_radius = " + format_number(ind.edge_radius) +
-                     ", radius = " + format_number(ind.radius),
-                 "the rim rounding of the flat punch must satisfy 0 <= edge_radius <= radius "
-                 "(um; 0: a sharp rim)");
+          {
+            const std::string path = given_or_first({"indenter.edge_radius", "indenter.radius"});
+            const bool        edge = path == "indenter.edge_radius";
+            reject(path, format_number(edge ? ind.edge_radius : ind.radius),
+                   "the rim rounding of the flat punch must satisfy 0 <= edge_radius <= radius "
+                   "(um; 0: a sharp rim; here " +
+                       (edge ? "radius = " + format_number(ind.radius)
+                             : "edge_radius = " + format_number(ind.edge_radius)) +
+                       " um)");
+          }
         if (ind.shape == IndenterShape::profile_table && ind.file.empty())
           reject("indenter.file", "\"\"",
                  "shape: profile_table needs the table: file: a CSV path (relative to the case "

@@ -299,9 +299,11 @@ namespace indentsim::io
                   "(every axisymmetric shape, `vickers` at a `rotation_deg` that is a "
                   "multiple of 45, never `berkovich`)"),
           D::at<&C::specimen, &S::f_bar>("specimen.f_bar")
-              .default_is("true for j2 and crystal, false for neo_hookean")
+              .default_is("true for j2 and crystal, and for neo_hookean with poisson_ratio > 0.45; "
+                          "false for other neo_hookean cases")
               .comment("F-bar element")
-              .describe("the F-bar element (isochoric plastic flow locks plain hexahedra)"),
+              .describe("the F-bar element (isochoric plastic flow, and a nearly incompressible "
+                        "elastic material, lock plain hexahedra)"),
           D::at<&C::specimen, &S::elements_per_side>("specimen.elements_per_side")
               .range(between(1, true, max_elements_per_side, true),
                      "the tensile cube has n x n x n elements of 1 um; n must satisfy 1 <= n <= " +

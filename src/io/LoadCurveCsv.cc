@@ -99,6 +99,12 @@ namespace indentsim::io
     }
   } // namespace
 
+  std::string LoadCurve::row_name(const std::size_t index) const
+  {
+    return index < line.size() ? "line " + std::to_string(line[index])
+                               : "point " + std::to_string(index + 1);
+  }
+
   LoadCurve read_load_curve_csv(const std::string &path, const std::string &depth_column,
                                 const std::string &force_column, const std::string &depth_unit,
                                 const std::string &force_unit)
@@ -113,6 +119,10 @@ namespace indentsim::io
     while (std::getline(in, line))
       {
         ++line_number;
+        // A spreadsheet's "CSV UTF-8" starts with the byte-order mark EF BB BF; it is not part
+        // of the first column's name. CRLF endings: trim() and split() drop the '\r'.
+        if (line_number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0)
+          line.erase(0, 3);
         if (trim(line).empty() || trim(line)[0] == '#')
           continue;
         delimiter = line.find(',') != std::string::npos    ? ','
@@ -186,6 +196,7 @@ namespace indentsim::io
                                       std::to_string(header.size()));
         curve.depth.push_back(d_factor * number(fields, depth_index));
         curve.force.push_back(f_factor * number(fields, force_index));
+        curve.line.push_back(line_number);
         if (area_index < header.size() && area_index < fields.size())
           curve.contact_area.push_back(number(fields, area_index));
       }

@@ -11,13 +11,18 @@ namespace indentsim::io
   // true projected contact area) is empty for measured curves.
   struct LoadCurve
   {
-    std::vector<double> depth;        // [um]
-    std::vector<double> force;        // [mN]
-    std::vector<double> contact_area; // [um^2], empty or one per point
-    std::string         source;       // file it came from (for messages)
+    std::vector<double>      depth;        // [um]
+    std::vector<double>      force;        // [mN]
+    std::vector<double>      contact_area; // [um^2], empty or one per point
+    std::vector<std::size_t> line;         // line of each point in `source` (1-based), or empty
+    std::string              source;       // file it came from (for messages)
+
+    // "line N" of the point's line in the file, or "point N" (1-based) for a curve in memory.
+    std::string row_name(std::size_t index) const;
   };
 
-  // Reads a CSV with a header line (lines starting with '#' are comments). The depth and force
+  // Reads a CSV with a header line (lines starting with '#' are comments; a UTF-8 byte-order
+  // mark before the first line and CRLF line endings are accepted). The depth and force
   // columns are the named ones, or else the first header starting with depth/h/displacement/
   // penetration and force/load/p. Units come from the column name (depth_um, depth_nm,
   // "depth (nm)", force_mN, load_uN, force_N, ...) unless given ("um", "nm", "mm"; "mN", "uN",

@@ -184,6 +184,11 @@ namespace indentsim::problems
         pileup::PileUpParameters parameters;
         parameters.depth = snapshot.depth;
         parameters.contact_radius = contact_radius;
+        // Only a crystal or a pyramid can break the axial symmetry besides the square mesh.
+        parameters.sources.anisotropic_material = case_.material.model == io::ModelKind::crystal;
+        parameters.sources.non_axisymmetric_indenter =
+            case_.indenter.shape == io::IndenterShape::vickers ||
+            case_.indenter.shape == io::IndenterShape::berkovich;
         pileup_results_.push_back(pileup::analyse(snapshot.surface, snapshot.stage, parameters));
         const pileup::PileUpResult &result = pileup_results_.back();
         std::ofstream               grid(output_directory_ + "/" +
@@ -194,8 +199,7 @@ namespace indentsim::problems
                << ", depth " << result.depth << " um): max height " << result.max_pileup
                << " um at r = " << result.max_pileup_radius << " um, azimuth "
                << result.max_pileup_azimuth_deg << " deg; analysis radius "
-               << result.analysis_radius << " um, dominant fold " << result.spectrum.dominant_fold
-               << ", symmetry fold beyond the mesh imprint " << result.spectrum.symmetry_fold
+               << result.analysis_radius << " um; fold: " << pileup::describe_fold(result.spectrum)
                << std::endl;
       }
     if (pileup_results_.empty())

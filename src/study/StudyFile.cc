@@ -2,6 +2,7 @@
 // key. See StudyFile.h for the format and the rules. Units: um, mN, GPa.
 #include "study/StudyFile.h"
 
+#include "case/CaseFile.h"
 #include "case/Fingerprint.h"
 
 #include <algorithm>
@@ -68,6 +69,28 @@ namespace indentsim::study
           else
             target[key] = YAML::Clone(entry.second);
         }
+    }
+
+    // The one YAML document of a study or base case file. Binary content, tabs in the
+    // indentation and a second document (which would be ignored) are refused by name, with the
+    // line; `context` follows the message. Throws StudyFileError or YAML::ParserException.
+    YAML::Node load_one_document(const std::string &text, const std::string &source,
+                                 const std::string &context)
+    {
+      const auto at_line = [&](const int line) {
+        return source + (line < 0 ? std::string() : ":" + std::to_string(line + 1));
+      };
+      if (const auto problem = io::yaml_text_problem(text))
+        throw StudyFileError(at_line(problem->first) + ": " + problem->second + context);
+      const std::vector<YAML::Node> documents = YAML::LoadAll(text);
+      for (std::size_t d = 1; d < documents.size(); ++d)
+        if (documents[d].IsDefined() && !documents[d].IsNull())
+          throw StudyFileError(at_line(io::second_document_line(text)) +
+                               ": a second YAML document (after '---'): the file holds one "
+                               "document, and the keys of a second one would be ignored; merge "
+                               "them into the first" +
+                               context);
+      return documents.empty() ? YAML::Node() : documents.front();
     }
 
     // Reads a study file's YAML into a Study; every problem throws StudyFileError.
@@ -361,7 +384,8 @@ namespace indentsim::study
         base_text << input.rdbuf();
         try
           {
-            return YAML::Load(base_text.str());
+            return load_one_document(base_text.str(), result.base_file,
+                                     " (the base of " + the_case + " in " + source + ")");
           }
         catch (const YAML::ParserException &e)
           {
@@ -526,7 +550,7 @@ namespace indentsim::study
     YAML::Node root;
     try
       {
-        root = YAML::Load(yaml_text);
+        root = load_one_document(yaml_text, source_name, "");
       }
     catch (const YAML::ParserException &e)
       {

@@ -16,8 +16,10 @@
 #include <fstream>
 #include <initializer_list>
 #include <limits>
+#include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -25,6 +27,7 @@ namespace
 {
   namespace fs = std::filesystem;
   using namespace indentsim::io;
+  using namespace std::string_literals;
 
   // A fresh, empty scratch directory for one test.
   fs::path scratch_directory(const std::string &test_name)
@@ -338,7 +341,7 @@ TEST(CaseFile, CrystalRangesAreChecked)
   expect_rejected(crystal_with("  hardening: {q: -0.5}\n"),
                   {"material.hardening.q = -0.5", ">= 0"});
   expect_rejected(crystal_with("  hardening: {tau1: 0}\n"),
-                  {"material.hardening.tau1", "tau1 = 0, theta0 = 0.1", "divides by tau1"});
+                  {"material.hardening.tau1 = 0: ", "(here theta0 = 0.1 GPa)", "divides by tau1"});
   EXPECT_EQ(error_of(crystal_with("  hardening: {tau1: 0, theta0: 0}\n")), "")
       << "linear hardening (theta0 = 0) needs no tau1";
   expect_rejected(crystal_with("  yield_exponent_n: 0.5\n"),
@@ -478,9 +481,9 @@ TEST(CaseFile, IndenterRangesAreChecked)
                   {"indenter.tip_radius = -0.1", ">= 0 um", "0: sharp"});
   expect_rejected(
       with("indenter:\n  shape: flat_punch\n  edge_radius: -0.1\n"),
-      {"indenter.edge_radius", "edge_radius = -0.1, radius = 10", "0 <= edge_radius <= radius"});
+      {"indenter.edge_radius = -0.1: ", "here radius = 10 um", "0 <= edge_radius <= radius"});
   expect_rejected(with("indenter:\n  shape: flat_punch\n  radius: 2\n  edge_radius: 3\n"),
-                  {"indenter.edge_radius", "edge_radius = 3, radius = 2", ":7:"});
+                  {"indenter.edge_radius = 3: ", "here radius = 2 um", ":7:"});
   expect_rejected(with("indenter:\n  rotation_deg: ninety\n"),
                   {"indenter.rotation_deg", "ninety", "expected a number", "degrees"});
   expect_rejected(with("indenter:\n  tip_radius: [0.1]\n"),
@@ -1210,4 +1213,87 @@ TEST(CaseFile, ChoiceKeepsAnUnknownWord)
   EXPECT_TRUE(control == Control::force);
   EXPECT_EQ(choice_words<Lattice>(true), std::vector<std::string>{"fcc"});
   EXPECT_EQ(choice_words<Lattice>(false), (std::vector<std::string>{"fcc", "bcc", "hcp"}));
+}
+
+// A second YAML document in a case file (after a second '---') would be ignored: it is refused
+// with the file and the line of its '---'. A leading '---' and an empty trailing document are
+// one document.
+TEST(CaseFile, SecondYamlDocumentIsRefused)
+{
+  expect_rejected(minimal_case + "---\nloading:\n  max_depth: 1\n",
+                  {"bad.yaml:4: ", "a second YAML document", "holds one document"});
+  expect_rejected("---\n" + minimal_case + "--- {loading: {max_depth: 1}}\n",
+                  {"bad.yaml:5: ", "a second YAML document"});
+  EXPECT_EQ(error_of("---\n" + minimal_case), "");
+  EXPECT_EQ(error_of(minimal_case + "---\n"), "");
+  EXPECT_EQ(error_of(minimal_case + "...\n"), "");
+}
+
+// Tab indentation and binary content (a NUL byte, bytes that are not UTF-8) are named with
+// their line, instead of the YAML parser's generic message; a tab inside a value or a comment
+// is not indentation, and UTF-8 text (a byte-order mark, a µ) is accepted.
+TEST(CaseFile, TabsAndBinaryContentAreNamed)
+{
+  expect_rejected("test: indentation\nmaterial:\n\tmodel: j2\n",
+                  {"bad.yaml:3: ", "a tab in the indentation (column 1)", "spaces"});
+  expect_rejected("test: indentation\nmaterial:\n  \tmodel: j2\n",
+                  {"bad.yaml:3: ", "a tab in the indentation (column 3)"});
+  expect_rejected(minimal_case + "loading:\n  max_depth: 1\0\n"s,
+                  {"bad.yaml:5: ", "binary content (a NUL byte at column 15)"});
+  expect_rejected(minimal_case + "# \xFF\xFE\n", {"bad.yaml:4: ", "byte 0xFF", "not UTF-8"});
+  expect_rejected("\x89PNG\r\n\x1A\n", {"bad.yaml:1: ", "binary content (byte 0x89"});
+  EXPECT_EQ(error_of(minimal_case + "# \ttab in a comment, \xC2\xB5m in UTF-8\n"), "");
+  EXPECT_EQ(error_of("\xEF\xBB\xBF" + minimal_case), "");
+}
+
+// Plain trilinear hexahedra lock when nearly incompressible (nu = 0.4999 gave H = 242 GPa):
+// neo-Hookean with nu > 0.45 gets F-bar unless specimen.f_bar is given; nu = 0.45 and below
+// keep the plain element, and an explicit f_bar: false is honoured.
+TEST(CaseFile, NearlyIncompressibleNeoHookeanGetsFBar)
+{
+  const auto neo_hookean = [](const std::string &nu, const std::string &extra = "") {
+    return parse_case_yaml(
+        "test: indentation\nmaterial:\n  model: neo_hookean\n  poisson_ratio: " + nu + "\n" + extra,
+        "a.yaml");
+  };
+  EXPECT_TRUE(neo_hookean("0.4999").specimen.f_bar);
+  EXPECT_TRUE(neo_hookean("0.46").specimen.f_bar);
+  EXPECT_FALSE(neo_hookean("0.45").specimen.f_bar);
+  EXPECT_FALSE(neo_hookean("0.3").specimen.f_bar);
+  EXPECT_FALSE(neo_hookean("0.4999", "specimen:\n  f_bar: false\n").specimen.f_bar);
+  EXPECT_DOUBLE_EQ(nearly_incompressible_poisson_ratio, 0.45);
+}
+
+// A rule on two keys names the key with its value once and the other key's value in the rule:
+// never a doubled label such as "material.hardening.tau1 = tau1 = 0".
+TEST(CaseFile, TwoKeyRulesNameEachLabelOnce)
+{
+  const std::regex         doubled(R"(([A-Za-z_0-9]+) = \1 = )");
+  std::vector<std::string> messages = {
+      error_of("test: indentation\nmaterial:\n  model: crystal\n  hardening: {tau1: 0}\n"),
+      error_of("test: indentation\nmaterial:\n  model: crystal\n  hardening: {tau1: 0, theta0: "
+               "0.2}\n"),
+      error_of(with("indenter:\n  shape: flat_punch\n  radius: 2\n  edge_radius: 3\n"))};
+  Case c;
+  c.material.tau1 = 0;
+  c.material.theta0 = 0.1;
+  try
+    {
+      validate_case(c);
+    }
+  catch (const CaseFileError &error)
+    {
+      messages.push_back(error.what());
+    }
+  ASSERT_EQ(messages.size(), 4u);
+  for (const std::string &message : messages)
+    {
+      ASSERT_FALSE(message.empty());
+      EXPECT_FALSE(std::regex_search(message, doubled)) << message;
+    }
+  EXPECT_NE(messages[1].find("material.hardening.tau1 = 0: tau1 must be > 0 when theta0 > 0 "
+                             "(here theta0 = 0.2 GPa)"),
+            std::string::npos)
+      << messages[1];
+  EXPECT_NE(messages[3].find("material.hardening.tau1 = 0: "), std::string::npos) << messages[3];
 }

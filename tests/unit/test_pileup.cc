@@ -332,3 +332,99 @@ TEST(PileUp, FilesHaveEmptyCellsAndBothStages)
   EXPECT_EQ(profiles.str().rfind("stage,azimuth_deg,r_um,height_um\nmax_depth,0,0,", 0), 0u);
   EXPECT_NE(profiles.str().find("unloaded,345,"), std::string::npos);
 }
+
+// An isotropic material under an axisymmetric indenter has no fold: with the square mesh's
+// imprint (A_4, A_8 as large as in the default example: 0.153 and 0.074 um on A_0 = 0.41 um)
+// and harmonics beyond it of noise size (below 1e-3 A_0), the fold is 0 and its source
+// "axisymmetric", while the raw largest harmonic stays 4. The same samples from a crystal keep
+// the 4 ("mesh_imprint_possible"); an isotropic pile-up with a harmonic beyond the imprint above
+// the noise is a numerical asymmetry.
+TEST(PileUp, IsotropicUnderAxisymmetricIndenterHasNoFold)
+{
+  const auto samples_of = [](const std::vector<std::pair<unsigned int, double>> &harmonics) {
+    std::vector<double> samples(360);
+    for (unsigned int j = 0; j < 360; ++j)
+      {
+        const double theta = 2 * pi * j / 360;
+        samples[j] = 0.41;
+        for (const auto &[k, amplitude] : harmonics)
+          samples[j] += amplitude * std::cos(k * theta + 0.1 * k);
+      }
+    return samples;
+  };
+  const std::vector<double> imprint =
+      samples_of({{2, 2e-4}, {3, 1e-4}, {4, 0.153}, {6, 2e-4}, {8, 0.074}, {12, 0.015}});
+  const SymmetrySources   isotropic_cone{false, false};
+  const AzimuthalSpectrum j2 = spectrum_of_samples(imprint, 12, isotropic_cone);
+  EXPECT_NEAR(j2.noise_level, 4.1e-4, 1e-12);
+  EXPECT_EQ(j2.dominant_fold, 4u);
+  EXPECT_EQ(j2.symmetry_fold, 0u);
+  EXPECT_EQ(j2.fold_source, "axisymmetric");
+  const std::string text = describe_fold(j2);
+  EXPECT_EQ(text.rfind("axisymmetric (no fold)", 0), 0u) << text;
+  EXPECT_NE(text.find("A_4 = 0.153 um, is the mesh's imprint"), std::string::npos) << text;
+
+  const SymmetrySources   crystal{true, false};
+  const AzimuthalSpectrum crystal_001 = spectrum_of_samples(imprint, 12, crystal);
+  EXPECT_EQ(crystal_001.symmetry_fold, 4u);
+  EXPECT_EQ(crystal_001.fold_source, "mesh_imprint_possible");
+
+  const AzimuthalSpectrum asymmetric =
+      spectrum_of_samples(samples_of({{2, 0.01}, {4, 0.153}}), 12, isotropic_cone);
+  EXPECT_EQ(asymmetric.symmetry_fold, 2u);
+  EXPECT_EQ(asymmetric.fold_source, "numerical");
+
+  // The whole analysis on a square mesh (a ring with a 4-fold imprint) and its pileup.json.
+  PileUpParameters parameters;
+  parameters.depth = 1;
+  parameters.contact_radius = contact_radius;
+  parameters.grid_spacing = 0.1;
+  parameters.sources = isotropic_cone;
+  const auto surface =
+      square_surface(-12, 12, -12, 12, 96, modulated_ring(4, 0.05), no_displacement);
+  const PileUpResult result = analyse(surface, "unloaded", parameters);
+  EXPECT_EQ(result.spectrum.dominant_fold, 4u);
+  EXPECT_EQ(result.spectrum.symmetry_fold, 0u);
+  std::ostringstream json;
+  write_json(json, {result}, result);
+  EXPECT_NE(json.str().find("\"symmetry_fold\": 0,\n  \"fold_source\": \"axisymmetric\","),
+            std::string::npos)
+      << json.str();
+}
+
+// The crystals keep their folds and name them: (011) 2 and (111) 3 beyond a mesh imprint as
+// large as in the paper's 12x12 and 24x24 cases are the crystal's; (001) 4 may be the mesh's.
+// Under a Berkovich pyramid an isotropic material's 3-fold is the indenter's.
+TEST(PileUp, CrystalFoldsKeepTheirSource)
+{
+  const auto spectrum_of = [](const std::vector<std::pair<unsigned int, double>> &harmonics,
+                              const SymmetrySources                              &sources) {
+    std::vector<double> samples(360);
+    for (unsigned int j = 0; j < 360; ++j)
+      {
+        const double theta = 2 * pi * j / 360;
+        samples[j] = 0.75;
+        for (const auto &[k, amplitude] : harmonics)
+          samples[j] += amplitude * std::cos(k * theta + 0.1 * k);
+      }
+    return spectrum_of_samples(samples, 12, sources);
+  };
+  const SymmetrySources   crystal_under_cone{true, false};
+  const AzimuthalSpectrum crystal_011 =
+      spectrum_of({{2, 0.087}, {4, 0.092}, {8, 0.136}}, crystal_under_cone);
+  EXPECT_EQ(crystal_011.symmetry_fold, 2u);
+  EXPECT_EQ(crystal_011.fold_source, "crystal");
+  const AzimuthalSpectrum crystal_111 =
+      spectrum_of({{1, 0.02}, {3, 0.117}, {4, 0.152}, {5, 0.01}, {6, 0.03}, {7, 0.01}, {8, 0.131}},
+                  crystal_under_cone);
+  EXPECT_EQ(crystal_111.symmetry_fold, 3u);
+  EXPECT_EQ(crystal_111.fold_source, "crystal");
+  EXPECT_EQ(describe_fold(crystal_111).rfind("3-fold (the crystal's", 0), 0u);
+  const AzimuthalSpectrum crystal_001 =
+      spectrum_of({{4, 0.556}, {8, 0.1}, {12, 0.02}}, crystal_under_cone);
+  EXPECT_EQ(crystal_001.symmetry_fold, 4u);
+  EXPECT_EQ(crystal_001.fold_source, "mesh_imprint_possible");
+  const AzimuthalSpectrum berkovich = spectrum_of({{3, 0.1}, {4, 0.05}}, {false, true});
+  EXPECT_EQ(berkovich.symmetry_fold, 3u);
+  EXPECT_EQ(berkovich.fold_source, "indenter");
+}

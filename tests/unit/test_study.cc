@@ -271,6 +271,9 @@ TEST(StudyFile, BadInputNamesFileKeyValueAndRule)
       {"report: {tensile_strains: 0.1}\n" + case_entry(""), {"report.tensile_strains = 0.1"}},
       {"cases:\n  - {name: c1, base: base.yaml\n", {"YAML syntax error"}},
       {"- just\n- a list\n", {"a study file is a mapping"}},
+      {case_entry("") + "---\ncases: []\n", {":3:", "a second YAML document", "ignored"}},
+      {"cases:\n\t- {name: c1, base: base.yaml}\n", {":2:", "a tab in the indentation"}},
+      {std::string("output: o\ncases: \0\n", 19), {":2:", "binary content (a NUL byte"}},
   };
   for (const auto &[text, parts] : bad)
     {

@@ -65,7 +65,8 @@ namespace indentsim::io
   // mean" of the messages; also used by the study file reader).
   std::string closest_name(const std::string &word, const std::vector<std::string> &candidates);
 
-  // Writes resolved_case_yaml() to `path`. Throws CaseFileError if it cannot be written.
+  // Writes resolved_case_yaml() to `path` (through a temporary file: a previous file stays
+  // until the new one is complete). Throws output::OutputError if it cannot be written.
   void write_resolved_case(const Case &resolved_case, const std::string &path);
 
 } // namespace indentsim::io

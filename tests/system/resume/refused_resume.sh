@@ -2,11 +2,11 @@
 # Refused and needless resumes of `indentsim run --resume`, and the printed resume command
 # (CTest: Resume.RefusedResumeChangesNothing).
 # Requirement: a resume with a changed case is refused (exit code 1) before anything is written:
-# every file in the directory keeps its checksum, and the message names each key that differs
-# with its old and new value; the resume command printed by a stopped run, run literally from
-# the same working directory, resumes it (it has the case file and --output DIR); --resume on a
-# finished directory says so, exits 0 and changes nothing (with a changed case: refused, exit 1,
-# nothing changed).
+# every file in the directory keeps its checksum and time, and the message names each key that
+# differs with its old and new value; the resume command printed by a stopped run, run
+# literally from the same working directory, resumes it (it has the case file and --output DIR);
+# --resume on a finished directory says so, exits 0 and changes nothing (with a changed case:
+# refused, exit 1, nothing changed).
 # Usage: refused_resume.sh INDENTSIM_EXECUTABLE SCRATCH_DIRECTORY
 set -uo pipefail
 indentsim="$1"
@@ -17,7 +17,12 @@ mkdir -p "$out/work"
 cd "$out/work" || exit 1
 
 fail() { echo "FAIL: $*" >&2; exit 1; }
-checksums() { (cd "$1" && find . -type f -print0 | sort -z | xargs -0 sha256sum); }
+# Every file under $1 with its checksum and modification time (a rewrite with the same content
+# counts as a change too).
+checksums() {
+  (cd "$1" && find . -type f -print0 | sort -z | xargs -0 sha256sum \
+    && find . -type f -printf '%p %T@\n' | sort)
+}
 
 # The case as the user has it (relative path), and a copy with two result keys changed.
 cp "$here/small_j2.yaml" case.yaml

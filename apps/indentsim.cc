@@ -6,6 +6,7 @@
 #include "analysis/AnalyzeCommand.h"
 #include "case/CaseFile.h"
 #include "io/CommandLine.h"
+#include "output/OutputFile.h"
 #include "output/PythonScripts.h"
 #include "problems/IndentationProblem.h"
 #include "problems/TensileProblem.h"
@@ -15,9 +16,12 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/multithread_info.h>
 
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
 namespace
 {
@@ -52,11 +56,39 @@ namespace
                 << " could not be written (command: " << command << ")\n";
   }
 
+  // `word` as one word for the shell (in single quotes unless it needs none).
+  std::string shell_word(const std::string &word)
+  {
+    const bool plain = !word.empty() &&
+                       word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                                              "0123456789_-+=.,/:@%") == std::string::npos;
+    if (plain)
+      return word;
+    std::string quoted = "'";
+    for (const char c : word)
+      quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+  }
+
+  // The command that resumes this run, as it was started: the program as it was called, the
+  // case file, --output DIR if the directory is not the case file's own, and mpirun -np N for
+  // several ranks. Run from the same working directory, it continues the run.
+  std::string resume_command(const std::string &program, const io::CommandLineOptions &options,
+                             const std::string &case_file_directory, const unsigned int n_ranks)
+  {
+    std::string command = n_ranks > 1 ? "mpirun -np " + std::to_string(n_ranks) + " " : "";
+    command += shell_word(program) + " run " + shell_word(options.case_file);
+    if (options.output_directory && *options.output_directory != case_file_directory)
+      command += " --output " + shell_word(*options.output_directory);
+    return command + " --resume";
+  }
+
   // Returns false if the run was stopped (checkpoint written, no end-of-run outputs).
   bool run_indentation(const io::Case &the_case, const MPI_Comm communicator, const bool root,
-                       const bool resume)
+                       const bool resume, const std::string &resume_hint)
   {
     problems::IndentationProblem problem(the_case, communicator);
+    problem.set_resume_command(resume_hint);
     problem.setup();
     if (problem.run(the_case.output.directory, resume) ==
         problems::IndentationProblem::RunOutcome::stopped)
@@ -121,12 +153,14 @@ namespace
       }
   }
 
-  int run(const io::CommandLineOptions &options, const MPI_Comm communicator)
+  int run(const io::CommandLineOptions &options, const std::string &program,
+          const MPI_Comm communicator)
   {
     const bool root = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
     // Every rank reads and validates the case before any collective call, so that bad input
     // stops all ranks with the same message.
-    io::Case the_case = io::read_case_file(options.case_file);
+    io::Case          the_case = io::read_case_file(options.case_file);
+    const std::string case_file_directory = the_case.output.directory;
     if (options.output_directory)
       the_case.output.directory = *options.output_directory;
     if (options.compare_j2)
@@ -143,28 +177,49 @@ namespace
     if (options.resume && the_case.test != io::TestKind::indentation)
       throw io::CaseFileError("--resume: only indentation runs can be stopped and resumed ("
                               "a tensile run is short; rerun it with --overwrite)");
-    std::string error;
-    if (root)
-      try
-        {
-          // --resume continues in the existing directory: its results are the run's own.
-          if (options.resume)
+    const std::string &directory = the_case.output.directory;
+    const std::string  resolved_case_path = directory + "/" + io::output_files::resolved_case;
+    const std::string  resolved_text = io::resolved_case_yaml(the_case);
+    bool               write_resolved = true;
+    if (options.resume)
+      {
+        // Nothing is written before the checkpoint has been found to be this case's: a refused
+        // resume leaves the directory as it was.
+        if (problems::check_resume(the_case, communicator) == problems::ResumeState::finished)
+          {
+            if (root)
+              std::cout << "The run in " << directory
+                        << " is finished (run_summary.json, no checkpoint), with this case: "
+                           "nothing to resume, nothing was changed. --overwrite computes it "
+                           "again.\n";
+            return 0;
+          }
+        // The result keys agree; the others (e.g. solver.threads) may have changed.
+        std::ifstream      existing(resolved_case_path);
+        std::ostringstream text;
+        text << existing.rdbuf();
+        write_resolved = text.str() != resolved_text;
+      }
+    else
+      {
+        std::string error;
+        if (root)
+          try
             {
-              if (!std::filesystem::is_directory(the_case.output.directory))
-                throw io::CaseFileError("--resume: the output directory '" +
-                                        the_case.output.directory + "' does not exist");
+              io::prepare_output_directory(directory, options.overwrite);
             }
-          else
-            io::prepare_output_directory(the_case.output.directory, options.overwrite);
-          io::write_resolved_case(the_case, the_case.output.directory + "/resolved_case.yaml");
-        }
-      catch (const std::exception &e)
-        {
-          error = e.what();
-        }
-    error = dealii::Utilities::MPI::broadcast(communicator, error, 0);
-    if (!error.empty())
-      throw io::CaseFileError(error);
+          catch (const std::exception &e)
+            {
+              error = e.what();
+            }
+        error = dealii::Utilities::MPI::broadcast(communicator, error, 0);
+        if (!error.empty())
+          throw io::CaseFileError(error);
+      }
+    output::write_collectively(communicator, [&]() {
+      if (root && write_resolved)
+        output::write_file(resolved_case_path, resolved_text);
+    });
 
     // Assembly threads per rank: solver.threads, or (0) the cores of the node divided among the
     // ranks on it, as MPI_InitFinalize set it up.
@@ -175,7 +230,10 @@ namespace
 
     if (the_case.test == io::TestKind::tensile)
       run_tensile(the_case, communicator, root);
-    else if (!run_indentation(the_case, communicator, root, options.resume))
+    else if (!run_indentation(
+                 the_case, communicator, root, options.resume,
+                 resume_command(program, options, case_file_directory,
+                                dealii::Utilities::MPI::n_mpi_processes(communicator))))
       return 130; // stopped by a signal: the shell's convention for SIGINT
     return 0;
   }
@@ -202,6 +260,9 @@ int main(int argc, char **argv)
   // Threads: determined from the cores and the ranks per node (refined by solver.threads).
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, dealii::numbers::invalid_unsigned_int);
   indentsim::linalg::LinearSolver::limit_library_threads();
+  // A file-size limit (ulimit -f) makes a write fail with EFBIG, reported with the file's name
+  // (exit code 4), instead of ending the process.
+  std::signal(SIGXFSZ, SIG_IGN);
   const MPI_Comm communicator = MPI_COMM_WORLD;
   const bool     root = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
   try
@@ -229,11 +290,16 @@ int main(int argc, char **argv)
                 std::cerr << "indentsim: error: " << e.what() << '\n';
                 return 1;
               }
+            catch (const output::OutputError &e)
+              {
+                std::cerr << "indentsim: error: " << e.what() << '\n';
+                return 4;
+              }
           return 0;
         case io::Command::study:
           return run_study(options, communicator);
         default:
-          return run(options, communicator);
+          return run(options, argv[0], communicator);
         }
     }
   catch (const io::CommandLineError &e)
@@ -247,6 +313,16 @@ int main(int argc, char **argv)
       if (root)
         std::cerr << "indentsim: error: " << e.what() << '\n';
       return 1;
+    }
+  catch (const output::OutputError &e)
+    {
+      // Every rank has the same error (output::write_collectively); a file written on rank 0
+      // alone fails there only.
+      if (root)
+        std::cerr << "indentsim: error: " << e.what()
+                  << "\nThe files written before stay as they were (the last checkpoint, if "
+                     "any, is intact).\n";
+      return 4;
     }
   catch (const std::exception &e)
     {

@@ -4,11 +4,11 @@
 #include "analysis/OliverPharr.h"
 #include "case/CaseFile.h"
 #include "indenter/IndenterFactory.h"
+#include "output/OutputFile.h"
 #include "output/PythonScripts.h"
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -49,16 +49,8 @@ namespace indentsim::analysis
           curve, [&](const double h) { return indenter.projected_area(h); }, settings);
       fs::create_directories(directory);
       const std::string json_path = directory + "/" + io::output_files::oliver_pharr_json;
-      const std::string temporary = json_path + ".tmp";
-      {
-        std::ofstream out(temporary);
-        if (!out)
-          throw std::invalid_argument(json_path + ": cannot write into this directory");
-        out << to_json(result, settings, describe(indenter_parameters), source, &curve);
-        if (!out)
-          throw std::invalid_argument(json_path + ": writing failed");
-      }
-      fs::rename(temporary, json_path);
+      output::write_file(json_path,
+                         to_json(result, settings, describe(indenter_parameters), source, &curve));
       const std::string script = indentsim::output::python_script("plot_oliver_pharr.py");
       const std::string command = "python3 \"" + script + "\" \"" + json_path + "\" -o \"" +
                                   directory + "/" + io::output_files::oliver_pharr_png + "\"";
@@ -180,6 +172,10 @@ namespace indentsim::analysis
         print_summary(summary, result, run_directory + "/" + io::output_files::oliver_pharr_json);
         return true;
       }
+    catch (const output::OutputError &)
+      {
+        throw; // a write that failed is an error, not a missing analysis
+      }
     catch (const std::exception &e)
       {
         warnings << "warning: no Oliver-Pharr analysis of " << run_directory << ": " << e.what()
@@ -197,14 +193,7 @@ namespace indentsim::analysis
         const LoadCurve      measured = read_load_curve_csv(measured_csv);
         const CurveDeviation deviation = compare_loading(computed, measured);
         const auto           write = [&](const std::string &name, const std::string &text) {
-          const std::string path = run_directory + "/" + name, temporary = path + ".tmp";
-          {
-            std::ofstream out(temporary);
-            out << text;
-            if (!out)
-              throw std::invalid_argument(path + ": writing failed");
-          }
-          fs::rename(temporary, path);
+          output::write_file(run_directory + "/" + name, text);
         };
         write(io::output_files::experiment_comparison_json, to_json(deviation, measured_csv));
         write(io::output_files::experimental_curve_csv, to_csv(measured));
@@ -218,6 +207,10 @@ namespace indentsim::analysis
                   << *deviation.deviation_at_max_depth_percent << std::noshowpos << " %)";
         summary << '\n';
         return true;
+      }
+    catch (const output::OutputError &)
+      {
+        throw; // a write that failed is an error, not a missing comparison
       }
     catch (const std::exception &e)
       {

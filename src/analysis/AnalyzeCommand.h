@@ -16,13 +16,15 @@ namespace indentsim::analysis
   // Analyses options.target (a run directory with load_penetration.csv and resolved_case.yaml,
   // or a CSV file) and writes oliver_pharr.json/png into output_directory, or else into the run
   // directory or the CSV's directory. Prints a summary. Returns the JSON's path. Throws
-  // std::invalid_argument (bad input, named) or io::CaseFileError (bad indenter case).
+  // std::invalid_argument (bad input, named), io::CaseFileError (bad indenter case) or
+  // output::OutputError (a file that cannot be written).
   std::string analyze_command(const io::AnalyzeOptions         &options,
                               const std::optional<std::string> &output_directory);
 
   // The same for the curve of a finished indentation run, in memory, with the run's own case and
   // indenter; writes into the case's output directory. Returns false (and says why on
-  // `warnings`) if the curve has no analysable unloading.
+  // `warnings`) if the curve has no analysable unloading; a file that cannot be written throws
+  // output::OutputError.
   bool analyze_run(const LoadCurve &curve, const io::Case &the_case,
                    const indenter::IndenterSurface &indenter, std::ostream &summary,
                    std::ostream &warnings);
@@ -30,7 +32,8 @@ namespace indentsim::analysis
   // A finished run's curve against a measured curve (output.experimental_curve): writes
   // comparison_with_experiment.json and the measured curve in um and mN
   // (experimental_curve.csv, for the plot overlay) into `run_directory`; prints the deviation.
-  // Returns false (and says why on `warnings`) if the comparison is impossible.
+  // Returns false (and says why on `warnings`) if the comparison is impossible; a file that
+  // cannot be written throws output::OutputError.
   bool compare_with_experiment(const LoadCurve &computed, const std::string &run_directory,
                                const std::string &measured_csv, std::ostream &summary,
                                std::ostream &warnings);

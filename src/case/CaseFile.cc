@@ -2,6 +2,7 @@
 // case is written by CaseWriter.cc. See CaseFile.h for the rules.
 #include "case/CaseFile.h"
 #include "case/CaseReading.h"
+#include "output/OutputFile.h"
 
 #include <yaml-cpp/yaml.h>
 
@@ -243,12 +244,6 @@ namespace indentsim::io
 
   void write_resolved_case(const Case &resolved_case, const std::string &path)
   {
-    std::ofstream output(path);
-    if (!output)
-      throw CaseFileError("cannot write the resolved case to '" + path + "'");
-    output << resolved_case_yaml(resolved_case);
-    output.close();
-    if (!output)
-      throw CaseFileError("writing the resolved case to '" + path + "' failed");
+    output::write_file(path, resolved_case_yaml(resolved_case));
   }
 } // namespace indentsim::io

@@ -82,7 +82,8 @@ namespace indentsim::io
   // the first document's content), -1 if there is none.
   int second_document_line(const std::string &text);
 
-  // Writes resolved_case_yaml() to `path`. Throws CaseFileError if it cannot be written.
+  // Writes resolved_case_yaml() to `path` (through a temporary file: a previous file stays
+  // until the new one is complete). Throws output::OutputError if it cannot be written.
   void write_resolved_case(const Case &resolved_case, const std::string &path);
 
 } // namespace indentsim::io

@@ -4,6 +4,7 @@
 #include "case/Schema.h"
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 namespace indentsim::io
@@ -32,5 +33,19 @@ namespace indentsim::io
   std::uint64_t case_fingerprint(const Case &resolved_case)
   {
     return fnv1a_64(canonical_case_text(resolved_case));
+  }
+
+  std::vector<KeyDifference> case_differences(const Case &old_case, const Case &new_case)
+  {
+    const auto value = [](const Key &key, const Case &c) {
+      return key.written == nullptr || key.written(c) ? key.value_text(c) : "(not set)";
+    };
+    std::vector<KeyDifference> differences;
+    for (const auto &key : case_keys())
+      if (key.determines_results)
+        if (std::string old_value = value(key, old_case), new_value = value(key, new_case);
+            old_value != new_value)
+          differences.push_back({key.path, std::move(old_value), std::move(new_value)});
+    return differences;
   }
 } // namespace indentsim::io

@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace indentsim::io
 {
@@ -30,4 +31,15 @@ namespace indentsim::io
 
   // fnv1a_64(canonical_case_text(resolved_case)).
   std::uint64_t case_fingerprint(const Case &resolved_case);
+
+  // A key of the fingerprint whose value differs between two cases (values as in the resolved
+  // case; "(not set)" for a key written in only one of them).
+  struct KeyDifference
+  {
+    std::string path, old_value, new_value;
+  };
+  // The keys of the fingerprint (those of canonical_case_text) that differ between `old_case`
+  // and `new_case`, in the order of the schema: empty exactly when the fingerprints agree
+  // (barring a hash collision).
+  std::vector<KeyDifference> case_differences(const Case &old_case, const Case &new_case);
 } // namespace indentsim::io

@@ -1,10 +1,10 @@
 // Protection of an output directory (see OutputDirectory.h).
 #include "case/OutputDirectory.h"
 #include "case/CaseFile.h"
+#include "output/OutputFile.h"
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <system_error>
 #include <vector>
 
@@ -82,17 +82,15 @@ namespace indentsim::io
 
     // Permission bits do not tell the whole story (read-only mounts, ACLs, root): try it.
     const fs::path probe = dir / ".indentsim_write_probe";
-    {
-      std::ofstream probe_stream(probe);
-      probe_stream << "probe\n";
-      probe_stream.close();
-      if (!probe_stream)
-        {
-          fs::remove(probe, error);
-          throw CaseFileError("output directory '" + directory +
-                              "' is not writable; choose another one with --output DIR");
-        }
-    }
+    try
+      {
+        output::write_file(probe.string(), "probe\n");
+      }
+    catch (const output::OutputError &e)
+      {
+        throw CaseFileError("output directory '" + directory + "' is not writable (" + e.reason() +
+                            "); choose another one with --output DIR");
+      }
     fs::remove(probe, error);
   }
 } // namespace indentsim::io

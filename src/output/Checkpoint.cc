@@ -1,10 +1,6 @@
 #include "output/Checkpoint.h"
 
-#include <cstdio>
-#include <fcntl.h>
-#include <filesystem>
 #include <stdexcept>
-#include <unistd.h>
 
 namespace indentsim::output::checkpoint
 {
@@ -37,37 +33,15 @@ namespace indentsim::output::checkpoint
   }
 
   Writer::Writer(const std::string &path)
-    : path_(path)
-    , temporary_(path + ".tmp")
-    , out_(temporary_, std::ios::binary | std::ios::trunc)
+    : file_(path)
+    , out_(file_.stream())
   {
-    if (!out_)
-      throw std::runtime_error("checkpoint: cannot write '" + temporary_ + "'");
   }
 
   void Writer::string(const std::string &s)
   {
     value<std::uint64_t>(s.size());
     out_.write(s.data(), std::streamsize(s.size()));
-  }
-
-  void Writer::commit()
-  {
-    out_.close();
-    if (!out_)
-      throw std::runtime_error("checkpoint: writing '" + temporary_ + "' failed");
-    // fsync before the rename: after a crash the file at path_ is complete, old or new.
-    const int descriptor = ::open(temporary_.c_str(), O_RDONLY);
-    if (descriptor >= 0)
-      {
-        ::fsync(descriptor);
-        ::close(descriptor);
-      }
-    std::error_code error;
-    std::filesystem::rename(temporary_, path_, error);
-    if (error)
-      throw std::runtime_error("checkpoint: cannot rename '" + temporary_ + "' to '" + path_ +
-                               "': " + error.message());
   }
 
   Reader::Reader(const std::string &path)

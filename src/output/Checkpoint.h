@@ -9,6 +9,8 @@
 // resumed on the machine (or the cluster) that wrote it.
 #pragma once
 
+#include "output/OutputFile.h"
+
 #include <csignal>
 #include <cstdint>
 #include <fstream>
@@ -29,8 +31,12 @@ namespace indentsim::output::checkpoint
   class Writer
   {
   public:
-    // Writes to `path`.tmp; commit() flushes, fsyncs and renames it to `path`, so that the file
-    // at `path` is either the previous complete checkpoint or the new complete one.
+    // Writes to `path`.tmp (output::AtomicFile); close() flushes and fsyncs it, commit() renames
+    // it to `path`, so that the file at `path` is either the previous complete checkpoint or the
+    // new complete one. An MPI run closes every rank's file, agrees that all succeeded, and only
+    // then commits: the ranks' checkpoints stay of one step. Both throw OutputError naming the
+    // file and the system's reason; a Writer destroyed before commit() removes its temporary
+    // file.
     explicit Writer(const std::string &path);
     template <typename T>
     void value(const T &v)
@@ -46,12 +52,12 @@ namespace indentsim::output::checkpoint
       value<std::uint64_t>(v.size());
       out_.write(reinterpret_cast<const char *>(v.data()), std::streamsize(v.size() * sizeof(T)));
     }
-    // Throws std::runtime_error naming the file if anything failed.
-    void commit();
+    void close() { file_.close(); }
+    void commit() { file_.commit(); }
 
   private:
-    std::string   path_, temporary_;
-    std::ofstream out_;
+    AtomicFile    file_;
+    std::ostream &out_;
   };
 
   class Reader

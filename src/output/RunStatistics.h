@@ -80,7 +80,7 @@ namespace indentsim::output
   };
 
   // Collective: gathers the peak memory of all ranks (largest and sum) and writes the JSON file
-  // on rank 0.
+  // on rank 0 (through a temporary file); throws OutputError on every rank if it failed.
   void write_run_summary(const std::string &path, const RunDescription &description,
                          const RunStatistics &statistics, MPI_Comm communicator);
 } // namespace indentsim::output

@@ -5,6 +5,8 @@
 #include "analysis/PileUp.h"
 #include "case/CaseFile.h"
 #include "fem/FiniteStrainElement.h"
+#include "output/OutputFile.h"
+#include "output/ParaViewFiles.h"
 #include "output/PythonScripts.h"
 #include "problems/IndentationProblem.h"
 
@@ -18,7 +20,6 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <cstdlib>
-#include <fstream>
 #include <functional>
 #include <iomanip>
 #include <iostream>
@@ -127,15 +128,12 @@ namespace indentsim::problems
     // The geometry is written in the deformed configuration.
     const MappingQEulerian<3, GhostedVector> deformed(1, solid_.dof_handler, u);
     data_out.build_patches(deformed, 1);
-    const std::string pvtu = data_out.write_vtu_with_pvtu_record(
-        output_directory_ + "/", "specimen", index, communicator_, 4, 8);
+    const std::string pvtu = output::write_vtu_with_pvtu_record(
+        data_out, output_directory_, io::output_files::paraview_basename, index, 4, communicator_);
     // PVD time = output index: depth is not monotonic over load and unload.
     vtu_records_.emplace_back(index, pvtu);
-    if (Utilities::MPI::this_mpi_process(communicator_) == 0)
-      {
-        std::ofstream pvd(output_directory_ + "/specimen.pvd");
-        DataOutBase::write_pvd_record(pvd, vtu_records_);
-      }
+    output::write_pvd(output_directory_ + "/" + io::output_files::paraview_basename + ".pvd",
+                      vtu_records_, communicator_);
     scalar_dofs.clear();
   }
 
@@ -191,10 +189,10 @@ namespace indentsim::problems
             case_.indenter.shape == io::IndenterShape::berkovich;
         pileup_results_.push_back(pileup::analyse(snapshot.surface, snapshot.stage, parameters));
         const pileup::PileUpResult &result = pileup_results_.back();
-        std::ofstream               grid(output_directory_ + "/" +
-                                         (snapshot.stage == "max_depth" ? files::pileup_max_depth_csv
-                                                                        : files::pileup_unloaded_csv));
-        pileup::write_grid_csv(grid, result.grid);
+        output::write_file(output_directory_ + "/" +
+                               (snapshot.stage == "max_depth" ? files::pileup_max_depth_csv
+                                                              : files::pileup_unloaded_csv),
+                           [&](std::ostream &out) { pileup::write_grid_csv(out, result.grid); });
         pcout_ << std::defaultfloat << std::setprecision(4) << "Pile-up (" << result.stage
                << ", depth " << result.depth << " um): max height " << result.max_pileup
                << " um at r = " << result.max_pileup_radius << " um, azimuth "
@@ -206,12 +204,12 @@ namespace indentsim::problems
       return;
     // The unloaded stage (the residual impression, what experiments measure) is the top level;
     // without unloading, the maximum-depth stage.
-    std::ofstream json(output_directory_ + "/" + files::pileup_json);
-    pileup::write_json(json, pileup_results_, pileup_results_.back());
-    std::ofstream profiles(output_directory_ + "/" + files::pileup_profiles_csv);
-    pileup::write_profiles_csv(profiles, pileup_results_);
-    json.close();
-    profiles.close();
+    output::write_file(output_directory_ + "/" + files::pileup_json, [&](std::ostream &out) {
+      pileup::write_json(out, pileup_results_, pileup_results_.back());
+    });
+    output::write_file(
+        output_directory_ + "/" + files::pileup_profiles_csv,
+        [&](std::ostream &out) { pileup::write_profiles_csv(out, pileup_results_); });
 
     // The maps and profiles as PNG files; a missing Python or matplotlib leaves a warning only.
     const std::string script = indentsim::output::python_script("plot_pileup.py");

@@ -51,6 +51,20 @@ namespace indentsim::problems
 {
   using nonlinear::StepRecord;
 
+  // What `run --resume` finds in the case's output directory.
+  enum class ResumeState
+  {
+    resumable, // a checkpoint of this case, written by as many ranks as this run has
+    finished   // a finished run of this case: nothing to resume
+  };
+  // Collective. Checks, before anything is written, that `the_case` can be resumed from the
+  // checkpoint in its output.directory: the directory exists, the checkpoint files are there,
+  // of this format, rank count and case (the fingerprint; the keys that differ are named with
+  // the old values from the directory's resolved_case.yaml) and of one step; or the run there is
+  // finished with this case. Throws io::CaseFileError (the same on every rank) saying why not.
+  // Reads only.
+  ResumeState check_resume(const io::Case &the_case, MPI_Comm communicator);
+
   class IndentationProblem
   {
   public:
@@ -72,10 +86,15 @@ namespace indentsim::problems
     // no end-of-run outputs). With `resume`, the state is read from that checkpoint (setup()
     // must have built the same case on the same number of ranks; otherwise io::CaseFileError
     // explains why) and the programme continues from it. A finished run removes the checkpoint.
+    // A file that cannot be written throws output::OutputError on every rank (the files written
+    // before, and the last checkpoint, stay).
     RunOutcome run(const std::string &output_directory, bool resume = false);
     // Requests a stop after the converged step `step` (as a signal would); the environment
     // variable INDENTSIM_STOP_AFTER_STEP does the same for the command line.
     void stop_after_step(unsigned int step) { stop_after_step_ = step; }
+    // The command that resumes a stopped run, printed with the stop message ("indentsim run
+    // CASE --resume" if none is given).
+    void set_resume_command(const std::string &command) { resume_command_ = command; }
 
     // Solves one increment to depth `depth` from the last converged state (no cut-back). With
     // `extrapolate`, Newton starts from the linear extrapolation of the last two converged
@@ -162,7 +181,9 @@ namespace indentsim::problems
                                  const std::vector<dealii::Tensor<2, 3>> &,
                                  std::span<const double>)> &visit);
 
-    // Outputs of the run (IndentationOutput.cc).
+    // Outputs of the run (IndentationOutput.cc). Collective: writes the VTU pieces, the PVTU
+    // and the PVD of output step `index`; throws output::OutputError on every rank if a file
+    // could not be written.
     void write_vtu(unsigned int index);
     void compute_cell_fields(dealii::Vector<float>              &von_mises,
                              dealii::Vector<float>              &plastic_strain,
@@ -179,7 +200,8 @@ namespace indentsim::problems
     };
     // Rank 0: analyses the snapshots (a_c: contact radius at maximum depth), writes pileup.json
     // and the pile-up CSV files, then plots them with python/plot_pileup.py (a failing plot is
-    // a warning).
+    // a warning). Throws output::OutputError if a file could not be written (run() calls it
+    // through output::write_collectively).
     void write_pileup(const std::vector<SurfaceSnapshot> &snapshots, double contact_radius);
 
     // Where run() is in the loading programme after a converged step: everything the next
@@ -203,9 +225,12 @@ namespace indentsim::problems
     void complete_step(RunContext &context, const nonlinear::Segment &segment, StepRecord &record,
                        double depth_before, double force_before);
     bool checkpoint_or_stop(RunContext &context);
+    void check_records(RunContext &context);
     void finish_run(RunContext &context);
 
-    // Collective. Writes <output>/checkpoint/rank_<r>.bin (atomically per rank).
+    // Collective. Writes <output>/checkpoint/rank_<r>.bin: every rank its temporary file, and
+    // only when all succeeded do they replace the previous checkpoint; otherwise throws
+    // output::OutputError on every rank and the previous checkpoint stays.
     void write_checkpoint(const LoopState &loop, const std::vector<SurfaceSnapshot> &snapshots);
     // Collective. Reads the checkpoint into the problem; throws io::CaseFileError on every rank
     // if any rank's file is missing, of another case, rank count or format.
@@ -257,6 +282,7 @@ namespace indentsim::problems
     std::vector<std::pair<double, std::string>> vtu_records_; // (output index, pvtu file)
     std::string                                 output_directory_;
     std::optional<unsigned int>                 stop_after_step_;
+    std::string                                 resume_command_;
     dealii::Timer                               wall_timer_;
   };
 } // namespace indentsim::problems

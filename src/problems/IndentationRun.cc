@@ -4,6 +4,7 @@
 // resume. Units: um, mN, GPa, s.
 #include "case/CaseFile.h"
 #include "output/Checkpoint.h"
+#include "output/OutputFile.h"
 #include "output/RunRecorder.h"
 #include "problems/IndentationProblem.h"
 
@@ -99,29 +100,28 @@ namespace indentsim::problems
     pileup_results_.clear();
     if (resume)
       read_checkpoint(context.loop, context.snapshots);
-    if (Utilities::MPI::this_mpi_process(communicator_) == 0)
-      context.recorder.open(output_directory_, {n_cells(), n_dofs(), n_constrained,
-                                                Utilities::MPI::n_mpi_processes(communicator_)});
+    // Resumed: the curve so far, from the saved records, so that the files are consistent with
+    // the state even if the stopped run went on beyond its last checkpoint.
+    if (!resume)
+      records_.push_back(StepRecord());
+    output::write_collectively(communicator_, [&]() {
+      if (Utilities::MPI::this_mpi_process(communicator_) == 0)
+        context.recorder.open(
+            output_directory_,
+            {n_cells(), n_dofs(), n_constrained, Utilities::MPI::n_mpi_processes(communicator_)},
+            resume ? records_ : std::vector<StepRecord>{records_.back()});
+    });
     wall_timer_.restart();
     context.wall_offset = context.loop.wall_time;
     if (resume)
       {
-        // The curve so far, from the saved records: the files are consistent with the state
-        // even if the stopped run went on beyond its last checkpoint.
-        for (const StepRecord &r : records_)
-          {
-            context.recorder.csv_row(r);
-            if (r.step > 0)
-              context.recorder.log_row(r);
-          }
         context.recorder.log_note("resumed at step " + std::to_string(context.loop.step));
+        check_records(context);
         pcout_ << "Resumed at step " << context.loop.step << " (depth " << std::setprecision(6)
                << context.loop.depth << " um) from the checkpoint in " << checkpoint_directory()
                << std::endl;
         return;
       }
-    records_.push_back(StepRecord());
-    context.recorder.csv_row(records_.back());
     if (!output_directory_.empty())
       {
         const output::RunStatistics::Scope timer(statistics_.output);
@@ -154,6 +154,7 @@ namespace indentsim::problems
     records_.push_back(record);
     accept_increment();
     context.recorder.csv_row(record);
+    check_records(context);
     pcout_ << "step " << std::setw(3) << loop.step << " touch   depth " << loop.depth
            << " um  force " << record.force << " mN (first contact, depth control)" << std::endl;
   }
@@ -265,6 +266,7 @@ namespace indentsim::problems
            << std::endl;
     context.recorder.csv_row(record);
     context.recorder.log_row(record);
+    check_records(context);
 
     if (segment_done)
       {
@@ -275,6 +277,13 @@ namespace indentsim::problems
     loop.control.after_step(record.cutbacks == 0 && record.newton_iterations <= 6,
                             programme.paced(segment), depth_before, loop.depth, force_before,
                             record.force, loop.max_force / case_.loading.unload_points);
+  }
+
+  // Collective: a failed write of load_penetration.csv or run.log on rank 0 (kept by the
+  // recorder) stops every rank with its OutputError.
+  void IndentationProblem::check_records(RunContext &context)
+  {
+    output::write_collectively(communicator_, [&]() { context.recorder.throw_if_failed(); });
   }
 
   // Checkpoint and stop, decided together by all ranks (each rank's signal flag and clock may
@@ -301,12 +310,17 @@ namespace indentsim::problems
       }
     if (!stop)
       return false;
-    const std::string case_name =
-        case_.source_file.empty() ? std::string("CASE.yaml") : case_.source_file;
-    pcout_ << "stopped at step " << loop.step << " (depth " << std::setprecision(6) << loop.depth
-           << " um); resume with: indentsim run " << case_name << " --resume" << std::endl;
     context.recorder.log_note("stopped at step " + std::to_string(loop.step) + "; checkpoint in " +
                               checkpoint_directory());
+    check_records(context);
+    const std::string command =
+        !resume_command_.empty()
+            ? resume_command_
+            : "indentsim run " +
+                  (case_.source_file.empty() ? std::string("CASE.yaml") : case_.source_file) +
+                  " --resume";
+    pcout_ << "stopped at step " << loop.step << " (depth " << std::setprecision(6) << loop.depth
+           << " um); resume with: " << command << std::endl;
     return true;
   }
 
@@ -325,10 +339,14 @@ namespace indentsim::problems
            << " Newton iterations, " << context.wall_time() << " s";
       context.recorder.log_note(note.str());
     }
-    if (root && !output_directory_.empty())
+    check_records(context);
+    if (!output_directory_.empty())
       {
         const output::RunStatistics::Scope timer(statistics_.output);
-        write_pileup(context.snapshots, loop.contact_radius_at_max);
+        output::write_collectively(communicator_, [&]() {
+          if (root)
+            write_pileup(context.snapshots, loop.contact_radius_at_max);
+        });
       }
     statistics_.total = statistics_.setup + context.wall_time();
     const output::RunStatistics &s = statistics_;

@@ -4,6 +4,7 @@
 #include "io/Version.h"
 #include "materials/MaterialFactory.h"
 #include "materials/crystal/Orientation.h"
+#include "output/ParaViewFiles.h"
 #include "output/RunRecorder.h"
 
 #include <deal.II/base/function.h>
@@ -22,7 +23,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -328,8 +328,8 @@ namespace indentsim::problems
   // assembly of the converged state.
   TensileProblem::AssemblyResult TensileProblem::solve_step(const unsigned int step,
                                                             const double target, double &strain,
-                                                            TensileRecord &record,
-                                                            std::ofstream &log)
+                                                            TensileRecord      &record,
+                                                            output::AppendFile &log)
   {
     const auto       &loading = case_.loading;
     const std::string model = io::to_string(case_.material.model);
@@ -361,8 +361,8 @@ namespace indentsim::problems
                << to_string(status) << "; cutting the increment back to " << increment / 2
                << std::endl;
         if (log.is_open())
-          log << "# step " << step << ": " << to_string(status)
-              << ", increment of log strain cut back to " << increment / 2 << '\n';
+          log.stream() << "# step " << step << ": " << to_string(status)
+                       << ", increment of log strain cut back to " << increment / 2 << '\n';
         if (halvings > loading.max_cutbacks)
           throw std::runtime_error("tensile increment to log strain " + std::to_string(next) +
                                    " failed after " + std::to_string(loading.max_cutbacks) +
@@ -378,27 +378,38 @@ namespace indentsim::problems
     const bool        root = Utilities::MPI::this_mpi_process(communicator_) == 0;
     const auto       &loading = case_.loading;
     const std::string model = io::to_string(case_.material.model);
-    std::ofstream     csv, log;
-    if (root && !output_directory.empty())
-      {
-        csv.open(output_directory + "/" + csv_file_name);
-        log.open(output_directory + "/" + io::output_files::log, std::ios::app);
-        if (!csv || !log)
-          throw std::runtime_error("cannot write " + csv_file_name + " or run.log in '" +
-                                   output_directory + "'");
-        write_csv_header(csv);
-        log << "# indentsim " << indentsim::version() << " tensile run log, model " << model
-            << ". Units: um, mN, GPa, s.\n"
-            << "# cube " << n_per_side_ << "^3 elements, edge " << edge_length_ << " um, DOFs "
-            << n_dofs() << ", MPI ranks " << Utilities::MPI::n_mpi_processes(communicator_)
-            << ", results in " << csv_file_name << '\n'
-            << "# step log_strain true_stress_GPa force_mN newton_iterations cutbacks "
-               "wall_time_s\n";
-      }
-    wall_timer_.restart();
+    // The CSV (created whole with its header and the initial state, then appended to) and
+    // run.log (appended to: the J2 comparison run continues it) on rank 0, flushed after every
+    // step; a failed write stops every rank (output::write_collectively).
+    output::AppendFile csv, log;
+    const auto         flush = [&]() {
+      output::write_collectively(communicator_, [&]() {
+        csv.flush();
+        log.flush();
+      });
+    };
     records_.assign(1, TensileRecord{});
-    if (csv.is_open())
-      write_csv_row(csv, records_.front());
+    output::write_collectively(communicator_, [&]() {
+      if (!root || output_directory.empty())
+        return;
+      const std::string csv_path = output_directory + "/" + csv_file_name;
+      output::write_file(csv_path, [&](std::ostream &out) {
+        write_csv_header(out);
+        write_csv_row(out, records_.front());
+      });
+      csv.open(csv_path);
+      log.open(output_directory + "/" + io::output_files::log);
+      log.stream() << "# indentsim " << indentsim::version() << " tensile run log, model " << model
+                   << ". Units: um, mN, GPa, s.\n"
+                   << "# cube " << n_per_side_ << "^3 elements, edge " << edge_length_
+                   << " um, DOFs " << n_dofs() << ", MPI ranks "
+                   << Utilities::MPI::n_mpi_processes(communicator_) << ", results in "
+                   << csv_file_name << '\n'
+                   << "# step log_strain true_stress_GPa force_mN newton_iterations cutbacks "
+                      "wall_time_s\n";
+      log.flush();
+    });
+    wall_timer_.restart();
 
     double       strain = 0; // converged logarithmic strain
     unsigned int total_newton = 0;
@@ -432,18 +443,21 @@ namespace indentsim::problems
                << output::format_duration(record.wall_time) << "  ETA ~"
                << output::format_duration(eta) << std::endl;
         if (csv.is_open())
-          write_csv_row(csv, record);
+          write_csv_row(csv.stream(), record);
         if (log.is_open())
-          log << step << ' ' << std::setprecision(10) << record.log_strain << ' '
-              << record.true_stress << ' ' << record.force << ' ' << record.newton_iterations << ' '
-              << record.cutbacks << ' ' << std::setprecision(4) << record.wall_time << std::endl;
+          log.stream() << step << ' ' << std::setprecision(10) << record.log_strain << ' '
+                       << record.true_stress << ' ' << record.force << ' '
+                       << record.newton_iterations << ' ' << record.cutbacks << ' '
+                       << std::setprecision(4) << record.wall_time << '\n';
+        flush();
       }
     pcout_ << "[" << model << "] finished: " << loading.steps << " steps, " << total_newton
            << " Newton iterations, wall time " << output::format_duration(wall_timer_.wall_time())
            << std::endl;
     if (log.is_open())
-      log << "# finished: " << loading.steps << " steps, " << total_newton << " Newton iterations, "
-          << wall_timer_.wall_time() << " s\n";
+      log.stream() << "# finished: " << loading.steps << " steps, " << total_newton
+                   << " Newton iterations, " << wall_timer_.wall_time() << " s\n";
+    flush();
     if (write_paraview_file && !output_directory.empty())
       {
         const RunStatistics::Scope timer(statistics_.output);
@@ -516,7 +530,7 @@ namespace indentsim::problems
     // DataOut works on threads: it reads the thread-readable copy, not the PETSc vector.
     const MappingQEulerian<3, GhostedVector> deformed(1, solid_.dof_handler, u);
     data_out.build_patches(deformed, 1);
-    data_out.write_vtu_with_pvtu_record(output_directory + "/", io::output_files::paraview_basename,
-                                        index, communicator_, 4, 8);
+    output::write_vtu_with_pvtu_record(
+        data_out, output_directory, io::output_files::paraview_basename, index, 4, communicator_);
   }
 } // namespace indentsim::problems

@@ -29,6 +29,7 @@
 #include "linalg/LinearSolver.h"
 #include "materials/MaterialModel.h"
 #include "nonlinear/IncrementStatus.h"
+#include "output/OutputFile.h"
 #include "output/RunStatistics.h"
 
 #include <deal.II/base/conditional_ostream.h>
@@ -41,7 +42,6 @@
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
 
-#include <fstream>
 #include <memory>
 #include <span>
 #include <string>
@@ -109,7 +109,7 @@ namespace indentsim::problems
                                                AssemblyResult &result);
     // One load step in sub-increments with cut-backs.
     AssemblyResult solve_step(unsigned int step, double target, double &strain,
-                              TensileRecord &record, std::ofstream &log);
+                              TensileRecord &record, output::AppendFile &log);
     void           accept_increment();
     void           reject_increment();
 

@@ -23,8 +23,8 @@ INDENTSIM_STOP_AFTER_STEP=3 "$indentsim" run "$case_file" --output "$out/resumed
 code=$?
 cat "$out/stopped.txt"
 [[ $code -eq 130 ]] || fail "the stopped run exited with $code, expected 130"
-grep -qF "stopped at step 3 (depth 0.5 um); resume with: indentsim run" "$out/stopped.txt" \
-  || fail "no stop message"
+grep -qF "stopped at step 3 (depth 0.5 um); resume with: $indentsim run $case_file --output" \
+  "$out/stopped.txt" || fail "no stop message"
 grep -qF -- "--resume" "$out/stopped.txt" || fail "the stop message lacks --resume"
 [[ -f "$out/resumed/checkpoint/rank_0.bin" ]] || fail "no checkpoint written"
 [[ ! -f "$out/resumed/pileup.json" ]] || fail "a stopped run wrote end-of-run outputs"

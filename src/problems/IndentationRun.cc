@@ -97,6 +97,8 @@ namespace indentsim::problems
     // Collective (an MPI sum): every rank counts, rank 0 writes it.
     const unsigned int n_constrained = n_constrained_dofs();
     pileup_results_.clear();
+    warnings_.clear();
+    warned_topics_.clear();
     if (resume)
       read_checkpoint(context.loop, context.snapshots);
     if (Utilities::MPI::this_mpi_process(communicator_) == 0)
@@ -265,6 +267,7 @@ namespace indentsim::problems
            << std::endl;
     context.recorder.csv_row(record);
     context.recorder.log_row(record);
+    check_guards(context.recorder, segment, record, at_max);
 
     if (segment_done)
       {

@@ -6,6 +6,8 @@
 #include "analysis/AnalyzeCommand.h"
 #include "case/CaseFile.h"
 #include "io/CommandLine.h"
+#include "mesh/MeshAdequacy.h"
+#include "output/MemoryEstimate.h"
 #include "output/OutputFile.h"
 #include "output/PythonScripts.h"
 #include "problems/IndentationProblem.h"
@@ -171,8 +173,12 @@ namespace
       {
         if (root)
           std::cout << io::resolved_case_yaml(the_case);
+        // After the YAML, as comment lines: the output stays a valid case file.
+        output::check_memory(the_case, communicator, std::cout, "# ");
         return 0;
       }
+    // Collective; refuses a case that would not fit in memory before anything is written.
+    output::check_memory(the_case, communicator, std::cout);
 
     if (options.resume && the_case.test != io::TestKind::indentation)
       throw io::CaseFileError("--resume: only indentation runs can be stopped and resumed ("
@@ -323,6 +329,12 @@ int main(int argc, char **argv)
                   << "\nThe files written before stay as they were (the last checkpoint, if "
                      "any, is intact).\n";
       return 4;
+    }
+  catch (const mesh::MeshOutgrownError &e)
+    {
+      if (root)
+        std::cerr << "indentsim: the computation stopped: " << e.what() << '\n';
+      return 5;
     }
   catch (const std::exception &e)
     {

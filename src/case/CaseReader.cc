@@ -317,7 +317,16 @@ namespace indentsim::io
         const auto result = std::from_chars(text.data() + start, text.data() + text.size(), parsed);
         if (result.ec == std::errc::result_out_of_range ||
             (result.ec == std::errc() && parsed > std::numeric_limits<unsigned int>::max()))
-          fail(line_of(node), path + " = " + text + ": too large; " + expected);
+          {
+            // A count key states its own range; others are bounded by the unsigned type.
+            const Key &key = find_key(path);
+            const bool bounded = key.has_range && std::isfinite(key.range.upper);
+            fail(line_of(node),
+                 path + " = " + text + ": too large; " +
+                     (bounded ? key.range_message
+                              : expected + " <= " +
+                                    std::to_string(std::numeric_limits<unsigned int>::max())));
+          }
         if (result.ec != std::errc() || result.ptr != text.data() + text.size() ||
             start == text.size())
           fail(line_of(node), path + " = \"" + text + "\": " + expected);

@@ -9,6 +9,7 @@
 #include "io/LoadCurveCsv.h"
 #include "materials/MaterialFactory.h"
 #include "materials/crystal/Orientation.h"
+#include "mesh/MeshAdequacy.h"
 
 #include <cmath>
 #include <initializer_list>
@@ -42,6 +43,8 @@ namespace indentsim::io
         check_specimen(*surface);
         check_section("loading");
         check_loading();
+        if (!tensile())
+          check_contact_fits(*surface);
         check_section("contact");
         check_section("solver");
         check_section("output");
@@ -257,6 +260,40 @@ namespace indentsim::io
         if (l.cycles > 1 && !l.unload)
           reject("loading.cycles", std::to_string(l.cycles),
                  "several load-unload cycles need loading.unload: true");
+      }
+
+      // The refined region must hold the contact predicted at the maximum of the loading
+      // (mesh/MeshAdequacy.h: the indenter's cross-section with the pile-up allowance, within
+      // the margin of the refined half-widths); the run stops if the contact goes beyond it.
+      void check_contact_fits(const indenter::IndenterSurface &surface) const
+      {
+        const auto prediction = mesh::predict_contact(checked, surface);
+        if (!prediction)
+          return;
+        const auto  &s = checked.specimen;
+        const double fraction = mesh::refined_fraction(prediction->extent, s);
+        if (fraction <= mesh::guard::refined_region_margin)
+          return;
+        using mesh::short_number;
+        const bool along_x = prediction->extent.x / s.refined_region[0] >=
+                             prediction->extent.y / s.refined_region[1];
+        const double reach = along_x ? prediction->extent.x : prediction->extent.y;
+        const double half = (along_x ? s.refined_region[0] : s.refined_region[1]) / 2;
+        const bool   force = checked.loading.control == Control::force;
+        std::string  alternative =
+            force ? "a smaller loading.max_force"
+                   : "loading.max_depth <= " +
+                        short_number(mesh::largest_depth_held(checked, surface)) + " um";
+        reject("specimen.refined_region", format_triple(s.refined_region),
+               "the refined region cannot hold the contact at the maximum " +
+                   std::string(force ? "force" : "depth") + ": the contact is predicted to reach " +
+                   short_number(reach) + " um from the axis along " + (along_x ? "x" : "y") +
+                   " (from " + prediction->basis + "), beyond " +
+                   short_number(100 * mesh::guard::refined_region_margin) +
+                   " % of the refined half-width " + short_number(half) +
+                   " um; contact nodes exist only on the refined region, so the force would "
+                   "mean nothing beyond it. Use " +
+                   mesh::enlargement_advice(s, prediction->extent) + ", or " + alternative);
       }
 
       void check_output() const

@@ -28,6 +28,15 @@ namespace indentsim::io
     // (and n^3 would overflow the orientation count).
     constexpr double max_elements_per_side = 200;
 
+    // Upper bounds of the count keys: far above any useful value, low enough that a typo (an
+    // extra digit or two) is named at once instead of exhausting memory or time. The memory a
+    // mesh needs is estimated and checked against the machine before a run
+    // (output/MemoryEstimate.h); 512 contact elements on the default refined region need
+    // about 40 M cells.
+    constexpr double max_contact_elements = 512;
+    constexpr double max_steps = 100000;
+    constexpr double max_iterations = 1000;
+
     using C = Case;
     using M = MaterialParameters;
     using OP = OrientationParameters;
@@ -281,12 +290,14 @@ namespace indentsim::io
               .comment("refined block under the tip [um]")
               .describe("the refined block under the tip"),
           D::at<&C::specimen, &S::contact_elements>("specimen.contact_elements")
-              .range(
-                  {4, true, infinity, true, 4},
-                  "N must be a positive multiple of 4 (4, 8, 12, 16, ...) so that the mesh can be "
-                  "built: the 2:1 coarsening around the refined region needs N/2 even, and with "
-                  "symmetry: quarter the modelled N/2 x N/2 faces must be even as well; a "
-                  "multiple of 4 satisfies both")
+              .range({4, true, max_contact_elements, true, 4},
+                     "N must be a multiple of 4 with 4 <= N <= " +
+                         std::to_string(int(max_contact_elements)) +
+                         " (4, 8, 12, 16, ...) so that the mesh can be built: the 2:1 "
+                         "coarsening around the refined region needs N/2 even, and with "
+                         "symmetry: quarter the modelled N/2 x N/2 faces must be even as well; a "
+                         "multiple of 4 satisfies both (the upper bound keeps a typo from "
+                         "exhausting memory: 48 resolves the paper's indent)")
               .comment("N: N x N faces across the refined top face")
               .describe("N: N×N faces across the refined top face"),
           D::at<&C::specimen, &S::symmetry>("specimen.symmetry")
@@ -345,7 +356,8 @@ namespace indentsim::io
               .describe("force control: the maximum indenter force (whole indent); must stay 0 "
                         "under depth control"),
           D::at<&C::loading, &L::steps>("loading.steps")
-              .range(at_least(1), "must be >= 1")
+              .range(between(1, true, max_steps, true),
+                     "must satisfy 1 <= steps <= " + std::to_string(int(max_steps)))
               .comment("increments to the maximum (tensile: max_strain)")
               .describe("increments to the maximum (tensile: equal increments of log strain to "
                         "`max_strain`)"),
@@ -354,6 +366,9 @@ namespace indentsim::io
               .describe("then back until the force vanishes (force control: to 1 % of "
                         "`max_force`)"),
           D::at<&C::loading, &L::unload_steps>("loading.unload_steps")
+              .range(at_most(max_steps),
+                     "must satisfy 0 <= unload_steps <= " + std::to_string(int(max_steps)) +
+                         " (0: the increment of loading)")
               .comment("0: same increment size as loading")
               .describe("unloading increments; 0: same increment as loading"),
           D::at<&C::loading, &L::unload_points>("loading.unload_points")
@@ -369,6 +384,8 @@ namespace indentsim::io
                   "resolved for the Oliver–Pharr fit; still at most the nominal increment; 0: "
                   "uniform depth steps only"),
           D::at<&C::loading, &L::hold_steps>("loading.hold_steps")
+              .range(at_most(max_steps),
+                     "must satisfy 0 <= hold_steps <= " + std::to_string(int(max_steps)))
               .comment("increments holding the maximum")
               .describe("increments holding the maximum depth or force (recorded as `hold`; the "
                         "rate-independent models do not creep)"),
@@ -377,7 +394,8 @@ namespace indentsim::io
               .comment("load-hold-unload cycles")
               .describe("load–hold–unload cycles to the same maximum (> 1 needs `unload: true`)"),
           D::at<&C::loading, &L::max_cutbacks>("loading.max_cutbacks")
-              .range(at_most(max_cutbacks), "must be <= " + format_number(max_cutbacks))
+              .range(at_most(max_cutbacks),
+                     "must satisfy 0 <= max_cutbacks <= " + format_number(max_cutbacks))
               .comment("successive halvings of an increment")
               .describe("successive halvings of a failing increment"),
           D::at<&C::loading, &L::max_strain>("loading.max_strain")
@@ -416,7 +434,9 @@ namespace indentsim::io
               .comment("[um]")
               .describe("largest admissible penetration at convergence"),
           D::at<&C::contact, &CP::max_augmentations>("contact.max_augmentations")
-              .range(at_least(1), "must be >= 1")
+              .range(between(1, true, max_iterations, true),
+                     "must satisfy 1 <= max_augmentations <= " +
+                         std::to_string(int(max_iterations)))
               .describe("augmentation passes of an increment"),
       };
     }
@@ -446,7 +466,9 @@ namespace indentsim::io
               .comment("[mN]")
               .describe("absolute residual tolerance"),
           D::at<&C::solver, &SP::max_newton_iterations>("solver.max_newton_iterations")
-              .range(at_least(1), "must be >= 1")
+              .range(between(1, true, max_iterations, true),
+                     "must satisfy 1 <= max_newton_iterations <= " +
+                         std::to_string(int(max_iterations)))
               .describe("Newton iterations of an increment before it is cut back"),
           D::at<&C::solver, &SP::linear_solver>("solver.linear_solver")
               .expect("a linear solver")
@@ -475,6 +497,9 @@ namespace indentsim::io
               .comment("relative paths: relative to the working directory")
               .describe("where the results go; relative to the working directory"),
           D::at<&C::output, &OU::vtu_every>("output.vtu_every")
+              .range(at_most(max_steps),
+                     "must satisfy 0 <= vtu_every <= " + std::to_string(int(max_steps)) +
+                         " (0: at the start, the maximum and the end)")
               .unit("steps")
               .comment("VTU every k-th step (0: at max depth and end)")
               .describe("0: VTU only at the start, at max depth and at the end"),
@@ -536,6 +561,12 @@ namespace indentsim::io
 
   std::string Range::text() const
   {
+    // Whole bounds in full ("100000", not "1e+05").
+    const auto format_number = [](const double value) {
+      return value == std::floor(value) && std::abs(value) < 1e15
+                 ? std::to_string(static_cast<long long>(value))
+                 : io::format_number(value);
+    };
     const bool        has_lower = lower > -infinity;
     const bool        has_upper = upper < infinity;
     const std::string lower_sign = lower_included ? " ≤ " : " < ";

@@ -45,7 +45,11 @@ namespace indentsim::contact
     patch.area = polygon_area(clipped);
     // The distance from the axis is convex, so its maximum over the polygon is at a corner.
     for (const Point<2> &p : clipped)
-      patch.max_radius = std::max(patch.max_radius, p.norm());
+      {
+        patch.max_radius = std::max(patch.max_radius, p.norm());
+        patch.max_abs_x = std::max(patch.max_abs_x, std::abs(p[0]));
+        patch.max_abs_y = std::max(patch.max_abs_y, std::abs(p[1]));
+      }
     return patch;
   }
 
@@ -62,6 +66,8 @@ namespace indentsim::contact
             triangle_contact_patch({{xy[i], xy[j], centre}}, {{phi[i], phi[j], phi_centre}});
         patch.area += part.area;
         patch.max_radius = std::max(patch.max_radius, part.max_radius);
+        patch.max_abs_x = std::max(patch.max_abs_x, part.max_abs_x);
+        patch.max_abs_y = std::max(patch.max_abs_y, part.max_abs_y);
       }
     return patch;
   }

@@ -20,6 +20,7 @@ namespace indentsim::contact
   {
     double area = 0;       // projected area of {phi > 0} [um^2]
     double max_radius = 0; // largest distance from the axis of a point with phi >= 0 [um]
+    double max_abs_x = 0, max_abs_y = 0; // largest |x| and |y| of such a point [um]
   };
 
   // Exact for phi linear on the triangle.

@@ -315,6 +315,7 @@ namespace indentsim::io
            "directory); 2 bad command line; 3 the computation stopped (study: a case failed);\n"
            "4 an output file could not be written (the message names the file and the system's\n"
            "reason, e.g. a full disk; the files written before and the last checkpoint stay);\n"
+           "5 the contact outgrew the refined region (the message names the keys to change);\n"
            "130 stopped by Ctrl-C or SIGTERM after a checkpoint.\n"
            "\n"
            "Units everywhere (case file and outputs): lengths in um, forces in mN, stresses and\n"

@@ -363,10 +363,14 @@ namespace indentsim::problems
             const contact::ContactPatch patch = contact::quad_contact_patch(xy, phi);
             local.area += patch.area;
             local.max_radius = std::max(local.max_radius, patch.max_radius);
+            local.max_abs_x = std::max(local.max_abs_x, patch.max_abs_x);
+            local.max_abs_y = std::max(local.max_abs_y, patch.max_abs_y);
           }
     contact::ContactPatch global;
     global.area = Utilities::MPI::sum(local.area, communicator_);
     global.max_radius = Utilities::MPI::max(local.max_radius, communicator_);
+    global.max_abs_x = Utilities::MPI::max(local.max_abs_x, communicator_);
+    global.max_abs_y = Utilities::MPI::max(local.max_abs_y, communicator_);
     return global;
   }
 

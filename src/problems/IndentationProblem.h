@@ -47,6 +47,11 @@
 #include <string>
 #include <vector>
 
+namespace indentsim::output
+{
+  class RunRecorder;
+}
+
 namespace indentsim::problems
 {
   using nonlinear::StepRecord;
@@ -123,6 +128,9 @@ namespace indentsim::problems
     {
       return pileup_results_;
     }
+    // The warnings of the physics guards in the last run() (IndentationGuards.cc), in order;
+    // each also went to run.log and, when verbose, to stderr.
+    const std::vector<std::string> &warnings() const { return warnings_; }
 
     unsigned int                 n_cells() const;
     unsigned int                 n_dofs() const;
@@ -226,6 +234,18 @@ namespace indentsim::problems
                        double depth_before, double force_before);
     bool checkpoint_or_stop(RunContext &context);
     void check_records(RunContext &context);
+    // The physics guards after an accepted step (IndentationGuards.cc, mesh/MeshAdequacy.h):
+    // throws mesh::MeshOutgrownError (after noting it in run.log) when the contact nears the
+    // edge of the refined region; warns once per face when the plastic zone nears a face of
+    // the specimen, and at the maximum when too few elements lie across the contact radius.
+    void check_guards(output::RunRecorder &recorder, const nonlinear::Segment &segment,
+                      const StepRecord &record, bool at_max);
+    void check_refined_region(output::RunRecorder &recorder, const nonlinear::Segment &segment,
+                              const StepRecord &record);
+    void check_plastic_zone(output::RunRecorder &recorder);
+    void check_contact_resolution(output::RunRecorder &recorder, const StepRecord &record);
+    // A guard's warning: run.log, stderr (verbose runs) and warnings(); once per `topic`.
+    void warn(output::RunRecorder &recorder, const std::string &topic, const std::string &text);
     void finish_run(RunContext &context);
 
     // Collective. Writes <output>/checkpoint/rank_<r>.bin: every rank its temporary file, and
@@ -279,6 +299,8 @@ namespace indentsim::problems
     output::RunStatistics                       statistics_;
     std::vector<StepRecord>                     records_;
     std::vector<analysis::pileup::PileUpResult> pileup_results_;
+    std::vector<std::string>                    warnings_;
+    std::vector<std::string>                    warned_topics_;
     std::vector<std::pair<double, std::string>> vtu_records_; // (output index, pvtu file)
     std::string                                 output_directory_;
     std::optional<unsigned int>                 stop_after_step_;

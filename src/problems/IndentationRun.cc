@@ -98,6 +98,8 @@ namespace indentsim::problems
     // Collective (an MPI sum): every rank counts, rank 0 writes it.
     const unsigned int n_constrained = n_constrained_dofs();
     pileup_results_.clear();
+    warnings_.clear();
+    warned_topics_.clear();
     if (resume)
       read_checkpoint(context.loop, context.snapshots);
     // Resumed: the curve so far, from the saved records, so that the files are consistent with
@@ -267,6 +269,7 @@ namespace indentsim::problems
     context.recorder.csv_row(record);
     context.recorder.log_row(record);
     check_records(context);
+    check_guards(context.recorder, segment, record, at_max);
 
     if (segment_done)
       {

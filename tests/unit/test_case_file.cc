@@ -812,7 +812,7 @@ TEST(CaseFile, GeometryRangesAreChecked)
 // Loading, contact, solver and output settings outside their admissible range are rejected.
 TEST(CaseFile, LoadingContactSolverRangesAreChecked)
 {
-  expect_rejected(with("loading:\n  steps: 0\n"), {"loading.steps = 0", ">= 1"});
+  expect_rejected(with("loading:\n  steps: 0\n"), {"loading.steps = 0", "1 <= steps <= 100000"});
   expect_rejected(with("loading:\n  max_depth: 0\n"), {"loading.max_depth = 0", "> 0"});
   expect_rejected(with("loading:\n  max_depth: -2\n"), {"loading.max_depth = -2"});
   expect_rejected(with("loading:\n  max_depth: 30\n"),

@@ -1,0 +1,101 @@
+#include "mesh/MeshEstimate.h"
+
+#include "mesh/IndentationMesh.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace indentsim::mesh
+{
+  namespace
+  {
+    // Coarse cells along one lateral axis as build_indentation_mesh lays them out: `inner`
+    // cells on each side of the axis inside the refined region, `outer` graded ones beyond it.
+    struct AxisCount
+    {
+      std::uint64_t inner = 0, outer = 0;
+    };
+
+    AxisCount lateral_count(const double half_length, const double half_refined,
+                            const double coarse)
+    {
+      AxisCount count;
+      count.inner = std::max(1, int(std::lround(half_refined / coarse)));
+      const double remaining = half_length - half_refined;
+      count.outer =
+          remaining > 0 ? graded_spacing(remaining, half_refined / count.inner, 1.6).size() : 0;
+      return count;
+    }
+
+    std::uint64_t power(const std::uint64_t base, const unsigned int exponent)
+    {
+      std::uint64_t result = 1;
+      for (unsigned int i = 0; i < exponent; ++i)
+        result *= base;
+      return result;
+    }
+  } // namespace
+
+  MeshSize estimate_indentation_mesh(const io::SpecimenParameters &specimen)
+  {
+    const int levels = refinement_levels_for(specimen.contact_elements);
+    if (levels < 0)
+      return {};
+    const unsigned int L = static_cast<unsigned int>(levels);
+    const bool         quarter = specimen.symmetry == io::Symmetry::quarter;
+    const double coarse = specimen.refined_region[0] / specimen.contact_elements * double(1u << L);
+
+    const AxisCount x = lateral_count(specimen.size[0] / 2, specimen.refined_region[0] / 2, coarse);
+    const AxisCount y = lateral_count(specimen.size[1] / 2, specimen.refined_region[1] / 2, coarse);
+    const double    depth = specimen.refined_region[2];
+    const std::uint64_t z_inner = std::max(1, int(std::lround(depth / coarse)));
+    const std::uint64_t z_outer =
+        specimen.size[2] > depth
+            ? graded_spacing(specimen.size[2] - depth, depth / z_inner, 1.6).size()
+            : 0;
+
+    // Coarse grid and the block of refined coarse cells (touching the top face; in the quarter
+    // model also the symmetry planes).
+    const std::uint64_t sides = quarter ? 1 : 2;
+    const std::uint64_t bx = sides * x.inner, by = sides * y.inner, bz = z_inner;
+    const std::uint64_t nx = sides * (x.inner + x.outer), ny = sides * (y.inner + y.outer),
+                        nz = z_inner + z_outer;
+    const std::uint64_t block = bx * by * bz, coarse_cells = nx * ny * nz;
+
+    // Coarse neighbours of the block by face, edge and corner: the block's lateral sides that
+    // have cells beyond them (`open_x` of 0, 1 or 2) and its bottom.
+    const std::uint64_t open_x = x.outer > 0 ? sides : 0, open_y = y.outer > 0 ? sides : 0;
+    const std::uint64_t open_bottom = z_outer > 0 ? 1 : 0;
+    const std::uint64_t face = open_x * by * bz + open_y * bx * bz + open_bottom * bx * by;
+    const std::uint64_t edge = open_x * open_y * bz + open_bottom * (open_x * by + open_y * bx);
+    const std::uint64_t corner = open_bottom * open_x * open_y;
+    std::uint64_t       refinements = 0;
+    for (unsigned int j = 0; j + 2 <= L; ++j)
+      refinements += face * power(4, j) + edge * power(2, j) + corner;
+
+    const std::uint64_t fine = std::uint64_t(1) << L;
+    MeshSize            size;
+    size.cells = coarse_cells - block + block * power(8, L) + 7 * refinements;
+    size.vertices = (bx * fine + 1) * (by * fine + 1) * (bz * fine + 1) +
+                    (nx + 1) * (ny + 1) * (nz + 1) - (bx + 1) * (by + 1) * (bz + 1) +
+                    8 * refinements;
+    size.dofs = 3 * size.vertices;
+    return size;
+  }
+
+  MeshSize estimate_tensile_mesh(const io::SpecimenParameters &specimen)
+  {
+    const std::uint64_t n = specimen.elements_per_side;
+    MeshSize            size;
+    size.cells = n * n * n;
+    size.vertices = (n + 1) * (n + 1) * (n + 1);
+    size.dofs = 3 * size.vertices;
+    return size;
+  }
+
+  MeshSize estimate_mesh(const io::Case &the_case)
+  {
+    return the_case.test == io::TestKind::tensile ? estimate_tensile_mesh(the_case.specimen)
+                                                  : estimate_indentation_mesh(the_case.specimen);
+  }
+} // namespace indentsim::mesh

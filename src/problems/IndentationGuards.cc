@@ -1,0 +1,212 @@
+// The physics guards of an indentation run, checked after every accepted step
+// (IndentationRun.cc; thresholds and advice in mesh/MeshAdequacy.h): the contact against the
+// refined region (the run stops before the contact reaches its edge), the plastic zone against
+// the specimen's faces and the contact-element resolution at the maximum (warnings).
+// Units: um, mN, GPa.
+#include "case/Schema.h"
+#include "mesh/MeshAdequacy.h"
+#include "output/RunRecorder.h"
+#include "problems/IndentationProblem.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iostream>
+#include <numbers>
+#include <sstream>
+
+namespace indentsim::problems
+{
+  using namespace dealii;
+  using mesh::short_number;
+  namespace guard = mesh::guard;
+
+  void IndentationProblem::check_guards(output::RunRecorder      &recorder,
+                                        const nonlinear::Segment &segment, const StepRecord &record,
+                                        const bool at_max)
+  {
+    check_refined_region(recorder, segment, record);
+    check_plastic_zone(recorder);
+    if (at_max)
+      check_contact_resolution(recorder, record);
+  }
+
+  void IndentationProblem::warn(output::RunRecorder &recorder, const std::string &topic,
+                                const std::string &text)
+  {
+    if (std::find(warned_topics_.begin(), warned_topics_.end(), topic) != warned_topics_.end())
+      return;
+    warned_topics_.push_back(topic);
+    warnings_.push_back(text);
+    if (Utilities::MPI::this_mpi_process(communicator_) != 0)
+      return;
+    recorder.log_note("warning: " + text);
+    if (pcout_.is_active())
+      std::cerr << "indentsim: warning: " << text << std::endl;
+  }
+
+  // The contact may cover at most guard::refined_region_margin of the refined region's
+  // half-widths, and no active node may stand on the region's outermost ring of contact nodes
+  // (reference positions: a check independent of the deformation).
+  void IndentationProblem::check_refined_region(output::RunRecorder      &recorder,
+                                                const nonlinear::Segment &segment,
+                                                const StepRecord         &record)
+  {
+    const contact::ContactPatch   patch = contact_patch();
+    const mesh::PatchExtent       reached{patch.max_abs_x, patch.max_abs_y};
+    const io::SpecimenParameters &s = case_.specimen;
+    const double half_x = mesh_info_.refined_half_x, half_y = mesh_info_.refined_half_y;
+    const double tolerance = 1e-6 * mesh_info_.contact_element_size;
+    unsigned int on_edge = 0;
+    for (const contact::ContactNode &node : contact_->nodes())
+      if (node.active &&
+          (std::abs(node.X[0]) >= half_x - tolerance || std::abs(node.X[1]) >= half_y - tolerance))
+        on_edge = 1;
+    on_edge = Utilities::MPI::max(on_edge, communicator_);
+    const double fraction = mesh::refined_fraction(reached, s);
+    if (fraction <= guard::refined_region_margin && on_edge == 0)
+      return;
+
+    // The contact the refined region must hold at the end of the loading: this one grown to
+    // the maximum (A ~ h^2 at depth control, A ~ F at force control), or check's prediction if
+    // larger.
+    const bool force_control = case_.loading.control == io::Control::force;
+    double     growth = 1;
+    if (segment.kind == nonlinear::SegmentKind::load && record.depth > 0 && record.force > 0)
+      growth = force_control ? std::sqrt(std::max(1.0, case_.loading.max_force / record.force))
+                             : std::max(1.0, case_.loading.max_depth / record.depth);
+    // Active nodes on the outermost ring: the contact reaches the edge (the faces with hanging
+    // nodes there are left out of the interpolated patch).
+    const double      edge_x = on_edge ? std::max(reached.x, half_x) : reached.x;
+    const double      edge_y = on_edge ? std::max(reached.y, half_y) : reached.y;
+    mesh::PatchExtent needed{edge_x * growth, edge_y * growth};
+    if (const auto prediction = mesh::predict_contact(case_, *indenter_))
+      {
+        needed.x = std::max(needed.x, prediction->extent.x);
+        needed.y = std::max(needed.y, prediction->extent.y);
+      }
+    const bool         along_x = reached.x / half_x >= reached.y / half_y;
+    std::ostringstream message;
+    message << "the contact reached ";
+    if (fraction > guard::refined_region_margin)
+      message << short_number(along_x ? reached.x : reached.y) << " um from the axis along "
+              << (along_x ? "x" : "y") << ", beyond "
+              << short_number(100 * guard::refined_region_margin)
+              << " % of the refined region's half-width " << short_number(along_x ? half_x : half_y)
+              << " um,";
+    else
+      message << "the outermost ring of contact nodes (the edge of the refined region, half-width "
+              << short_number(std::min(half_x, half_y)) << " um)";
+    message << " at the depth " << short_number(record.depth) << " um (force "
+            << short_number(record.force) << " mN, step " << record.step << ")"
+            << ": contact nodes exist only on the refined region (specimen.refined_region = "
+            << io::format_triple(s.refined_region)
+            << ", specimen.contact_elements = " << s.contact_elements
+            << "), so beyond this step the specimen's surface would pass through the indenter "
+               "and the force would mean nothing. The outputs up to this step are kept. For "
+            << (force_control
+                    ? "loading.max_force = " + short_number(case_.loading.max_force) + " mN"
+                    : "loading.max_depth = " + short_number(case_.loading.max_depth) + " um")
+            << " use " << mesh::enlargement_advice(s, needed) << ", or a smaller "
+            << (force_control ? "loading.max_force" : "loading.max_depth");
+    recorder.log_note("stopped: " + message.str());
+    throw mesh::MeshOutgrownError(message.str());
+  }
+
+  // The plastic zone (cells whose quadrature points exceed the threshold of equivalent plastic
+  // strain, located by their centres) against each face of the specimen except the top and
+  // the symmetry planes: a warning once the elastic ligament between the zone and the face is
+  // thinner than the zone's own reach from the indent axis (lateral faces) or from the surface
+  // (bottom).
+  void IndentationProblem::check_plastic_zone(output::RunRecorder &recorder)
+  {
+    // Reach of the zone towards +x, -x, +y, -y and -z (0: no plastic cell).
+    std::array<double, 5> reach{};
+    bool                  plastic = false;
+    const unsigned int    n_q = history_.n_q_points(), n_state = history_.n_state();
+    for (const auto &cell : solid_.dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        const std::span<const double> state = history_.converged(cell);
+        double                        largest = 0;
+        for (unsigned int q = 0; q < n_q; ++q)
+          largest = std::max(
+              largest, material_->equivalent_plastic_strain(state.subspan(q * n_state, n_state)));
+        if (!(largest > guard::plastic_strain_threshold))
+          continue;
+        plastic = true;
+        const Point<3> c = cell->center();
+        reach[0] = std::max(reach[0], c[0]);
+        reach[1] = std::max(reach[1], -c[0]);
+        reach[2] = std::max(reach[2], c[1]);
+        reach[3] = std::max(reach[3], -c[1]);
+        reach[4] = std::max(reach[4], -c[2]);
+      }
+    const bool any = Utilities::MPI::max(plastic ? 1u : 0u, communicator_) > 0;
+    if (!any)
+      return;
+    for (double &r : reach)
+      r = Utilities::MPI::max(r, communicator_);
+
+    const io::SpecimenParameters &s = case_.specimen;
+    const std::array<double, 5>   face_distance = {
+          {s.size[0] / 2, s.size[0] / 2, s.size[1] / 2, s.size[1] / 2, s.size[2]}};
+    const char *faces[5] = {"x = +", "x = -", "y = +", "y = -", "z = -"};
+    for (unsigned int f = 0; f < 5; ++f)
+      {
+        if (mesh_info_.quarter && (f == 1 || f == 3))
+          continue; // symmetry planes
+        const double distance = face_distance[f] - reach[f];
+        if (!(distance < reach[f]))
+          continue;
+        const bool         bottom = f == 4;
+        std::ostringstream text;
+        text << "the plastic zone (equivalent plastic strain > "
+             << short_number(guard::plastic_strain_threshold) << ") reaches "
+             << short_number(reach[f]) << " um "
+             << (bottom ? "below the surface"
+                        : std::string("from the indent axis towards ") + faces[f] +
+                              short_number(face_distance[f]))
+             << ", " << short_number(std::max(distance, 0.0)) << " um from the "
+             << (bottom ? "fixed bottom face z = -" + short_number(s.size[2])
+                        : std::string("lateral face ") + faces[f] + short_number(face_distance[f]))
+             << ": closer than its own reach, so the "
+             << (bottom ? "fixed bottom stiffens" : "free lateral face softens")
+             << " the response and the force depends on the specimen's size; make "
+             << (bottom ? "specimen.size[2] (now " + short_number(s.size[2]) + " um) at least " +
+                              short_number(std::ceil(2 * reach[f])) + " um"
+                        : std::string("specimen.size[") + (f < 2 ? "0" : "1") + "] (now " +
+                              short_number(s.size[f < 2 ? 0 : 1]) + " um) at least " +
+                              short_number(std::ceil(4 * reach[f])) + " um")
+             << " (twice the zone's reach from the indent)";
+        warn(recorder, std::string("plastic zone ") + faces[f], text.str());
+      }
+  }
+
+  // At the maximum: the contact elements across the equivalent contact radius sqrt(A/pi).
+  void IndentationProblem::check_contact_resolution(output::RunRecorder &recorder,
+                                                    const StepRecord    &record)
+  {
+    const double radius = std::sqrt(record.contact_area / std::numbers::pi);
+    const double element = mesh_info_.contact_element_size;
+    if (!(radius > 0) || radius / element >= guard::min_elements_across_contact)
+      return;
+    const io::SpecimenParameters &s = case_.specimen;
+    const unsigned int            needed =
+        mesh::contact_elements_for(s, radius, guard::min_elements_across_contact);
+    std::ostringstream text;
+    text << short_number(radius / element)
+         << " contact elements across the contact radius at the maximum (a = sqrt(A/pi) = "
+         << short_number(radius) << " um at the depth " << short_number(record.depth)
+         << " um, contact element " << short_number(element) << " um): fewer than "
+         << short_number(guard::min_elements_across_contact)
+         << ", so the force depends on the mesh by several per cent; specimen.contact_elements: "
+         << needed << " (now " << s.contact_elements << ", on specimen.refined_region "
+         << io::format_triple(s.refined_region) << ") gives "
+         << short_number(guard::min_elements_across_contact) << " or more";
+    warn(recorder, "contact resolution", text.str());
+  }
+} // namespace indentsim::problems

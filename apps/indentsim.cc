@@ -29,6 +29,13 @@ namespace
 {
   using namespace indentsim;
 
+  // An error message in one write: under mpirun, stderr and stdout reach the terminal through
+  // separate channels, and a message written piecewise can be split by another line.
+  void report(const std::string &prefix, const std::exception &error, const std::string &after = "")
+  {
+    std::cerr << (prefix + error.what() + "\n" + after) << std::flush;
+  }
+
   // Writes the PNG plot of the load-penetration curve with the project's Python script.
   // With `measured_csv` (um, mN) the measured curve is overlaid.
   void plot_load_penetration(const std::string &directory, const std::string &measured_csv = "")
@@ -293,12 +300,12 @@ int main(int argc, char **argv)
               }
             catch (const std::invalid_argument &e) // bad input: named in the message
               {
-                std::cerr << "indentsim: error: " << e.what() << '\n';
+                report("indentsim: error: ", e);
                 return 1;
               }
             catch (const output::OutputError &e)
               {
-                std::cerr << "indentsim: error: " << e.what() << '\n';
+                report("indentsim: error: ", e);
                 return 4;
               }
           return 0;
@@ -311,13 +318,13 @@ int main(int argc, char **argv)
   catch (const io::CommandLineError &e)
     {
       if (root)
-        std::cerr << "indentsim: " << e.what() << '\n';
+        report("indentsim: ", e);
       return 2;
     }
   catch (const io::CaseFileError &e)
     {
       if (root)
-        std::cerr << "indentsim: error: " << e.what() << '\n';
+        report("indentsim: error: ", e);
       return 1;
     }
   catch (const output::OutputError &e)
@@ -325,21 +332,21 @@ int main(int argc, char **argv)
       // Every rank has the same error (output::write_collectively); a file written on rank 0
       // alone fails there only.
       if (root)
-        std::cerr << "indentsim: error: " << e.what()
-                  << "\nThe files written before stay as they were (the last checkpoint, if "
-                     "any, is intact).\n";
+        report("indentsim: error: ", e,
+               "The files written before stay as they were (the last checkpoint, if any, is "
+               "intact).\n");
       return 4;
     }
   catch (const mesh::MeshOutgrownError &e)
     {
       if (root)
-        std::cerr << "indentsim: the computation stopped: " << e.what() << '\n';
+        report("indentsim: the computation stopped: ", e);
       return 5;
     }
   catch (const std::exception &e)
     {
       if (root)
-        std::cerr << "indentsim: the computation stopped: " << e.what() << '\n';
+        report("indentsim: the computation stopped: ", e);
       return 3;
     }
 }

@@ -208,8 +208,8 @@ TEST(MemoryEstimate, RefusesACaseThatDoesNotFit)
 TEST(RunGuards, ContactOutgrowingTheRefinedRegionStopsTheRun)
 {
   io::Case c = test_cases::small_j2_case("quarter");
-  c.specimen.size = {20., 20., 10.};
-  c.specimen.refined_region = {4., 4., 2.};
+  c.specimen.size = {{20., 20., 10.}};
+  c.specimen.refined_region = {{4., 4., 2.}};
   c.specimen.contact_elements = 8; // 0.5 um elements; half-width 2 um
   c.loading.max_depth = 1.5;       // contact radius about 4.8 um at the end
   c.loading.steps = 6;

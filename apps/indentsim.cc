@@ -93,10 +93,11 @@ namespace
   }
 
   // Returns false if the run was stopped (checkpoint written, no end-of-run outputs).
-  bool run_indentation(const io::Case &the_case, const MPI_Comm communicator, const bool root,
+  bool run_indentation(const io::RunCase &run_case, const MPI_Comm communicator, const bool root,
                        const bool resume, const std::string &resume_hint)
   {
-    problems::IndentationProblem problem(the_case, communicator);
+    const io::Case              &the_case = run_case.the_case;
+    problems::IndentationProblem problem(the_case, communicator, true, run_case.indenter);
     problem.set_resume_command(resume_hint);
     problem.setup();
     if (problem.run(the_case.output.directory, resume) ==
@@ -168,13 +169,23 @@ namespace
     const bool root = dealii::Utilities::MPI::this_mpi_process(communicator) == 0;
     // Every rank reads and validates the case before any collective call, so that bad input
     // stops all ranks with the same message.
-    io::Case          the_case = io::read_case_file(options.case_file);
-    const std::string case_file_directory = the_case.output.directory;
-    if (options.output_directory)
-      the_case.output.directory = *options.output_directory;
-    if (options.compare_j2)
-      the_case.compare_j2 = true;
-    io::validate_case(the_case); // the command line may have changed it
+    std::string       case_file_directory;
+    const io::RunCase run_case = io::read_case_for_run(options.case_file, [&](io::Case &the_case) {
+      case_file_directory = the_case.output.directory;
+      std::vector<std::string> changed;
+      if (options.output_directory)
+        {
+          the_case.output.directory = *options.output_directory;
+          changed.push_back("output.directory");
+        }
+      if (options.compare_j2)
+        {
+          the_case.compare_j2 = true;
+          changed.push_back("compare_j2");
+        }
+      return changed;
+    });
+    const io::Case   &the_case = run_case.the_case;
 
     if (options.command == io::Command::check)
       {
@@ -244,7 +255,7 @@ namespace
     if (the_case.test == io::TestKind::tensile)
       run_tensile(the_case, communicator, root);
     else if (!run_indentation(
-                 the_case, communicator, root, options.resume,
+                 run_case, communicator, root, options.resume,
                  resume_command(program, options, case_file_directory,
                                 dealii::Utilities::MPI::n_mpi_processes(communicator))))
       return 130; // stopped by a signal: the shell's convention for SIGINT

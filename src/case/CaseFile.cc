@@ -2,6 +2,7 @@
 // case is written by CaseWriter.cc. See CaseFile.h for the rules.
 #include "case/CaseFile.h"
 #include "case/CaseReading.h"
+#include "indenter/IndenterSurface.h"
 #include "output/OutputFile.h"
 
 #include <yaml-cpp/yaml.h>
@@ -176,7 +177,8 @@ namespace indentsim::io
     return -1;
   }
 
-  Case parse_case_yaml(const std::string &yaml_text, const std::string &source_name)
+  Case parse_case_text(const std::string &yaml_text, const std::string &source_name,
+                       OriginMap &origins)
   {
     if (const auto problem = yaml_text_problem(yaml_text))
       fail(source_name, problem->first, problem->second);
@@ -207,34 +209,59 @@ namespace indentsim::io
         throw CaseFileError(location + ": YAML syntax error: " + error.msg);
       }
 
-    OriginMap origins;
-    Case      result;
     try
       {
-        result = read_case_tree(root, source_name, origins);
+        return read_case_tree(root, source_name, origins);
       }
     catch (const YAML::Exception &error)
       {
         // yaml-cpp reports structural problems (e.g. an invalid node) as exceptions.
         fail(source_name, error.mark.is_null() ? -1 : error.mark.line, error.msg);
       }
+  }
+
+  Case parse_case_yaml(const std::string &yaml_text, const std::string &source_name)
+  {
+    OriginMap  origins;
+    const Case result = parse_case_text(yaml_text, source_name, origins);
     validate_values(result, &origins);
     return result;
   }
 
+  namespace
+  {
+    std::string read_case_text(const std::string &path)
+    {
+      std::error_code error;
+      if (!fs::exists(path, error))
+        throw CaseFileError("case file '" + path + "' does not exist");
+      if (fs::is_directory(path, error))
+        throw CaseFileError("case file '" + path + "' is a directory, expected a YAML file");
+      std::ifstream input(path);
+      if (!input)
+        throw CaseFileError("case file '" + path + "' cannot be opened for reading");
+      std::ostringstream text;
+      text << input.rdbuf();
+      return text.str();
+    }
+  } // namespace
+
   Case read_case_file(const std::string &path)
   {
-    std::error_code error;
-    if (!fs::exists(path, error))
-      throw CaseFileError("case file '" + path + "' does not exist");
-    if (fs::is_directory(path, error))
-      throw CaseFileError("case file '" + path + "' is a directory, expected a YAML file");
-    std::ifstream input(path);
-    if (!input)
-      throw CaseFileError("case file '" + path + "' cannot be opened for reading");
-    std::ostringstream text;
-    text << input.rdbuf();
-    return parse_case_yaml(text.str(), path);
+    return parse_case_yaml(read_case_text(path), path);
+  }
+
+  RunCase read_case_for_run(const std::string                                     &path,
+                            const std::function<std::vector<std::string>(Case &)> &adjust)
+  {
+    OriginMap origins;
+    RunCase   result;
+    result.the_case = parse_case_text(read_case_text(path), path, origins);
+    // A value the command line set was not written on a line of the file.
+    for (const std::string &key : adjust(result.the_case))
+      origins.erase(key);
+    result.indenter = validate_values(result.the_case, &origins);
+    return result;
   }
 
   void validate_case(const Case &resolved_case)

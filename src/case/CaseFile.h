@@ -24,11 +24,18 @@
 #include "case/OutputDirectory.h"
 
 #include <array>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
+
+namespace indentsim::indenter
+{
+  class IndenterSurface;
+}
 
 namespace YAML
 {
@@ -54,6 +61,19 @@ namespace indentsim::io
   // The same from YAML text; `source_name` stands for the file name in messages and in
   // Case::source_file.
   Case parse_case_yaml(const std::string &yaml_text, const std::string &source_name);
+
+  // A case ready to run, and the indenter its validation built (the run takes it over, so that
+  // each indenter is built once per run).
+  struct RunCase
+  {
+    Case                                             the_case;
+    std::shared_ptr<const indenter::IndenterSurface> indenter;
+  };
+  // Reads `path` as read_case_file does, applies `adjust` (the command line's changes; it
+  // returns the key paths it set, whose messages then name no line of the file) and validates
+  // once. Throws CaseFileError.
+  RunCase read_case_for_run(const std::string                                     &path,
+                            const std::function<std::vector<std::string>(Case &)> &adjust);
 
   // The value checks applied by read_case_file, for a case assembled or modified in code (for
   // example after `--output` replaced output.directory). Throws CaseFileError.

@@ -4,6 +4,7 @@
 #include "case/CaseFile.h"
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,11 @@ namespace indentsim::io
   Case read_case_tree(const YAML::Node &root, const std::string &source, OriginMap &origins);
 
   // The value checks of the schema and the checks that involve several keys; `origins` is null
-  // for a case that was not read from a file.
-  void validate_values(const Case &checked, const OriginMap *origins);
+  // for a case that was not read from a file. Returns the indenter the checks built.
+  std::unique_ptr<indenter::IndenterSurface> validate_values(const Case      &checked,
+                                                             const OriginMap *origins);
+
+  // Parses YAML text into a Case with the origins of its values, without the value checks.
+  Case parse_case_text(const std::string &yaml_text, const std::string &source_name,
+                       OriginMap &origins);
 } // namespace indentsim::io

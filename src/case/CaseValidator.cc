@@ -31,14 +31,15 @@ namespace indentsim::io
       {
       }
 
-      void validate() const
+      // Returns the indenter, built as the run will use it.
+      std::unique_ptr<indenter::IndenterSurface> validate() const
       {
         check_section("");
         check_top_level();
         check_section("material");
         check_crystal_parameters();
         check_section("indenter");
-        const std::unique_ptr<indenter::IndenterSurface> surface = check_indenter();
+        std::unique_ptr<indenter::IndenterSurface> surface = check_indenter();
         check_section("specimen");
         check_specimen(*surface);
         check_section("loading");
@@ -49,6 +50,7 @@ namespace indentsim::io
         check_section("solver");
         check_section("output");
         check_output();
+        return surface;
       }
 
     private:
@@ -404,8 +406,9 @@ namespace indentsim::io
     };
   } // namespace
 
-  void validate_values(const Case &checked, const OriginMap *origins)
+  std::unique_ptr<indenter::IndenterSurface> validate_values(const Case      &checked,
+                                                             const OriginMap *origins)
   {
-    CaseValidator(checked, origins).validate();
+    return CaseValidator(checked, origins).validate();
   }
 } // namespace indentsim::io

@@ -33,7 +33,6 @@ namespace indentsim::io
     // mesh needs is estimated and checked against the machine before a run
     // (output/MemoryEstimate.h); 512 contact elements on the default refined region need
     // about 40 M cells.
-    constexpr double max_contact_elements = 512;
     constexpr double max_steps = 100000;
     constexpr double max_iterations = 1000;
 
@@ -290,9 +289,9 @@ namespace indentsim::io
               .comment("refined block under the tip [um]")
               .describe("the refined block under the tip"),
           D::at<&C::specimen, &S::contact_elements>("specimen.contact_elements")
-              .range({4, true, max_contact_elements, true, 4},
+              .range({4, true, double(max_contact_elements), true, 4},
                      "N must be a multiple of 4 with 4 <= N <= " +
-                         std::to_string(int(max_contact_elements)) +
+                         std::to_string(max_contact_elements) +
                          " (4, 8, 12, 16, ...) so that the mesh can be built: the 2:1 "
                          "coarsening around the refined region needs N/2 even, and with "
                          "symmetry: quarter the modelled N/2 x N/2 faces must be even as well; a "

@@ -16,6 +16,9 @@
 
 namespace indentsim::io
 {
+  // The largest specimen.contact_elements (the schema's bound; guards name it in advice).
+  inline constexpr unsigned int max_contact_elements = 512;
+
   enum class ValueType
   {
     number,       // double

@@ -190,7 +190,14 @@ namespace indentsim::problems
   void IndentationProblem::check_contact_resolution(output::RunRecorder &recorder,
                                                     const StepRecord    &record)
   {
-    const double radius = std::sqrt(record.contact_area / std::numbers::pi);
+    // The recorded contact counts the area of the active nodes only, which is nothing like the
+    // contact while it spans less than an element (one active node at the apex). The contact
+    // radius is at least that of the indenter's cross-section at half the depth (the elastic
+    // sink-in of a paraboloid, the deepest of Sneddon's profiles).
+    const double geometric_radius =
+        std::sqrt(indenter_->projected_area(0.5 * record.depth) / std::numbers::pi);
+    const double radius =
+        std::max(std::sqrt(record.contact_area / std::numbers::pi), geometric_radius);
     const double element = mesh_info_.contact_element_size;
     if (!(radius > 0) || radius / element >= guard::min_elements_across_contact)
       return;
@@ -207,6 +214,9 @@ namespace indentsim::problems
          << needed << " (now " << s.contact_elements << ", on specimen.refined_region "
          << io::format_triple(s.refined_region) << ") gives "
          << short_number(guard::min_elements_across_contact) << " or more";
+    if (needed > io::max_contact_elements)
+      text << "; that is beyond the largest allowed, " << io::max_contact_elements
+           << ": make specimen.refined_region smaller around this contact, or indent deeper";
     warn(recorder, "contact resolution", text.str());
   }
 } // namespace indentsim::problems

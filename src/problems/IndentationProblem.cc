@@ -46,13 +46,14 @@ namespace indentsim::problems
   using output::RunStatistics;
 
   IndentationProblem::IndentationProblem(const io::Case &the_case, const MPI_Comm communicator,
-                                         const bool verbose)
+                                         const bool                                       verbose,
+                                         std::shared_ptr<const indenter::IndenterSurface> indenter)
     : case_(the_case)
     , communicator_(communicator)
     , pcout_(std::cout, verbose && Utilities::MPI::this_mpi_process(communicator) == 0)
     , solid_(communicator, Triangulation<3>::limit_level_difference_at_vertices)
     , material_(materials::create_material(the_case.material))
-    , indenter_(indenter::create_indenter(the_case.indenter))
+    , indenter_(indenter ? std::move(indenter) : indenter::create_indenter(the_case.indenter))
     , use_f_bar_(the_case.specimen.f_bar)
     , linear_solver_(communicator)
   {

@@ -73,7 +73,10 @@ namespace indentsim::problems
   class IndentationProblem
   {
   public:
-    IndentationProblem(const io::Case &the_case, MPI_Comm communicator, bool verbose = true);
+    // `indenter`: the one the case's validation built (io::read_case_for_run); null: built here
+    // from the_case.indenter.
+    IndentationProblem(const io::Case &the_case, MPI_Comm communicator, bool verbose = true,
+                       std::shared_ptr<const indenter::IndenterSurface> indenter = nullptr);
     ~IndentationProblem();
 
     // Builds mesh, dofs, constraints, history and contact nodes.
@@ -268,10 +271,10 @@ namespace indentsim::problems
     dealii::AffineConstraints<double> constraints_hanging_;
     dealii::AffineConstraints<double> constraints_all_; // Dirichlet and hanging nodes
 
-    std::unique_ptr<materials::MaterialModel>      material_;
-    std::unique_ptr<indenter::IndenterSurface>     indenter_;
-    std::unique_ptr<contact::NodeToSurfaceContact> contact_;
-    bool                                           use_f_bar_;
+    std::unique_ptr<materials::MaterialModel>        material_;
+    std::shared_ptr<const indenter::IndenterSurface> indenter_;
+    std::unique_ptr<contact::NodeToSurfaceContact>   contact_;
+    bool                                             use_f_bar_;
 
     dealii::PETScWrappers::MPI::SparseMatrix matrix_;
     dealii::PETScWrappers::MPI::Vector       solution_;           // ghosted

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -77,6 +78,8 @@ namespace indentsim::analysis
         out << "\n  true contact area " << *r.true_contact_area << " um^2 (H " << *r.true_hardness
             << " GPa): Oliver-Pharr area error " << std::showpos << *r.area_error_percent
             << std::noshowpos << " %";
+      if (!r.true_area_note.empty())
+        out << "\n  " << r.true_area_note;
       out << '\n';
     }
   } // namespace
@@ -167,6 +170,10 @@ namespace indentsim::analysis
         settings.epsilon = default_epsilon(to_string(the_case.indenter.shape));
         if (the_case.material.model != io::ModelKind::crystal)
           settings.sample_poisson_ratio = the_case.material.poisson_ratio;
+        // One contact element h_e across the contact radius at the least (mesh/IndentationMesh).
+        const double element =
+            the_case.specimen.refined_region[0] / the_case.specimen.contact_elements;
+        settings.min_true_contact_area = std::numbers::pi * element * element;
         const OliverPharrResult result = analyze_and_write(curve, indenter, the_case.indenter,
                                                            settings, run_directory, curve.source);
         print_summary(summary, result, run_directory + "/" + io::output_files::oliver_pharr_json);

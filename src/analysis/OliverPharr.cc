@@ -469,7 +469,17 @@ namespace indentsim::analysis
         result.total_work > 0 ? (result.total_work - result.elastic_work) / result.total_work : 0.0;
     check_physical_bounds(result, where, branch.depth_tolerance, false);
 
-    if (!curve.contact_area.empty() && curve.contact_area[begin] > 0)
+    if (!curve.contact_area.empty() && curve.contact_area[begin] > 0 &&
+        curve.contact_area[begin] < settings.min_true_contact_area)
+      {
+        std::ostringstream note;
+        note << "the recorded contact area " << curve.contact_area[begin]
+             << " um^2 is below one contact element's circle (" << settings.min_true_contact_area
+             << " um^2): the mesh does not resolve the contact, so there is no comparison with "
+                "the true contact area";
+        result.true_area_note = note.str();
+      }
+    else if (!curve.contact_area.empty() && curve.contact_area[begin] > 0)
       {
         result.true_contact_area = curve.contact_area[begin];
         result.true_hardness = result.max_force / *result.true_contact_area;
@@ -522,6 +532,9 @@ namespace indentsim::analysis
         << "  \"true_contact_area_um2\": " << optional(r.true_contact_area) << ",\n"
         << "  \"true_hardness_GPa\": " << optional(r.true_hardness) << ",\n"
         << "  \"area_error_percent\": " << optional(r.area_error_percent) << ",\n"
+        << (r.true_area_note.empty()
+                ? std::string()
+                : "  \"true_area_note\": " + io::json_string(r.true_area_note) + ",\n")
         << "  \"unloading_points\": [" << r.unloading_begin << ", " << r.unloading_end << "]";
     if (curve != nullptr)
       {

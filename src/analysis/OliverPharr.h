@@ -75,6 +75,9 @@ namespace indentsim::analysis
     std::optional<double> sample_poisson_ratio; // nu: gives the sample's Young modulus
     double                indenter_modulus = std::numeric_limits<double>::infinity(); // E_i [GPa]
     double                indenter_poisson_ratio = 0.07;                              // nu_i [-]
+    // A simulated curve's recorded contact area below this [um^2] is not resolved by its mesh
+    // (a contact radius under one contact element, pi h_e^2): no comparison with the true area.
+    double min_true_contact_area = 0;
   };
 
   struct OliverPharrResult
@@ -98,6 +101,7 @@ namespace indentsim::analysis
     std::optional<double> true_contact_area;   // [um^2]
     std::optional<double> true_hardness;       // [GPa]
     std::optional<double> area_error_percent;  // 100 (A - A_true) / A_true
+    std::string           true_area_note;      // why there is no true-area comparison, or
     unsigned int          unloading_begin = 0; // index of h_max in the curve
     unsigned int          unloading_end = 0;   // one past the last unloading point
   };

@@ -286,3 +286,25 @@ TEST(OliverPharrChecks, ByteOrderMarkAndCrlfAreAccepted)
   for (const double h : {0.1, 0.7, 1.2, 2.0})
     EXPECT_EQ(plain_table.projected_area(h), marked_table.projected_area(h)) << h;
 }
+
+// A simulated curve whose recorded contact area is below one contact element's circle (the
+// contact spans less than an element) gets no true-area comparison, and says why; above it,
+// the comparison is made.
+TEST(OliverPharrChecks, UnresolvedTrueContactAreaIsNotCompared)
+{
+  LoadCurve curve = SyntheticCurve().curve();
+  curve.contact_area.assign(curve.depth.size(), 0.05); // um^2
+  analysis::OliverPharrSettings settings;
+  settings.min_true_contact_area = 3.14159 * 1.0 * 1.0; // contact elements of 1 um
+  const auto unresolved = analysis::analyze(curve, cone_area, settings);
+  EXPECT_FALSE(unresolved.true_contact_area);
+  EXPECT_FALSE(unresolved.true_hardness);
+  EXPECT_NE(unresolved.true_area_note.find("does not resolve the contact"), std::string::npos)
+      << unresolved.true_area_note;
+
+  curve.contact_area.assign(curve.depth.size(), 500.0); // um^2: many elements across
+  const auto resolved = analysis::analyze(curve, cone_area, settings);
+  ASSERT_TRUE(resolved.true_contact_area);
+  EXPECT_DOUBLE_EQ(*resolved.true_hardness, resolved.max_force / 500.0);
+  EXPECT_TRUE(resolved.true_area_note.empty());
+}

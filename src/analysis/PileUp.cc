@@ -134,49 +134,37 @@ namespace indentsim::analysis::pileup
       const auto field = [&](const char *name) -> std::ostream & {
         return out << indent << '"' << name << "\": ";
       };
+      const auto number = [&](const char *name, const double value) {
+        field(name);
+        write_number(out, value);
+        out << ",\n";
+      };
+      const auto array = [&](const char *name, const std::vector<double> &values) {
+        field(name);
+        write_array(out, values);
+        out << ",\n";
+      };
       field("stage") << '"' << r.stage << "\",\n";
-      field("depth_um");
-      write_number(out, r.depth);
-      out << ",\n";
-      field("contact_radius_um");
-      write_number(out, r.contact_radius);
-      out << ",\n";
-      field("analysis_radius_um");
-      write_number(out, r.analysis_radius);
-      out << ",\n";
+      number("depth_um", r.depth);
+      number("contact_radius_um", r.contact_radius);
+      number("analysis_radius_um", r.analysis_radius);
       field("dominant_fold") << r.spectrum.dominant_fold << ",\n";
       field("symmetry_fold") << r.spectrum.symmetry_fold << ",\n";
       field("fold_source") << '"' << r.spectrum.fold_source << "\",\n";
-      field("noise_level_um");
-      write_number(out, r.spectrum.noise_level);
-      out << ",\n";
-      field("fourier_amplitudes_um");
-      write_array(out, r.spectrum.amplitudes);
-      out << ",\n";
-      field("max_pileup_um");
-      write_number(out, r.max_pileup);
-      out << ",\n";
-      field("max_pileup_radius_um");
-      write_number(out, r.max_pileup_radius);
-      out << ",\n";
-      field("max_pileup_azimuth_deg");
-      write_number(out, r.max_pileup_azimuth_deg);
-      out << ",\n";
+      number("noise_level_um", r.spectrum.noise_level);
+      array("fourier_amplitudes_um", r.spectrum.amplitudes);
+      number("max_pileup_um", r.max_pileup);
+      number("max_pileup_radius_um", r.max_pileup_radius);
+      number("max_pileup_azimuth_deg", r.max_pileup_azimuth_deg);
       field("axis_height_um");
       if (r.axis_height)
         write_number(out, *r.axis_height);
       else
         out << "null";
       out << ",\n";
-      field("peak_azimuths_deg");
-      write_array(out, r.spectrum.peak_azimuths_deg);
-      out << ",\n";
-      field("grid_half_width_um");
-      write_number(out, r.grid.half_width);
-      out << ",\n";
-      field("grid_spacing_um");
-      write_number(out, r.grid.spacing);
-      out << ",\n";
+      array("peak_azimuths_deg", r.spectrum.peak_azimuths_deg);
+      number("grid_half_width_um", r.grid.half_width);
+      number("grid_spacing_um", r.grid.spacing);
       field("n_azimuths") << r.spectrum.samples.size();
     }
 

@@ -3,6 +3,7 @@
 // CaseValidator.cc. Every message names the file, the line, the key path and the value.
 #include "case/CaseReading.h"
 #include "case/Schema.h"
+#include "io/TextNumber.h"
 
 #include <yaml-cpp/yaml.h>
 
@@ -292,14 +293,10 @@ namespace indentsim::io
           fail(line_of(node), path + " has no value; " + expected);
         if (!node.IsScalar())
           fail(line_of(node), path + " = " + node_text(node) + ": " + expected);
-        std::string       text = node.Scalar();
-        const std::size_t start = (!text.empty() && text[0] == '+') ? 1 : 0;
-        double            value = 0.;
-        const auto result = std::from_chars(text.data() + start, text.data() + text.size(), value);
-        if (result.ec != std::errc() || result.ptr != text.data() + text.size() ||
-            !std::isfinite(value))
-          fail(line_of(node), path + " = \"" + text + "\": " + expected);
-        return value;
+        const std::optional<double> value = io::parse_yaml_number(node.Scalar());
+        if (!value)
+          fail(line_of(node), path + " = \"" + node.Scalar() + "\": " + expected);
+        return *value;
       }
 
       unsigned int parse_unsigned(const YAML::Node &node, const std::string &path) const

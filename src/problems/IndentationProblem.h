@@ -231,6 +231,7 @@ namespace indentsim::problems
     // The run through the loading programme, in steps (IndentationRun.cc).
     struct RunContext;
     void start_run(RunContext &context, bool resume);
+    void add_record(RunContext &context, const nonlinear::Segment &segment, StepRecord &record);
     void first_contact_step(RunContext &context, const nonlinear::Segment &segment);
     void converged_step(RunContext &context, const nonlinear::Segment &segment);
     void complete_step(RunContext &context, const nonlinear::Segment &segment, StepRecord &record,

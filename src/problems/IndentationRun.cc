@@ -131,6 +131,20 @@ namespace indentsim::problems
       }
   }
 
+  // A converged step becomes the next recorded step of the run (numbered, stamped, kept).
+  void IndentationProblem::add_record(RunContext &context, const Segment &segment,
+                                      StepRecord &record)
+  {
+    LoopState &loop = context.loop;
+    ++loop.step;
+    record.step = loop.step;
+    record.cycle = segment.cycle;
+    record.segment = to_string(segment.kind);
+    record.wall_time = context.wall_time();
+    loop.total_newton += record.newton_iterations;
+    records_.push_back(record);
+  }
+
   // Force control's first step: the first touch under depth control, 0.1 % of a contact element
   // beyond the nearest node (a recorded step; its force lies below the first target in the
   // examples).
@@ -147,13 +161,7 @@ namespace indentsim::problems
                                std::to_string(touch) + " um failed (" + to_string(status) + ")");
     loop.value = record.force;
     loop.depth = record.depth;
-    ++loop.step;
-    record.step = loop.step;
-    record.cycle = segment.cycle;
-    record.segment = to_string(segment.kind);
-    record.wall_time = context.wall_time();
-    loop.total_newton += record.newton_iterations;
-    records_.push_back(record);
+    add_record(context, segment, record);
     accept_increment();
     context.recorder.csv_row(record);
     check_records(context);
@@ -213,14 +221,8 @@ namespace indentsim::problems
   {
     LoopState                         &loop = context.loop;
     const nonlinear::LoadingProgramme &programme = context.programme;
-    ++loop.step;
     ++loop.control.segment_steps;
-    record.step = loop.step;
-    record.cycle = segment.cycle;
-    record.segment = to_string(segment.kind);
-    record.wall_time = context.wall_time();
-    loop.total_newton += record.newton_iterations;
-    records_.push_back(record);
+    add_record(context, segment, record);
     loop.max_force = std::max(loop.max_force, record.force);
 
     const bool reached = segment.kind == SegmentKind::hold

@@ -4,6 +4,7 @@
 
 #include "case/CaseFile.h"
 #include "case/Fingerprint.h"
+#include "io/TextNumber.h"
 
 #include <algorithm>
 #include <cctype>
@@ -196,14 +197,10 @@ namespace indentsim::study
           fail(line_of(node), path + " has no value; " + expected);
         if (!node.IsScalar())
           fail(line_of(node), path + " = " + flow_text(node) + ": " + expected);
-        const std::string &text = node.Scalar();
-        const std::size_t  start = (!text.empty() && text[0] == '+') ? 1 : 0;
-        double             value = 0.;
-        const auto result = std::from_chars(text.data() + start, text.data() + text.size(), value);
-        if (result.ec != std::errc() || result.ptr != text.data() + text.size() ||
-            !std::isfinite(value))
-          fail(line_of(node), path + " = \"" + text + "\": " + expected);
-        return value;
+        const std::optional<double> value = io::parse_yaml_number(node.Scalar());
+        if (!value)
+          fail(line_of(node), path + " = \"" + node.Scalar() + "\": " + expected);
+        return *value;
       }
 
       double read_positive(const YAML::Node &node, const std::string &path,

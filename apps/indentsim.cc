@@ -92,16 +92,18 @@ namespace
     return command + " --resume";
   }
 
-  // Returns false if the run was stopped (checkpoint written, no end-of-run outputs).
+  // Returns false if the run was stopped (checkpoint written, no end-of-run outputs). dim = 2:
+  // the axisymmetric model.
+  template <int dim>
   bool run_indentation(const io::RunCase &run_case, const MPI_Comm communicator, const bool root,
                        const bool resume, const std::string &resume_hint)
   {
     const io::Case              &the_case = run_case.the_case;
-    problems::IndentationProblem problem(the_case, communicator, true, run_case.indenter);
+    problems::IndentationProblem<dim> problem(the_case, communicator, true, run_case.indenter);
     problem.set_resume_command(resume_hint);
     problem.setup();
     if (problem.run(the_case.output.directory, resume) ==
-        problems::IndentationProblem::RunOutcome::stopped)
+        problems::IndentationProblem<dim>::RunOutcome::stopped)
       return false;
     if (root)
       {
@@ -253,13 +255,17 @@ namespace
       std::cout << "Threads per MPI rank: " << dealii::MultithreadInfo::n_threads() << std::endl;
 
     if (the_case.test == io::TestKind::tensile)
-      run_tensile(the_case, communicator, root);
-    else if (!run_indentation(
-                 run_case, communicator, root, options.resume,
-                 resume_command(program, options, case_file_directory,
-                                dealii::Utilities::MPI::n_mpi_processes(communicator))))
-      return 130; // stopped by a signal: the shell's convention for SIGINT
-    return 0;
+      {
+        run_tensile(the_case, communicator, root);
+        return 0;
+      }
+    const std::string resume = resume_command(
+        program, options, case_file_directory, dealii::Utilities::MPI::n_mpi_processes(communicator));
+    const bool finished =
+        the_case.specimen.symmetry == io::Symmetry::axisymmetric
+            ? run_indentation<2>(run_case, communicator, root, options.resume, resume)
+            : run_indentation<3>(run_case, communicator, root, options.resume, resume);
+    return finished ? 0 : 130; // stopped by a signal: the shell's convention for SIGINT
   }
 
   // indentsim study: reads the study file and runs its cases as child processes.

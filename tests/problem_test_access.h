@@ -10,23 +10,26 @@
 
 #include <cmath>
 #include <functional>
+#include <type_traits>
 
 namespace indentsim::problems
 {
   struct ProblemTestAccess
   {
     // Sets the displacement to u(X); hanging-node constraints are applied.
-    static void
-    set_displacement(IndentationProblem                                                  &p,
-                     const std::function<dealii::Tensor<1, 3>(const dealii::Point<3> &)> &u)
+    template <int dim>
+    static void set_displacement(
+        IndentationProblem<dim> &p,
+        const std::type_identity_t<
+            std::function<dealii::Tensor<1, dim>(const dealii::Point<dim> &)>> &u)
     {
       dealii::PETScWrappers::MPI::Vector u_owned(p.solid_.locally_owned, p.communicator_);
       for (const auto &cell : p.solid_.dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           for (const unsigned int v : cell->vertex_indices())
             {
-              const dealii::Tensor<1, 3> value = u(cell->vertex(v));
-              for (unsigned int d = 0; d < 3; ++d)
+              const dealii::Tensor<1, dim> value = u(cell->vertex(v));
+              for (unsigned int d = 0; d < dim; ++d)
                 {
                   const auto dof = cell->vertex_dof_index(v, d);
                   if (p.solid_.locally_owned.is_element(dof))
@@ -40,7 +43,8 @@ namespace indentsim::problems
 
     // Assembles the residual for the current displacement (no contact) and returns its l2 norm
     // over the dofs off the boundary [mN].
-    static double interior_residual_norm(IndentationProblem &p)
+    template <int dim>
+    static double interior_residual_norm(IndentationProblem<dim> &p)
     {
       p.contact_->evaluate(p.solution_, -1e30); // indenter far away: no contact
       p.assemble(false);
@@ -54,7 +58,8 @@ namespace indentsim::problems
     }
 
     // The largest deviation of the Cauchy stress from `expected` over all quadrature points [GPa].
-    static double max_stress_error(IndentationProblem &p, const dealii::Tensor<2, 3> &expected)
+    template <int dim>
+    static double max_stress_error(IndentationProblem<dim> &p, const dealii::Tensor<2, 3> &expected)
     {
       double error = 0;
       p.for_each_cell_stress(

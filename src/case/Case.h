@@ -25,17 +25,21 @@ namespace indentsim::io
         {{TestKind::indentation, "indentation"}, {TestKind::tensile, "tensile"}}};
   };
 
-  // specimen.symmetry: the full block, or the quarter x >= 0, y >= 0 with mirror planes.
+  // specimen.symmetry: the full block, the quarter x >= 0, y >= 0 with mirror planes, or the
+  // axisymmetric (r, z) model of the cylinder of radius size_x / 2 and height size_z.
   enum class Symmetry
   {
     full,
-    quarter
+    quarter,
+    axisymmetric
   };
   template <>
   struct ChoiceWords<Symmetry>
   {
-    static constexpr std::array<ChoiceWord<Symmetry>, 2> words = {
-        {{Symmetry::full, "full"}, {Symmetry::quarter, "quarter"}}};
+    static constexpr std::array<ChoiceWord<Symmetry>, 3> words = {
+        {{Symmetry::full, "full"},
+         {Symmetry::quarter, "quarter"},
+         {Symmetry::axisymmetric, "axisymmetric"}}};
   };
 
   // specimen.grains: one orientation, or a random orientation per element (tensile).

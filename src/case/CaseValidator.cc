@@ -231,6 +231,8 @@ namespace indentsim::io
           reject_quarter_symmetry_of_the_indenter();
         if (checked.material.model == ModelKind::crystal && !tensile() && quarter)
           check_quarter_symmetry_of_the_lattice();
+        if (s.symmetry == Symmetry::axisymmetric)
+          check_axisymmetric_model();
         if (s.grains == Grains::per_element && !tensile())
           reject("specimen.grains", to_string(s.grains),
                  "a random orientation per element is only implemented for test: tensile; the "
@@ -330,6 +332,30 @@ namespace indentsim::io
             if (value_origins->count(path) > 0)
               return path;
         return *paths.begin();
+      }
+
+      // The axisymmetric model is exact only for an isotropic material under an axisymmetric
+      // indenter; the tensile test is a 3D polycrystal.
+      void check_axisymmetric_model() const
+      {
+        const std::string why = "specimen.symmetry: axisymmetric models the (r, z) section of a "
+                                "cylinder and is exact only for ";
+        if (tensile())
+          reject("specimen.symmetry", "axisymmetric",
+                 "the tensile test models a 3D polycrystal cube; use symmetry: full");
+        if (checked.material.model == ModelKind::crystal)
+          reject("specimen.symmetry", "axisymmetric",
+                 why + "isotropic materials (neo_hookean, j2), not material.model: crystal (a "
+                       "crystal's slip systems break the axial symmetry); use symmetry: full, or "
+                       "quarter where the lattice allows it");
+        const auto &shape = checked.indenter.shape;
+        if (shape == IndenterShape::vickers || shape == IndenterShape::berkovich)
+          reject("specimen.symmetry", "axisymmetric",
+                 why + "axisymmetric indenters (rounded_cone, sphere, cone, flat_punch, "
+                       "profile_table), not indenter.shape: " +
+                     to_string(shape) +
+                     "; use symmetry: full, or the cone of the same area function (half-angle "
+                     "70.3 deg) in axisymmetric mode");
       }
 
       // The quarter model imposes u_x = 0 on x = 0 and u_y = 0 on y = 0, exact only if both are

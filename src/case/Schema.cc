@@ -301,13 +301,17 @@ namespace indentsim::io
               .describe("N: N×N faces across the refined top face"),
           D::at<&C::specimen, &S::symmetry>("specimen.symmetry")
               .expect("a symmetry")
-              .comment("full | quarter (x >= 0, y >= 0)")
+              .comment("full | quarter (x >= 0, y >= 0) | axisymmetric (r, z)")
               .describe(
                   "`quarter`: x ≥ 0, y ≥ 0 with symmetry planes x = 0, y = 0; for `crystal` "
                   "only if x = 0 and y = 0 are cubic mirror planes (e.g. (001), or (011) with "
                   "[100] along x; not (111)); only for an indenter with these mirror planes "
                   "(every axisymmetric shape, `vickers` at a `rotation_deg` that is a "
-                  "multiple of 45, never `berkovich`)"),
+                  "multiple of 45, never `berkovich`). `axisymmetric`: the 2D (r, z) section "
+                  "of a cylinder of radius size_x/2 and height size_z (size_y unused), refined "
+                  "for r ≤ refined_region_x/2, z ≥ −refined_region_z, with u_r = 0 on the axis; "
+                  "forces are the whole indent's; only for `neo_hookean` and `j2` under "
+                  "`rounded_cone`, `sphere`, `cone`, `flat_punch` or `profile_table`"),
           D::at<&C::specimen, &S::f_bar>("specimen.f_bar")
               .default_is("true for j2 and crystal, and for neo_hookean with poisson_ratio > 0.45; "
                           "false for other neo_hookean cases")

@@ -1,6 +1,7 @@
 #include "contact/ContactArea.h"
 
 #include <algorithm>
+#include <numbers>
 #include <cmath>
 #include <vector>
 
@@ -50,6 +51,25 @@ namespace indentsim::contact
         patch.max_abs_x = std::max(patch.max_abs_x, std::abs(p[0]));
         patch.max_abs_y = std::max(patch.max_abs_y, std::abs(p[1]));
       }
+    return patch;
+  }
+
+  ContactPatch segment_contact_patch(const std::array<double, 2> &r,
+                                     const std::array<double, 2> &phi)
+  {
+    ContactPatch patch;
+    if (phi[0] <= 0 && phi[1] <= 0)
+      return patch;
+    // The zero crossing of phi, where phi changes sign along the edge.
+    const auto crossing = [&]() { return r[0] + (r[1] - r[0]) * phi[0] / (phi[0] - phi[1]); };
+    double r1 = r[0], r2 = r[1];
+    if (phi[0] <= 0)
+      r1 = crossing();
+    else if (phi[1] <= 0)
+      r2 = crossing();
+    patch.area = std::numbers::pi * std::abs(r2 * r2 - r1 * r1);
+    patch.max_radius = std::max(std::abs(r1), std::abs(r2));
+    patch.max_abs_x = patch.max_abs_y = patch.max_radius;
     return patch;
   }
 

@@ -27,6 +27,12 @@ namespace indentsim::contact
   ContactPatch triangle_contact_patch(const std::array<dealii::Point<2>, 3> &xy,
                                       const std::array<double, 3>           &phi);
 
+  // The axisymmetric model's top edge from radius r[0] to r[1] (current positions), phi linear
+  // along it: the ring {phi > 0} has the area pi (r_2^2 - r_1^2) of its radii r_1 < r_2, and
+  // max_abs_x = max_abs_y = max_radius = r_2 (exact for phi linear in r).
+  ContactPatch segment_contact_patch(const std::array<double, 2> &r,
+                                     const std::array<double, 2> &phi);
+
   // Corners in cyclic order (either orientation).
   ContactPatch quad_contact_patch(const std::array<dealii::Point<2>, 4> &xy,
                                   const std::array<double, 4>           &phi);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -72,13 +73,75 @@ namespace indentsim::contact
               }
           }
       }
-    area.compress(VectorOperation::add);
-    for (auto &[dof_x, node] : found)
+    store_nodes(found, area);
+  }
+
+  void NodeToSurfaceContact::setup(const DoFHandler<2>             &dof_handler,
+                                   const AffineConstraints<double> &hanging_node_constraints,
+                                   const types::boundary_id top_boundary, const double half_x,
+                                   const MPI_Comm communicator)
+  {
+    communicator_ = communicator;
+    axes_ = {0, 2};
+    nodes_.clear();
+    const IndexSet &owned = dof_handler.locally_owned_dofs();
+    // Ring areas: integral of N_i 2 pi r ds over the edge from r_i to r_j of length L is
+    // 2 pi L (2 r_i + r_j) / 6 (the row sum of the consistent weighted mass): the node on the
+    // axis keeps the area of its half edge's ring.
+    PETScWrappers::MPI::Vector                     area(owned, communicator);
+    std::map<types::global_dof_index, ContactNode> found;
+    const double                                   tol = 1e-8 * half_x;
+    for (const auto &cell : dof_handler.active_cell_iterators())
       {
-        node.area = area(node.dofs[2]);
+        if (!cell->is_locally_owned())
+          continue;
+        for (const auto &face : cell->face_iterators())
+          {
+            if (!face->at_boundary() || face->boundary_id() != top_boundary ||
+                face->center()[0] > half_x + tol)
+              continue;
+            const double length = face->measure();
+            for (const unsigned int v : {0u, 1u})
+              {
+                const double r_i = face->vertex(v)[0], r_j = face->vertex(1 - v)[0];
+                area(face->vertex_dof_index(v, 1)) +=
+                    2 * std::numbers::pi * length * (2 * r_i + r_j) / 6;
+                const types::global_dof_index dof_r = face->vertex_dof_index(v, 0);
+                if (!owned.is_element(dof_r) || hanging_node_constraints.is_constrained(dof_r))
+                  continue;
+                ContactNode node;
+                node.dofs = {dof_r, face->vertex_dof_index(v, 1), numbers::invalid_dof_index};
+                node.X = Point<3>(r_i, 0., face->vertex(v)[1]);
+                node.x_converged = node.X;
+                found.emplace(dof_r, node);
+              }
+          }
+      }
+    store_nodes(found, area);
+  }
+
+  void NodeToSurfaceContact::store_nodes(std::map<types::global_dof_index, ContactNode> &found,
+                                         PETScWrappers::MPI::Vector                     &area)
+  {
+    area.compress(VectorOperation::add);
+    // The area sits on the dof of the last (z) component.
+    const unsigned int z = axes_.size() - 1;
+    for (auto &[first_dof, node] : found)
+      {
+        node.area = area(node.dofs[z]);
         nodes_.push_back(node);
       }
   }
+
+  namespace
+  {
+    // Component d of the nodal force per unit area, p n + t, of a response [GPa].
+    template <class Response>
+    double nodal_force(const Response &response, const unsigned int d)
+    {
+      return response.pressure * response.projection.normal[d] + response.traction[d];
+    }
+  } // namespace
 
   NodeToSurfaceContact::NodeResponse
   NodeToSurfaceContact::respond(const ContactNode &node, const Point<3> &x, const int normal_active,
@@ -139,8 +202,8 @@ namespace indentsim::contact
     depth_ = depth;
     for (ContactNode &node : nodes_)
       {
-        for (unsigned int d = 0; d < 3; ++d)
-          node.x[d] = node.X[d] + u(node.dofs[d]);
+        for (unsigned int k = 0; k < axes_.size(); ++k)
+          node.x[axes_[k]] = node.X[axes_[k]] + u(node.dofs[k]);
         int normal_active = -1; // decided by the augmented pressure
         if (mode == ActiveSet::predictor && node.lambda_converged > 0)
           normal_active = 1;
@@ -187,18 +250,21 @@ namespace indentsim::contact
     Assert(!coupling || matrix, ExcMessage("the depth coupling needs the tangent"));
     kept_.clear();
     kept_valid_ = matrix != nullptr && coupling == nullptr;
-    FullMatrix<double>                   local_matrix(3, 3);
-    Vector<double>                       local_residual(3);
-    std::vector<types::global_dof_index> dofs(3);
+    // Component k of the node moves the 3D axis axes_[k]; the z axis is the last.
+    const unsigned int                   n = axes_.size();
+    FullMatrix<double>                   local_matrix(n, n);
+    Vector<double>                       local_residual(n);
+    std::vector<types::global_dof_index> dofs(n);
     for (const ContactNode &node : nodes_)
       {
         if (!node.active)
           continue;
         const double force = node.pressure * node.area; // [mN]
-        for (unsigned int d = 0; d < 3; ++d)
+        for (unsigned int k = 0; k < n; ++k)
           {
-            local_residual[d] = -force * node.normal[d] - node.area * node.traction[d];
-            dofs[d] = node.dofs[d];
+            const unsigned int d = axes_[k];
+            local_residual[k] = -force * node.normal[d] - node.area * node.traction[d];
+            dofs[k] = node.dofs[k];
           }
         if (matrix)
           {
@@ -208,18 +274,20 @@ namespace indentsim::contact
                 // d(-p A n)/dx = eps A n (x) n - p A dn/dx. The derivative of the normal (the
                 // Hessian of the signed distance, i.e. the indenter's curvature) is taken by
                 // central differences of the exact closest-point projection.
-                for (unsigned int i = 0; i < 3; ++i)
-                  for (unsigned int j = 0; j < 3; ++j)
-                    local_matrix(i, j) = penalty_ * node.area * node.normal[i] * node.normal[j];
-                for (unsigned int j = 0; j < 3; ++j)
+                for (unsigned int i = 0; i < n; ++i)
+                  for (unsigned int j = 0; j < n; ++j)
+                    local_matrix(i, j) =
+                        penalty_ * node.area * node.normal[axes_[i]] * node.normal[axes_[j]];
+                for (unsigned int j = 0; j < n; ++j)
                   {
                     Point<3> xp = node.x, xm = node.x;
-                    xp[j] += h;
-                    xm[j] -= h;
+                    xp[axes_[j]] += h;
+                    xm[axes_[j]] -= h;
                     const auto pp = surface_.project(xp - offset_, depth_);
                     const auto pm = surface_.project(xm - offset_, depth_);
-                    for (unsigned int i = 0; i < 3; ++i)
-                      local_matrix(i, j) -= force * (pp.normal[i] - pm.normal[i]) / (2 * h);
+                    for (unsigned int i = 0; i < n; ++i)
+                      local_matrix(i, j) -=
+                          force * (pp.normal[axes_[i]] - pm.normal[axes_[i]]) / (2 * h);
                   }
               }
             else
@@ -227,19 +295,17 @@ namespace indentsim::contact
                 // With friction: d(-f)/dx, f = A (p n + t), by central differences of the exact
                 // nodal response at the frozen status (normal and Coulomb parts alike; the
                 // slip tangent is not symmetric).
-                for (unsigned int j = 0; j < 3; ++j)
+                for (unsigned int j = 0; j < n; ++j)
                   {
                     Point<3> xp = node.x, xm = node.x;
-                    xp[j] += h;
-                    xm[j] -= h;
+                    xp[axes_[j]] += h;
+                    xm[axes_[j]] -= h;
                     const NodeResponse rp = respond(node, xp, 1, &node.status, depth_);
                     const NodeResponse rm = respond(node, xm, 1, &node.status, depth_);
-                    for (unsigned int i = 0; i < 3; ++i)
-                      {
-                        const double fp = rp.pressure * rp.projection.normal[i] + rp.traction[i];
-                        const double fm = rm.pressure * rm.projection.normal[i] + rm.traction[i];
-                        local_matrix(i, j) = -node.area * (fp - fm) / (2 * h);
-                      }
+                    for (unsigned int i = 0; i < n; ++i)
+                      local_matrix(i, j) = -node.area *
+                                           (nodal_force(rp, axes_[i]) - nodal_force(rm, axes_[i])) /
+                                           (2 * h);
                   }
               }
             constraints.distribute_local_to_global(local_matrix, local_residual, dofs, *matrix,
@@ -247,12 +313,12 @@ namespace indentsim::contact
             if (kept_valid_)
               {
                 Contribution kept;
-                for (unsigned int i = 0; i < 3; ++i)
+                for (unsigned int i = 0; i < n; ++i)
                   {
                     kept.dofs[i] = dofs[i];
                     kept.vector[i] = local_residual[i];
-                    for (unsigned int j = 0; j < 3; ++j)
-                      kept.matrix[3 * i + j] = local_matrix(i, j);
+                    for (unsigned int j = 0; j < n; ++j)
+                      kept.matrix[n * i + j] = local_matrix(i, j);
                   }
                 kept_.push_back(kept);
               }
@@ -263,15 +329,15 @@ namespace indentsim::contact
                 const double   dh = 1e-7 * std::max(1.0, std::abs(depth_));
                 const auto     rp = respond(node, node.x, 1, &node.status, depth_ + dh);
                 const auto     rm = respond(node, node.x, 1, &node.status, depth_ - dh);
-                Vector<double> residual_derivative(3), force_gradient(3);
-                for (unsigned int i = 0; i < 3; ++i)
+                Vector<double> residual_derivative(n), force_gradient(n);
+                for (unsigned int i = 0; i < n; ++i)
                   {
-                    const double fp = rp.pressure * rp.projection.normal[i] + rp.traction[i];
-                    const double fm = rm.pressure * rm.projection.normal[i] + rm.traction[i];
-                    residual_derivative[i] = -node.area * (fp - fm) / (2 * dh);
-                    force_gradient[i] = local_matrix(2, i);
+                    residual_derivative[i] =
+                        -node.area * (nodal_force(rp, axes_[i]) - nodal_force(rm, axes_[i])) /
+                        (2 * dh);
+                    force_gradient[i] = local_matrix(n - 1, i);
                   }
-                coupling->force_derivative += residual_derivative[2];
+                coupling->force_derivative += residual_derivative[n - 1];
                 constraints.distribute_local_to_global(residual_derivative, dofs,
                                                        *coupling->residual_derivative);
                 constraints.distribute_local_to_global(force_gradient, dofs,
@@ -291,23 +357,24 @@ namespace indentsim::contact
     // would need the constraint's full treatment undone: then nothing is retracted (on any rank).
     bool possible = kept_valid_;
     for (const Contribution &kept : kept_)
-      for (const types::global_dof_index dof : kept.dofs)
-        if (constraints.is_constrained(dof) && (constraints.is_inhomogeneously_constrained(dof) ||
+      for (unsigned int k = 0; k < axes_.size(); ++k)
+        if (const types::global_dof_index dof = kept.dofs[k]; constraints.is_constrained(dof) && (constraints.is_inhomogeneously_constrained(dof) ||
                                                 !constraints.get_constraint_entries(dof)->empty()))
           possible = false;
     if (Utilities::MPI::min(static_cast<unsigned int>(possible), communicator_) == 0)
       return false;
-    FullMatrix<double>                   local_matrix(3, 3);
-    Vector<double>                       local_residual(3);
-    std::vector<types::global_dof_index> dofs(3);
+    const unsigned int                   n = axes_.size();
+    FullMatrix<double>                   local_matrix(n, n);
+    Vector<double>                       local_residual(n);
+    std::vector<types::global_dof_index> dofs(n);
     for (const Contribution &kept : kept_)
       {
-        for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int i = 0; i < n; ++i)
           {
             dofs[i] = kept.dofs[i];
             local_residual[i] = -kept.vector[i];
-            for (unsigned int j = 0; j < 3; ++j)
-              local_matrix(i, j) = -kept.matrix[3 * i + j];
+            for (unsigned int j = 0; j < n; ++j)
+              local_matrix(i, j) = -kept.matrix[n * i + j];
           }
         constraints.distribute_local_to_global(local_matrix, local_residual, dofs, matrix,
                                                residual);
@@ -315,14 +382,14 @@ namespace indentsim::contact
         // matrix, or the mean |K_jj| if K_ii = 0 (AffineConstraints::distribute_local_to_global),
         // whatever the sign: the subtraction above added it once more, so take it off twice.
         double mean_diagonal = 0;
-        for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int i = 0; i < n; ++i)
           mean_diagonal += std::abs(local_matrix(i, i));
-        mean_diagonal /= 3;
+        mean_diagonal /= n;
         if (mean_diagonal == 0)
-          mean_diagonal = local_matrix.l1_norm() / 3;
+          mean_diagonal = local_matrix.l1_norm() / n;
         if (mean_diagonal == 0)
           mean_diagonal = 1;
-        for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int i = 0; i < n; ++i)
           if (constraints.is_constrained(dofs[i]))
             {
               const double diagonal =

@@ -24,6 +24,12 @@
 // penalty only sets the convergence rate of these passes, not the converged answer: the user
 // tunes nothing.
 //
+// Axisymmetric model: the nodes of the (r, z) section's top edge, placed in the 3D frame at
+// (r, 0, z) (the meridian plane y = 0), where the axisymmetric indenter's projection, normal and
+// tangent plane restricted to the meridian are those of the 3D formulation; friction slips
+// along the meridian. A node's area is then the whole ring's, A_i = integral of N_i 2 pi r ds
+// over its top edges, so that f_i is the ring's force and the forces sum to the whole indent's.
+//
 // The class never knows which material lies underneath.
 #pragma once
 
@@ -36,6 +42,7 @@
 #include <deal.II/lac/petsc_vector.h>
 
 #include <array>
+#include <map>
 #include <vector>
 
 namespace indentsim::contact
@@ -53,9 +60,11 @@ namespace indentsim::contact
 
   struct ContactNode
   {
-    std::array<dealii::types::global_dof_index, 3> dofs;     // x, y, z displacement dofs
+    // Displacement dofs of the model's components: x, y, z (3D) or r, z (axisymmetric, the
+    // third unused); component k moves the 3D coordinate axis(k) (NodeToSurfaceContact::axes).
+    std::array<dealii::types::global_dof_index, 3> dofs;
     Point<3>                                       X;        // reference position [um]
-    double                                         area = 0; // tributary reference area [um^2]
+    double area = 0; // tributary reference area [um^2] (axisymmetric: of the whole ring)
     double       lambda = 0;                    // normal multiplier (nominal pressure) [GPa]
     double       lambda_converged = 0;          // normal multiplier of the last converged increment
     double       lambda_previous = 0;           // ... and of the one before
@@ -110,6 +119,13 @@ namespace indentsim::contact
                const dealii::AffineConstraints<double> &hanging_node_constraints,
                dealii::types::boundary_id top_boundary, double half_x, double half_y,
                MPI_Comm communicator);
+    // The same for the axisymmetric (r, z) section: the top-edge nodes with r <= half_x, their
+    // ring areas integral of N_i 2 pi r ds (exact for the linear edge).
+    void setup(const dealii::DoFHandler<2>             &dof_handler,
+               const dealii::AffineConstraints<double> &hanging_node_constraints,
+               dealii::types::boundary_id top_boundary, double half_x, MPI_Comm communicator);
+    // The 3D coordinate axes the model's displacement components move: {0, 1, 2} or {0, 2}.
+    const std::vector<unsigned int> &axes() const { return axes_; }
 
     // Penetration [um] beyond which a node outside the last converged active set is active in
     // `predictor` mode (see evaluate); 0 until set. IndentationProblem sets the contact
@@ -218,7 +234,12 @@ namespace indentsim::contact
     NodeResponse respond(const ContactNode &node, const Point<3> &x, int normal_active,
                          const ContactStatus *fixed_status, double depth) const;
 
+    // Keeps the found nodes, in the order of their first dof, with their areas from `area`.
+    void store_nodes(std::map<dealii::types::global_dof_index, ContactNode> &found,
+                     dealii::PETScWrappers::MPI::Vector                     &area);
+
     const indenter::IndenterSurface &surface_;
+    std::vector<unsigned int>        axes_ = {0, 1, 2};
     double                           penalty_;
     double                           mu_;
     double                           predictor_activation_depth_ = 0; // [um]
@@ -233,7 +254,7 @@ namespace indentsim::contact
     struct Contribution
     {
       std::array<dealii::types::global_dof_index, 3> dofs;
-      std::array<double, 9>                          matrix; // row-major 3 x 3
+      std::array<double, 9>                          matrix; // row-major n x n (n components)
       std::array<double, 3>                          vector;
     };
     std::vector<Contribution> kept_;

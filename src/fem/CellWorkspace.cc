@@ -1,5 +1,7 @@
 #include "fem/CellWorkspace.h"
 
+#include "fem/AxisymmetricCellWorkspace.h"
+
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/work_stream.h>
 #include <deal.II/fe/fe_q.h>
@@ -74,15 +76,23 @@ namespace indentsim::fem
   {
   }
 
-  void run_on_owned_cells(const DoFHandler<3> &dof_handler, const unsigned int n_q_points,
-                          const CellWorker &worker, const CellCopier &copier)
+  template <int dim>
+  void run_on_owned_cells(const DoFHandler<dim> &dof_handler, const unsigned int n_q_points,
+                          const std::type_identity_t<CellWorker<dim>> &worker,
+                          const CellCopier                            &copier)
   {
+    using Workspace = typename CellWorkspaceFor<dim>::type;
     const auto cells =
         filter_iterators(dof_handler.active_cell_iterators(), IteratorFilters::LocallyOwnedCell());
     const unsigned int n_dofs = dof_handler.get_fe().n_dofs_per_cell();
     WorkStream::run(cells.begin(), cells.end(), worker, copier,
-                    CellWorkspace(dof_handler.get_fe(), n_q_points), CellContribution(n_dofs));
+                    Workspace(dof_handler.get_fe(), n_q_points), CellContribution(n_dofs));
   }
+
+  template void run_on_owned_cells<2>(const DoFHandler<2> &, unsigned int,
+                                      const CellWorker<2> &, const CellCopier &);
+  template void run_on_owned_cells<3>(const DoFHandler<3> &, unsigned int,
+                                      const CellWorker<3> &, const CellCopier &);
 
   namespace
   {
@@ -147,5 +157,17 @@ namespace indentsim::fem
         physical_gradients(vertices, reference_grad0, scratch.grad0);
       }
     cell->get_dof_values(solution, u_local);
+  }
+
+  materials::UpdateStatus CellWorkspace::evaluate(const materials::MaterialModel &material,
+                                                  const bool                      use_f_bar,
+                                                  std::span<const double>         state_old,
+                                                  std::span<double>               state_new,
+                                                  Vector<double>                 &residual,
+                                                  FullMatrix<double>             *tangent,
+                                                  std::vector<Tensor<2, 3>>      *cauchy)
+  {
+    return element_residual_and_tangent(material, use_f_bar, u_local, state_old, state_new,
+                                        scratch, residual, tangent, cauchy);
   }
 } // namespace indentsim::fem

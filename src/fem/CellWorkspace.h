@@ -25,6 +25,8 @@
 
 #include <array>
 #include <functional>
+#include <span>
+#include <type_traits>
 #include <vector>
 
 namespace indentsim::fem
@@ -51,6 +53,13 @@ namespace indentsim::fem
     // Evaluates the gradients on `cell` and reads its displacement values from `solution`.
     void reinit(const dealii::DoFHandler<3>::active_cell_iterator &cell,
                 const GhostedVector                               &solution);
+    // The element kernel (FiniteStrainElement.h) on the cell of the last reinit: residual, and
+    // tangent when `tangent` is not null; Cauchy stresses at the points when asked.
+    materials::UpdateStatus evaluate(const materials::MaterialModel &material, bool use_f_bar,
+                                     std::span<const double> state_old,
+                                     std::span<double> state_new, dealii::Vector<double> &residual,
+                                     dealii::FullMatrix<double>          *tangent,
+                                     std::vector<dealii::Tensor<2, 3>> *cauchy = nullptr);
 
     const dealii::FiniteElement<3> &vector_fe;
     // grad_xi N_i at the Gauss points [q][i] and at the centre [i], Gauss weights [q].
@@ -73,12 +82,26 @@ namespace indentsim::fem
     std::array<double, 2> sums = {{0., 0.}}; // problem-specific cell sums (reactions, volume)
   };
 
-  using CellWorker = std::function<void(const dealii::DoFHandler<3>::active_cell_iterator &,
-                                        CellWorkspace &, CellContribution &)>;
+  // The workspace of the problem's element: the hexahedron (dim = 3) or the axisymmetric
+  // quadrilateral (dim = 2, AxisymmetricCellWorkspace.h).
+  template <int dim>
+  struct CellWorkspaceFor;
+  template <>
+  struct CellWorkspaceFor<3>
+  {
+    using type = CellWorkspace;
+  };
+
+  template <int dim>
+  using CellWorker =
+      std::function<void(const typename dealii::DoFHandler<dim>::active_cell_iterator &,
+                         typename CellWorkspaceFor<dim>::type &, CellContribution &)>;
   using CellCopier = std::function<void(const CellContribution &)>;
 
   // Calls `worker` on every locally owned cell (on all threads) and `copier` on each result (one
   // at a time, in cell order).
-  void run_on_owned_cells(const dealii::DoFHandler<3> &dof_handler, unsigned int n_q_points,
-                          const CellWorker &worker, const CellCopier &copier);
+  template <int dim>
+  void run_on_owned_cells(const dealii::DoFHandler<dim> &dof_handler, unsigned int n_q_points,
+                          const std::type_identity_t<CellWorker<dim>> &worker,
+                          const CellCopier                            &copier);
 } // namespace indentsim::fem

@@ -33,15 +33,18 @@ namespace indentsim::fem
       return std::span<double>(converged_).subspan(point * n_state_, n_state_);
     }
     // A cell's converged and current states, [q][variable].
-    std::span<const double> converged(const dealii::DoFHandler<3>::active_cell_iterator &cell) const
+    template <class CellIterator>
+    std::span<const double> converged(const CellIterator &cell) const
     {
       return std::span<const double>(converged_).subspan(offset(cell), cell_length());
     }
-    std::span<double> converged(const dealii::DoFHandler<3>::active_cell_iterator &cell)
+    template <class CellIterator>
+    std::span<double> converged(const CellIterator &cell)
     {
       return std::span<double>(converged_).subspan(offset(cell), cell_length());
     }
-    std::span<double> current(const dealii::DoFHandler<3>::active_cell_iterator &cell)
+    template <class CellIterator>
+    std::span<double> current(const CellIterator &cell)
     {
       return std::span<double>(current_).subspan(offset(cell), cell_length());
     }
@@ -64,7 +67,8 @@ namespace indentsim::fem
     std::vector<double>       &converged_values() { return converged_; }
 
   private:
-    std::size_t offset(const dealii::DoFHandler<3>::active_cell_iterator &cell) const
+    template <class CellIterator>
+    std::size_t offset(const CellIterator &cell) const
     {
       return cell->active_cell_index() * cell_length();
     }

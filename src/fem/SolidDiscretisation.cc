@@ -11,30 +11,34 @@ namespace indentsim::fem
 {
   using namespace dealii;
 
-  SolidDiscretisation::SolidDiscretisation(const MPI_Comm                        communicator,
-                                           const Triangulation<3>::MeshSmoothing mesh_smoothing)
+  template <int dim>
+  SolidDiscretisation<dim>::SolidDiscretisation(
+      const MPI_Comm communicator, const typename Triangulation<dim>::MeshSmoothing mesh_smoothing)
     : communicator(communicator)
     , triangulation(communicator, mesh_smoothing,
-                    parallel::distributed::Triangulation<3>::default_setting)
-    , fe(FE_Q<3>(1), 3)
+                    parallel::distributed::Triangulation<dim>::default_setting)
+    , fe(FE_Q<dim>(1), dim)
     , dof_handler(triangulation)
   {
   }
 
-  SolidDiscretisation::~SolidDiscretisation()
+  template <int dim>
+  SolidDiscretisation<dim>::~SolidDiscretisation()
   {
     // The DoF handler lets go of the triangulation before the triangulation is destroyed.
     dof_handler.clear();
   }
 
-  void SolidDiscretisation::distribute_dofs()
+  template <int dim>
+  void SolidDiscretisation<dim>::distribute_dofs()
   {
     dof_handler.distribute_dofs(fe);
     locally_owned = dof_handler.locally_owned_dofs();
     locally_relevant = DoFTools::extract_locally_relevant_dofs(dof_handler);
   }
 
-  void SolidDiscretisation::reinit_matrix(const AffineConstraints<double>  &constraints,
+  template <int dim>
+  void SolidDiscretisation<dim>::reinit_matrix(const AffineConstraints<double>  &constraints,
                                           PETScWrappers::MPI::SparseMatrix &matrix) const
   {
     // keep_constrained_dofs = false: constrained rows and columns hold only their diagonal,
@@ -45,33 +49,39 @@ namespace indentsim::fem
     matrix.reinit(locally_owned, locally_owned, dsp, communicator);
   }
 
-  void SolidDiscretisation::reinit_ghosted(PETScWrappers::MPI::Vector &vector) const
+  template <int dim>
+  void SolidDiscretisation<dim>::reinit_ghosted(PETScWrappers::MPI::Vector &vector) const
   {
     vector.reinit(locally_owned, locally_relevant, communicator);
   }
 
-  void SolidDiscretisation::reinit_owned(PETScWrappers::MPI::Vector &vector) const
+  template <int dim>
+  void SolidDiscretisation<dim>::reinit_owned(PETScWrappers::MPI::Vector &vector) const
   {
     vector.reinit(locally_owned, communicator);
   }
 
-  ComponentMask SolidDiscretisation::component_mask(const unsigned int component) const
+  template <int dim>
+  ComponentMask SolidDiscretisation<dim>::component_mask(const unsigned int component) const
   {
     return fe.component_mask(FEValuesExtractors::Scalar(component));
   }
 
-  unsigned int SolidDiscretisation::n_cells() const
+  template <int dim>
+  unsigned int SolidDiscretisation<dim>::n_cells() const
   {
     return triangulation.n_global_active_cells();
   }
 
-  unsigned int SolidDiscretisation::n_dofs() const
+  template <int dim>
+  unsigned int SolidDiscretisation<dim>::n_dofs() const
   {
     return dof_handler.n_dofs();
   }
 
+  template <int dim>
   unsigned int
-  SolidDiscretisation::n_constrained_dofs(const AffineConstraints<double> &constraints) const
+  SolidDiscretisation<dim>::n_constrained_dofs(const AffineConstraints<double> &constraints) const
   {
     unsigned int local = 0;
     for (const auto &line : constraints.get_lines())
@@ -79,4 +89,6 @@ namespace indentsim::fem
         ++local;
     return Utilities::MPI::sum(local, communicator);
   }
+  template struct SolidDiscretisation<2>;
+  template struct SolidDiscretisation<3>;
 } // namespace indentsim::fem

@@ -1,5 +1,6 @@
 // The displacement discretisation both problems (indentation and tensile) share: a distributed
-// hexahedral mesh, trilinear vector elements FESystem(FE_Q(1), 3), their DoFs with the owned and
+// mesh of hexahedra (dim = 3) or of quadrilaterals in the (r, z) half-plane (dim = 2, the
+// axisymmetric model), (bi/tri)linear vector elements FESystem(FE_Q(1), dim), their DoFs with the owned and
 // relevant index sets, and the PETSc matrix and vectors laid out on them. The problems add what
 // is theirs: the mesh, the constraints, the material states, the loads. Units: um.
 //
@@ -19,13 +20,15 @@
 
 namespace indentsim::fem
 {
+  template <int dim>
   struct SolidDiscretisation
   {
     // `mesh_smoothing` as parallel::distributed::Triangulation takes it (the indentation mesh
     // limits the level difference at vertices; the tensile cube needs none).
     SolidDiscretisation(
-        MPI_Comm                                communicator,
-        dealii::Triangulation<3>::MeshSmoothing mesh_smoothing = dealii::Triangulation<3>::none);
+        MPI_Comm                                  communicator,
+        typename dealii::Triangulation<dim>::MeshSmoothing mesh_smoothing =
+            dealii::Triangulation<dim>::none);
     ~SolidDiscretisation();
 
     // After the mesh is built: numbers the DoFs and fills the index sets.
@@ -38,7 +41,7 @@ namespace indentsim::fem
     void reinit_ghosted(dealii::PETScWrappers::MPI::Vector &vector) const;
     void reinit_owned(dealii::PETScWrappers::MPI::Vector &vector) const;
 
-    // The mask selecting displacement component `component` (0 = x, 1 = y, 2 = z).
+    // The mask selecting displacement component `component` (3D: 0 = x, 1 = y, 2 = z; axisymmetric: 0 = r, 1 = z).
     dealii::ComponentMask component_mask(unsigned int component) const;
 
     unsigned int n_cells() const;
@@ -48,9 +51,9 @@ namespace indentsim::fem
     unsigned int n_constrained_dofs(const dealii::AffineConstraints<double> &constraints) const;
 
     MPI_Comm                                        communicator;
-    dealii::parallel::distributed::Triangulation<3> triangulation;
-    const dealii::FESystem<3>                       fe;
-    dealii::DoFHandler<3>                           dof_handler;
+    dealii::parallel::distributed::Triangulation<dim> triangulation;
+    const dealii::FESystem<dim>                       fe;
+    dealii::DoFHandler<dim>                           dof_handler;
     dealii::IndexSet                                locally_owned, locally_relevant;
   };
 } // namespace indentsim::fem

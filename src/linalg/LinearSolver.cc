@@ -80,7 +80,8 @@ namespace indentsim::linalg
   }
 
   LinearSolver::Kind LinearSolver::choose_kind(const io::Choice<io::LinearSolverChoice> &setting,
-                                               const unsigned long                       n_dofs)
+                                               const unsigned long                       n_dofs,
+                                               const unsigned int                        dim)
   {
     if (setting == io::LinearSolverChoice::direct)
       return Kind::direct;
@@ -89,7 +90,7 @@ namespace indentsim::linalg
     if (setting != io::LinearSolverChoice::automatic)
       throw std::invalid_argument("solver.linear_solver: unknown value '" + to_string(setting) +
                                   "' (allowed: auto, direct, iterative)");
-    return n_dofs >= iterative_threshold_dofs ? Kind::iterative : Kind::direct;
+    return dim == 3 && n_dofs >= iterative_threshold_dofs ? Kind::iterative : Kind::direct;
   }
 
   LinearSolver::LinearSolver(const MPI_Comm communicator)
@@ -119,6 +120,32 @@ namespace indentsim::linalg
            " + ML smoothed-aggregation AMG with rigid-body modes)";
   }
 
+  template <>
+  void LinearSolver::setup(const DoFHandler<2> &dof_handler, const Kind kind, const bool symmetric)
+  {
+    destroy();
+    kind_ = kind;
+    symmetric_ = symmetric;
+    rebuild_preconditioner_ = true;
+    rigid_body_modes_.clear();
+    nodal_blocks_ = false;
+    if (kind_ == Kind::direct)
+      return;
+    // The z translation: u_z = 1 at every node.
+    const IndexSet &owned = dof_handler.locally_owned_dofs();
+    rigid_body_modes_.resize(1);
+    rigid_body_modes_[0].reinit(owned, communicator_);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          if (const auto dof = cell->vertex_dof_index(v, 1); owned.is_element(dof))
+            rigid_body_modes_[0](dof) = 1.0;
+    rigid_body_modes_[0].compress(VectorOperation::insert);
+    rigid_body_modes_[0] /= rigid_body_modes_[0].l2_norm();
+    configure_amg();
+  }
+
+  template <>
   void LinearSolver::setup(const DoFHandler<3> &dof_handler, const Kind kind, const bool symmetric)
   {
     destroy();
@@ -173,7 +200,11 @@ namespace indentsim::linalg
                                    rigid_body_modes_[j]);
         rigid_body_modes_[i] /= rigid_body_modes_[i].l2_norm();
       }
+    configure_amg();
+  }
 
+  void LinearSolver::configure_amg()
+  {
     // ML (Trilinos' smoothed aggregation, through PETSc) with the rigid-body modes: its setup
     // is an order of magnitude cheaper than PETSc's GAMG on our systems (bench_linear_solver,
     // docs/performance.md). GAMG stays available: -indentsim_pc_type gamg.
@@ -184,7 +215,7 @@ namespace indentsim::linalg
     set_default_option("-indentsim_mg_levels_ksp_type", "chebyshev");
     // Point-block Jacobi (the 3 x 3 nodal blocks inverted) in the Chebyshev smoother: about a
     // third fewer Krylov iterations than point Jacobi on the paper's systems.
-    set_default_option("-indentsim_mg_levels_pc_type", "pbjacobi");
+    set_default_option("-indentsim_mg_levels_pc_type", nodal_blocks_ ? "pbjacobi" : "jacobi");
     set_default_option("-indentsim_mg_levels_ksp_max_it", "2");
   }
 

@@ -60,8 +60,9 @@ namespace indentsim::linalg
     // 60k DOFs; `solver.linear_solver: iterative` selects AMG.
     static constexpr unsigned long iterative_threshold_dofs = 60000;
     // The kind `setting` (solver.linear_solver: auto | direct | iterative) selects for a system of n_dofs unknowns.
+    // Axisymmetric (dim = 2) systems go to the direct solver: 2D fill grows only as n log n.
     static Kind choose_kind(const io::Choice<io::LinearSolverChoice> &setting,
-                            unsigned long                             n_dofs);
+                            unsigned long n_dofs, unsigned int dim = 3);
 
     // Sets the OpenMP threads of MUMPS and the threads of OpenBLAS to one, unless the user set
     // OMP_NUM_THREADS or OPENBLAS_NUM_THREADS. Our threads are TBB's (assembly) and MPI ranks;
@@ -76,7 +77,10 @@ namespace indentsim::linalg
     // Prepares for systems on `dof_handler` (vector-valued Q1, three components): the kind and,
     // for the iterative kind, the rigid-body modes. `symmetric`: the tangent is symmetric (CG
     // instead of GMRES).
-    void setup(const dealii::DoFHandler<3> &dof_handler, Kind kind, bool symmetric);
+    // dim = 2: the axisymmetric (r, z) model, whose only rigid mode is the z translation (u_r
+    // strains the hoop), without nodal blocks.
+    template <int dim>
+    void setup(const dealii::DoFHandler<dim> &dof_handler, Kind kind, bool symmetric);
 
     struct Result
     {
@@ -104,6 +108,7 @@ namespace indentsim::linalg
 
   private:
     void destroy();
+    void configure_amg(); // the AMG's PETSc options (prefix indentsim_)
     void use_gmres(); // right-preconditioned, true-residual test
     void use_cg();    // true-residual test
     void dump_system(const dealii::PETScWrappers::MPI::SparseMatrix &matrix,
@@ -122,4 +127,9 @@ namespace indentsim::linalg
     double          stale_iterations_ = 0;      // iterations beyond that rate since the build
     unsigned long   n_solves_ = 0;              // solves so far (INDENTSIM_DUMP_LINEAR_SYSTEMS)
   };
+
+  template <>
+  void LinearSolver::setup(const dealii::DoFHandler<2> &, Kind, bool);
+  template <>
+  void LinearSolver::setup(const dealii::DoFHandler<3> &, Kind, bool);
 } // namespace indentsim::linalg

@@ -163,7 +163,8 @@ namespace indentsim::linalg
     std::vector<std::pair<unsigned int, std::uint32_t>> diagonals;
   };
 
-  void MatrixScatter::build(const DoFHandler<3>                    &dof_handler,
+  template <int dim>
+  void MatrixScatter::build(const DoFHandler<dim>                  &dof_handler,
                             const AffineConstraints<double>        &constraints,
                             const PETScWrappers::MPI::SparseMatrix &matrix)
   {
@@ -220,7 +221,8 @@ namespace indentsim::linalg
     n_cell_dofs_ = n_cell_dofs;
   }
 
-  bool MatrixScatter::plan_cell(const DoFHandler<3>::active_cell_iterator &cell,
+  template <class CellIterator>
+  bool MatrixScatter::plan_cell(const CellIterator                        &cell,
                                 const AffineConstraints<double>           &constraints,
                                 MatrixPattern &pattern, CellScratch &scratch)
   {
@@ -493,4 +495,9 @@ namespace indentsim::linalg
     diagonal_values_ = off_diagonal_values_ = nullptr;
     diagonal_block_ = off_diagonal_block_ = nullptr;
   }
+
+  template void MatrixScatter::build(const DoFHandler<2> &, const AffineConstraints<double> &,
+                                     const PETScWrappers::MPI::SparseMatrix &);
+  template void MatrixScatter::build(const DoFHandler<3> &, const AffineConstraints<double> &,
+                                     const PETScWrappers::MPI::SparseMatrix &);
 } // namespace indentsim::linalg

@@ -49,7 +49,8 @@ namespace indentsim::linalg
     // once, with its final sparsity pattern; PETSc MPIAIJ), and the exchange plan of the
     // entries in other ranks' rows. Collective over the matrix's communicator; throws
     // std::runtime_error on every rank if a rank's pattern lacks an entry another one sends.
-    void build(const dealii::DoFHandler<3>                    &dof_handler,
+    template <int dim>
+    void build(const dealii::DoFHandler<dim>                  &dof_handler,
                const dealii::AffineConstraints<double>        &constraints,
                const dealii::PETScWrappers::MPI::SparseMatrix &matrix);
 
@@ -93,7 +94,8 @@ namespace indentsim::linalg
     // in the new order); learns from the other ranks what they send and where it goes.
     struct CellScratch;
     void                  reset(unsigned int n_active_cells, unsigned int n_cell_dofs);
-    bool                  plan_cell(const dealii::DoFHandler<3>::active_cell_iterator &cell,
+    template <class CellIterator>
+    bool                  plan_cell(const CellIterator &cell,
                                     const dealii::AffineConstraints<double> &constraints, MatrixPattern &pattern,
                                     CellScratch &scratch);
     std::vector<PetscInt> group_send_slots(const MatrixPattern &pattern);

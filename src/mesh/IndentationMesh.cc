@@ -40,8 +40,9 @@ namespace indentsim::mesh
     return sizes;
   }
 
-  MeshInfo build_indentation_mesh(parallel::distributed::Triangulation<3> &triangulation,
-                                  const io::SpecimenParameters            &specimen)
+  template <int dim>
+  MeshInfo build_indentation_mesh(parallel::distributed::Triangulation<dim> &triangulation,
+                                  const io::SpecimenParameters              &specimen)
   {
     const unsigned int n = specimen.contact_elements;
     const int          levels = refinement_levels_for(n);
@@ -50,11 +51,15 @@ namespace indentsim::mesh
                                   " cannot be meshed: it must be an even number >= 2");
 
     MeshInfo info;
+    info.axisymmetric = (dim == 2);
+    // The axisymmetric section is meshed as the quarter model's x >= 0 half.
     info.quarter = (specimen.symmetry == io::Symmetry::quarter);
+    const bool half_line = info.quarter || info.axisymmetric;
     info.refinement_levels = levels;
     info.contact_element_size = specimen.refined_region[0] / n;
     info.refined_half_x = specimen.refined_region[0] / 2;
-    info.refined_half_y = specimen.refined_region[1] / 2;
+    // The axisymmetric model's refined region is a disc of radius refined_region_x / 2.
+    info.refined_half_y = dim == 2 ? info.refined_half_x : specimen.refined_region[1] / 2;
 
     const double coarse = info.contact_element_size * (1u << levels);
     const double grading = 1.6; // size ratio of neighbouring coarse cells outside the region
@@ -68,7 +73,7 @@ namespace indentsim::mesh
           graded_spacing(half_length - half_refined, half_refined / n_half, grading);
       std::vector<double> half_spacing(inner);
       half_spacing.insert(half_spacing.end(), outer.begin(), outer.end());
-      if (info.quarter)
+      if (half_line)
         return half_spacing;
       std::vector<double> full(half_spacing.rbegin(), half_spacing.rend());
       full.insert(full.end(), half_spacing.begin(), half_spacing.end());
@@ -93,12 +98,27 @@ namespace indentsim::mesh
     info.fine_layer_thickness = depth / n_layers / (1u << levels);
     info.refined_depth = depth;
 
-    const Point<3> p1(info.quarter ? 0. : -specimen.size[0] / 2,
-                      info.quarter ? 0. : -specimen.size[1] / 2, -specimen.size[2]);
-    const Point<3> p2(specimen.size[0] / 2, specimen.size[1] / 2, 0.);
-    GridGenerator::subdivided_hyper_rectangle(triangulation, {x_spacing, y_spacing, z_spacing}, p1,
-                                              p2,
-                                              /*colorize=*/true);
+    if constexpr (dim == 3)
+      {
+        const Point<3> p1(info.quarter ? 0. : -specimen.size[0] / 2,
+                          info.quarter ? 0. : -specimen.size[1] / 2, -specimen.size[2]);
+        const Point<3> p2(specimen.size[0] / 2, specimen.size[1] / 2, 0.);
+        GridGenerator::subdivided_hyper_rectangle(triangulation, {x_spacing, y_spacing, z_spacing},
+                                                  p1, p2,
+                                                  /*colorize=*/true);
+      }
+    else
+      {
+        GridGenerator::subdivided_hyper_rectangle(triangulation, {x_spacing, z_spacing},
+                                                  Point<2>(0., -specimen.size[2]),
+                                                  Point<2>(specimen.size[0] / 2, 0.),
+                                                  /*colorize=*/true);
+        // colorize numbers the edges r = 0, r = R, z = -Lz, z = 0 as 0, 1, 2, 3.
+        for (const auto &cell : triangulation.active_cell_iterators())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary() && face->boundary_id() >= 2)
+              face->set_boundary_id(face->boundary_id() == 2 ? boundary::bottom : boundary::top);
+      }
 
     // Refine the cells inside the refined region L times; p4est balances the rest 2:1.
     const double tol = 1e-8 * specimen.size[0];
@@ -107,13 +127,18 @@ namespace indentsim::mesh
         for (const auto &cell : triangulation.active_cell_iterators())
           if (cell->is_locally_owned())
             {
-              const Point<3> c = cell->center();
-              if (std::abs(c[0]) < info.refined_half_x - tol &&
-                  std::abs(c[1]) < info.refined_half_y - tol && c[2] > -depth + tol)
+              const Point<dim> c = cell->center();
+              const bool       lateral = dim == 2 || std::abs(c[1]) < info.refined_half_y - tol;
+              if (std::abs(c[0]) < info.refined_half_x - tol && lateral && c[dim - 1] > -depth + tol)
                 cell->set_refine_flag();
             }
         triangulation.execute_coarsening_and_refinement();
       }
     return info;
   }
+
+  template MeshInfo build_indentation_mesh(parallel::distributed::Triangulation<2> &,
+                                           const io::SpecimenParameters &);
+  template MeshInfo build_indentation_mesh(parallel::distributed::Triangulation<3> &,
+                                           const io::SpecimenParameters &);
 } // namespace indentsim::mesh

@@ -3,6 +3,9 @@
 // Geometry: the specimen occupies [-Lx/2, Lx/2] x [-Ly/2, Ly/2] x [-Lz, 0] (full model) or
 // [0, Lx/2] x [0, Ly/2] x [-Lz, 0] (quarter model with symmetry planes x = 0 and y = 0).
 // The indenter axis is the z axis and the top face z = 0 is the contact surface.
+// The axisymmetric model (dim = 2) is the cylinder of radius Lx/2 and height Lz, meshed in its
+// (r, z) section [0, Lx/2] x [-Lz, 0] (point coordinates x = r, y = z) by the same rule along r
+// and z: its refined region is r <= refined_region_x / 2, z >= -refined_region_z.
 //
 // Construction: a tensor-product coarse grid whose cells inside the refined region have edge
 // length s = 2^L h (h = refined_region_x / N is the contact-element size) and grow geometrically
@@ -22,6 +25,9 @@ namespace indentsim::mesh
   {
     constexpr dealii::types::boundary_id x_min = 0, x_max = 1, y_min = 2, y_max = 3, bottom = 4,
                                          top = 5;
+    // The axisymmetric section's edges: the axis r = 0 (x_min), the outer cylinder r = Lx/2
+    // (x_max), the bottom and the top.
+    constexpr dealii::types::boundary_id axis = x_min, outer = x_max;
   }
 
   struct MeshInfo
@@ -30,6 +36,7 @@ namespace indentsim::mesh
     double       fine_layer_thickness = 0; // z-size of the refined cells [um]
     unsigned int refinement_levels = 0;    // L
     bool         quarter = false;
+    bool         axisymmetric = false; // the (r, z) section of the cylinder (dim = 2)
     // The refined region's footprint on the top face: |x| <= half_x, |y| <= half_y.
     double refined_half_x = 0, refined_half_y = 0, refined_depth = 0;
   };
@@ -40,8 +47,9 @@ namespace indentsim::mesh
   // odd N).
   int refinement_levels_for(unsigned int n_contact_elements);
 
-  MeshInfo build_indentation_mesh(dealii::parallel::distributed::Triangulation<3> &triangulation,
-                                  const io::SpecimenParameters                    &specimen);
+  template <int dim>
+  MeshInfo build_indentation_mesh(dealii::parallel::distributed::Triangulation<dim> &triangulation,
+                                  const io::SpecimenParameters                      &specimen);
 
   // Geometric grading: cell sizes starting at `first` and growing by `ratio` that fill `length`
   // exactly (the sizes are rescaled so that they sum to `length`).

@@ -34,6 +34,26 @@ namespace indentsim::mesh
         result *= base;
       return result;
     }
+
+    // The (r, z) section: the refined block of bx x bz coarse cells refined L times, its 2:1
+    // transition along its open side and bottom (each level's transition cell splits in 4).
+    MeshSize axisymmetric_mesh(const AxisCount &x, const std::uint64_t z_inner,
+                               const std::uint64_t z_outer, const unsigned int L)
+    {
+      const std::uint64_t bx = x.inner, bz = z_inner, nx = x.inner + x.outer, nz = z_inner + z_outer;
+      const std::uint64_t open_x = x.outer > 0 ? 1 : 0, open_bottom = z_outer > 0 ? 1 : 0;
+      const std::uint64_t edge = open_x * bz + open_bottom * bx, corner = open_x * open_bottom;
+      std::uint64_t       refinements = 0;
+      for (unsigned int j = 0; j + 2 <= L; ++j)
+        refinements += edge * power(2, j) + corner;
+      const std::uint64_t fine = std::uint64_t(1) << L;
+      MeshSize            size;
+      size.cells = nx * nz - bx * bz + bx * bz * power(4, L) + 3 * refinements;
+      size.vertices = (bx * fine + 1) * (bz * fine + 1) + (nx + 1) * (nz + 1) - (bx + 1) * (bz + 1) +
+                      4 * refinements;
+      size.dofs = 2 * size.vertices;
+      return size;
+    }
   } // namespace
 
   MeshSize estimate_indentation_mesh(const io::SpecimenParameters &specimen)
@@ -53,6 +73,8 @@ namespace indentsim::mesh
         specimen.size[2] > depth
             ? graded_spacing(specimen.size[2] - depth, depth / z_inner, 1.6).size()
             : 0;
+    if (specimen.symmetry == io::Symmetry::axisymmetric)
+      return axisymmetric_mesh(x, z_inner, z_outer, L);
 
     // Coarse grid and the block of refined coarse cells (touching the top face; in the quarter
     // model also the symmetry planes).

@@ -32,7 +32,8 @@ namespace indentsim::output
     }
   } // namespace
 
-  std::string write_vtu_with_pvtu_record(const dealii::DataOutInterface<3, 3> &data_out,
+  template <int dim>
+  std::string write_vtu_with_pvtu_record(const dealii::DataOutInterface<dim, dim> &data_out,
                                          const std::string &directory, const std::string &basename,
                                          const unsigned int counter,
                                          const unsigned int n_digits_for_counter,
@@ -82,4 +83,11 @@ namespace indentsim::output
       file.commit();
     });
   }
+
+  template std::string write_vtu_with_pvtu_record(const dealii::DataOutInterface<2, 2> &,
+                                                  const std::string &, const std::string &,
+                                                  unsigned int, unsigned int, MPI_Comm);
+  template std::string write_vtu_with_pvtu_record(const dealii::DataOutInterface<3, 3> &,
+                                                  const std::string &, const std::string &,
+                                                  unsigned int, unsigned int, MPI_Comm);
 } // namespace indentsim::output

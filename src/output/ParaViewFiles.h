@@ -18,7 +18,8 @@ namespace indentsim::output
   // digits; R with the digits of the largest rank) and DIR/BASE_CCCC.pvtu on rank 0; returns the
   // PVTU's name (without the directory). Collective; throws OutputError on every rank if any
   // rank's file could not be written.
-  std::string write_vtu_with_pvtu_record(const dealii::DataOutInterface<3, 3> &data_out,
+  template <int dim>
+  std::string write_vtu_with_pvtu_record(const dealii::DataOutInterface<dim, dim> &data_out,
                                          const std::string &directory, const std::string &basename,
                                          unsigned int counter, unsigned int n_digits_for_counter,
                                          MPI_Comm communicator);

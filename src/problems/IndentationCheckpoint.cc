@@ -178,17 +178,20 @@ namespace indentsim::problems
     }
   } // namespace
 
-  std::string IndentationProblem::checkpoint_directory() const
+  template <int dim>
+  std::string IndentationProblem<dim>::checkpoint_directory() const
   {
     return output_directory_ + "/" + io::output_files::checkpoint_directory;
   }
 
-  std::uint64_t IndentationProblem::case_fingerprint() const
+  template <int dim>
+  std::uint64_t IndentationProblem<dim>::case_fingerprint() const
   {
     return io::case_fingerprint(case_);
   }
 
-  void IndentationProblem::write_checkpoint(const LoopState                    &loop,
+  template <int dim>
+  void IndentationProblem<dim>::write_checkpoint(const LoopState                    &loop,
                                             const std::vector<SurfaceSnapshot> &snapshots)
   {
     const unsigned int rank = Utilities::MPI::this_mpi_process(communicator_);
@@ -253,7 +256,8 @@ namespace indentsim::problems
     output::write_collectively(communicator_, [&]() { writer->commit(); });
   }
 
-  void IndentationProblem::read_checkpoint(LoopState &loop, std::vector<SurfaceSnapshot> &snapshots)
+  template <int dim>
+  void IndentationProblem<dim>::read_checkpoint(LoopState &loop, std::vector<SurfaceSnapshot> &snapshots)
   {
     const unsigned int rank = Utilities::MPI::this_mpi_process(communicator_);
     const std::string  directory = checkpoint_directory();
@@ -420,4 +424,6 @@ namespace indentsim::problems
                               "them); it cannot be resumed");
     return ResumeState::resumable;
   }
+  template class IndentationProblem<2>;
+  template class IndentationProblem<3>;
 } // namespace indentsim::problems

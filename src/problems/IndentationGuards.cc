@@ -23,7 +23,8 @@ namespace indentsim::problems
   using mesh::short_number;
   namespace guard = mesh::guard;
 
-  void IndentationProblem::check_guards(output::RunRecorder      &recorder,
+  template <int dim>
+  void IndentationProblem<dim>::check_guards(output::RunRecorder      &recorder,
                                         const nonlinear::Segment &segment, const StepRecord &record,
                                         const bool at_max)
   {
@@ -33,7 +34,8 @@ namespace indentsim::problems
       check_contact_resolution(recorder, record);
   }
 
-  void IndentationProblem::warn(output::RunRecorder &recorder, const std::string &topic,
+  template <int dim>
+  void IndentationProblem<dim>::warn(output::RunRecorder &recorder, const std::string &topic,
                                 const std::string &text)
   {
     if (std::find(warned_topics_.begin(), warned_topics_.end(), topic) != warned_topics_.end())
@@ -50,7 +52,8 @@ namespace indentsim::problems
   // The contact may cover at most guard::refined_region_margin of the refined region's
   // half-widths, and no active node may stand on the region's outermost ring of contact nodes
   // (reference positions: a check independent of the deformation).
-  void IndentationProblem::check_refined_region(output::RunRecorder      &recorder,
+  template <int dim>
+  void IndentationProblem<dim>::check_refined_region(output::RunRecorder      &recorder,
                                                 const nonlinear::Segment &segment,
                                                 const StepRecord         &record)
   {
@@ -120,7 +123,8 @@ namespace indentsim::problems
   // the symmetry planes: a warning once the elastic ligament between the zone and the face is
   // thinner than the zone's own reach from the indent axis (lateral faces) or from the surface
   // (bottom).
-  void IndentationProblem::check_plastic_zone(output::RunRecorder &recorder)
+  template <int dim>
+  void IndentationProblem<dim>::check_plastic_zone(output::RunRecorder &recorder)
   {
     // Reach of the zone towards +x, -x, +y, -y and -z (0: no plastic cell).
     std::array<double, 5> reach{};
@@ -138,7 +142,9 @@ namespace indentsim::problems
         if (!(largest > guard::plastic_strain_threshold))
           continue;
         plastic = true;
-        const Point<3> c = cell->center();
+        // The axisymmetric section's (r, z) stands for the zone's reach in every direction.
+        const Point<dim> p = cell->center();
+        const Point<3>   c = dim == 3 ? Point<3>(p[0], p[1], p[dim - 1]) : Point<3>(p[0], p[0], p[1]);
         reach[0] = std::max(reach[0], c[0]);
         reach[1] = std::max(reach[1], -c[0]);
         reach[2] = std::max(reach[2], c[1]);
@@ -157,8 +163,8 @@ namespace indentsim::problems
     const char *faces[5] = {"x = +", "x = -", "y = +", "y = -", "z = -"};
     for (unsigned int f = 0; f < 5; ++f)
       {
-        if (mesh_info_.quarter && (f == 1 || f == 3))
-          continue; // symmetry planes
+        if ((mesh_info_.quarter && (f == 1 || f == 3)) || (mesh_info_.axisymmetric && f < 4 && f != 0))
+          continue; // symmetry planes; the axisymmetric model has one lateral face r = R
         const double distance = face_distance[f] - reach[f];
         if (!(distance < reach[f]))
           continue;
@@ -187,7 +193,8 @@ namespace indentsim::problems
   }
 
   // At the maximum: the contact elements across the equivalent contact radius sqrt(A/pi).
-  void IndentationProblem::check_contact_resolution(output::RunRecorder &recorder,
+  template <int dim>
+  void IndentationProblem<dim>::check_contact_resolution(output::RunRecorder &recorder,
                                                     const StepRecord    &record)
   {
     // The recorded contact counts the area of the active nodes only, which is nothing like the
@@ -219,4 +226,6 @@ namespace indentsim::problems
            << ": make specimen.refined_region smaller around this contact, or indent deeper";
     warn(recorder, "contact resolution", text.str());
   }
+  template class IndentationProblem<2>;
+  template class IndentationProblem<3>;
 } // namespace indentsim::problems

@@ -19,7 +19,8 @@ namespace indentsim::problems
   using ActiveSet = contact::NodeToSurfaceContact::ActiveSet;
 
   // The state of one increment's Newton solve, over all its passes.
-  struct IndentationProblem::NewtonIncrement
+  template <int dim>
+  struct IndentationProblem<dim>::NewtonIncrement
   {
     NewtonIncrement(const IndexSet &owned, const MPI_Comm communicator, const double depth_start,
                     const std::optional<double> target_force, const double symmetry_factor,
@@ -68,7 +69,8 @@ namespace indentsim::problems
   };
 
   // The state of one augmentation pass, and of its current iterate.
-  struct IndentationProblem::NewtonPass
+  template <int dim>
+  struct IndentationProblem<dim>::NewtonPass
   {
     static constexpr double min_alpha = 1. / 16;
     double                  previous_norm = std::numeric_limits<double>::infinity();
@@ -88,7 +90,8 @@ namespace indentsim::problems
     double         force_error = 0; // force control: F(u, h) - F* [mN]
   };
 
-  enum class IndentationProblem::IterateOutcome
+  template <int dim>
+  enum class IndentationProblem<dim>::IterateOutcome
   {
     next_iterate,      // a Newton update (or a line-search step) was taken
     converged,         // the pass converged
@@ -106,7 +109,8 @@ namespace indentsim::problems
     }
   } // namespace
 
-  IncrementStatus IndentationProblem::solve_increment(const double depth_start, StepRecord &record,
+  template <int dim>
+  IncrementStatus IndentationProblem<dim>::solve_increment(const double depth_start, StepRecord &record,
                                                       const bool                  extrapolate,
                                                       const std::optional<double> target_force)
   {
@@ -159,7 +163,8 @@ namespace indentsim::problems
   // from plastic to elastic). It satisfies the homogeneous constraints and saves the first
   // Newton iterations' walk from the old state. run() retries a failed extrapolated increment
   // from the converged state before it cuts the increment back.
-  void IndentationProblem::apply_predictor(NewtonIncrement &increment)
+  template <int dim>
+  void IndentationProblem<dim>::apply_predictor(NewtonIncrement &increment)
   {
     const double last = depth_converged_ - depth_previous_;
     const double ratio = last != 0 ? (increment.depth - depth_converged_) / last : 0;
@@ -175,8 +180,9 @@ namespace indentsim::problems
 
   // One iterate of a pass: evaluate it, then a line-search step back, a convergence or
   // augmentation decision, or the Newton update to the next iterate.
-  IndentationProblem::IterateOutcome
-  IndentationProblem::newton_iteration(NewtonIncrement &increment, NewtonPass &pass,
+  template <int dim>
+  typename IndentationProblem<dim>::IterateOutcome
+  IndentationProblem<dim>::newton_iteration(NewtonIncrement &increment, NewtonPass &pass,
                                        const unsigned int it, StepRecord &record)
   {
     const bool   failed = evaluate_iterate(increment, pass, it);
@@ -276,7 +282,8 @@ namespace indentsim::problems
   // the predicted residual (nonlinear::predicted_residual) falls below half the pass's end
   // threshold, the matrix waits until the residual says it is needed (then assembled at the same
   // iterate: the same numbers, bitwise, so the prediction only changes the cost).
-  bool IndentationProblem::evaluate_iterate(NewtonIncrement &increment, NewtonPass &pass,
+  template <int dim>
+  bool IndentationProblem<dim>::evaluate_iterate(NewtonIncrement &increment, NewtonPass &pass,
                                             const unsigned int it)
   {
     pass.predictor = (increment.pass == 0 && it == 0);
@@ -341,8 +348,9 @@ namespace indentsim::problems
 
   // Ends the pass when it may: an inexact augmentation, or convergence (with a frozen active
   // set, only if the set is consistent). Empty: the iterate takes a Newton update.
-  std::optional<IndentationProblem::IterateOutcome>
-  IndentationProblem::check_convergence(NewtonIncrement &increment, NewtonPass &pass,
+  template <int dim>
+  std::optional<typename IndentationProblem<dim>::IterateOutcome>
+  IndentationProblem<dim>::check_convergence(NewtonIncrement &increment, NewtonPass &pass,
                                         const unsigned int it, const double norm)
   {
     // Inexact augmentation: a pass that is not the last need not converge to the final
@@ -389,7 +397,8 @@ namespace indentsim::problems
   // under force control the bordered system
   //   K du + R_h dh = -R,   F_u . du + F_h dh = -(F - F*),
   // solved with K a = -R and K b = -R_h as du = a + b dh, dh = -((F - F*) + F_u . a) / (F_h + F_u . b).
-  IncrementStatus IndentationProblem::newton_update(NewtonIncrement &increment, NewtonPass &pass,
+  template <int dim>
+  IncrementStatus IndentationProblem<dim>::newton_update(NewtonIncrement &increment, NewtonPass &pass,
                                                     const double norm)
   {
     residual_ *= -1.0;
@@ -455,7 +464,8 @@ namespace indentsim::problems
     return IncrementStatus::converged;
   }
 
-  void IndentationProblem::fill_converged_record(const double depth, StepRecord &record)
+  template <int dim>
+  void IndentationProblem<dim>::fill_converged_record(const double depth, StepRecord &record)
   {
     const contact::ContactSummary summary = contact_->summary();
     const double                  factor = symmetry_factor();
@@ -474,4 +484,6 @@ namespace indentsim::problems
     record.max_penetration = summary.max_penetration;
     record.bottom_reaction *= factor;
   }
+  template class IndentationProblem<2>;
+  template class IndentationProblem<3>;
 } // namespace indentsim::problems

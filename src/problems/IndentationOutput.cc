@@ -19,7 +19,10 @@
 #include <deal.II/fe/mapping_q_eulerian.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <array>
+#include <cmath>
 #include <cstdlib>
+#include <numbers>
 #include <functional>
 #include <iomanip>
 #include <iostream>
@@ -31,7 +34,30 @@ namespace indentsim::problems
   using fem::to_thread_readable;
   namespace pileup = analysis::pileup;
 
-  void IndentationProblem::compute_cell_fields(Vector<float>              &von_mises,
+  namespace
+  {
+    // The axisymmetric section's top edge from (R, u_r, u_z) to the next, revolved about the
+    // axis into the quadrilaterals of the surface the pile-up analysis reads (analysis/PileUp.h):
+    // 2 degrees per sector, fine enough that the revolved rings stand for the circles.
+    void revolve_edge(const std::array<double, 3> &a, const std::array<double, 3> &b,
+                      std::vector<pileup::SurfaceQuad> &surface)
+    {
+      constexpr unsigned int n_sectors = 180;
+      const auto             corner = [](const std::array<double, 3> &p, const double angle) {
+        const double c = std::cos(angle), s = std::sin(angle);
+        return pileup::SurfaceNode{p[0] * c, p[0] * s, p[1] * c, p[1] * s, p[2]};
+      };
+      for (unsigned int k = 0; k < n_sectors; ++k)
+        {
+          const double t0 = 2 * std::numbers::pi * k / n_sectors;
+          const double t1 = 2 * std::numbers::pi * (k + 1) / n_sectors;
+          surface.push_back({corner(a, t0), corner(b, t0), corner(b, t1), corner(a, t1)});
+        }
+    }
+  } // namespace
+
+  template <int dim>
+  void IndentationProblem<dim>::compute_cell_fields(Vector<float>              &von_mises,
                                                Vector<float>              &plastic_strain,
                                                std::vector<Vector<float>> &cauchy)
   {
@@ -51,14 +77,15 @@ namespace indentsim::problems
         }
       von_mises[index] = mises;
       plastic_strain[index] = eps_p;
-      unsigned int k = 0;
+      unsigned int k = 0; // (xx, xy, xz, yy, yz, zz) or (rr, r theta, rz, theta theta, ...)
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int j = i; j < 3; ++j)
           cauchy[k++][index] = mean[i][j];
     });
   }
 
-  void IndentationProblem::write_vtu(const unsigned int index)
+  template <int dim>
+  void IndentationProblem<dim>::write_vtu(const unsigned int index)
   {
     const unsigned int n_cells_local = solid_.triangulation.n_active_cells();
     Vector<float> von_mises(n_cells_local), plastic_strain(n_cells_local), subdomain(n_cells_local);
@@ -70,8 +97,8 @@ namespace indentsim::problems
     // Nodal contact fields on a scalar Q1 field: pressure p [GPa], status (0 open, 1 stick,
     // 2 slip) and the magnitude of the friction traction |t| [GPa], all nominal (per reference
     // area).
-    DoFHandler<3> scalar_dofs(solid_.triangulation);
-    const FE_Q<3> fe_scalar(1);
+    DoFHandler<dim> scalar_dofs(solid_.triangulation);
+    const FE_Q<dim> fe_scalar(1);
     scalar_dofs.distribute_dofs(fe_scalar);
     const IndexSet owned = scalar_dofs.locally_owned_dofs();
     const IndexSet relevant = DoFTools::extract_locally_relevant_dofs(scalar_dofs);
@@ -83,7 +110,7 @@ namespace indentsim::problems
       for (const auto &cell : solid_.dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
-            const typename DoFHandler<3>::active_cell_iterator scalar_cell(
+            const typename DoFHandler<dim>::active_cell_iterator scalar_cell(
                 &solid_.triangulation, cell->level(), cell->index(), &scalar_dofs);
             for (const unsigned int v : cell->vertex_indices())
               {
@@ -108,17 +135,23 @@ namespace indentsim::problems
     const GhostedVector u =
         to_thread_readable(solution_, solid_.locally_owned, solid_.locally_relevant, communicator_);
 
-    DataOut<3> data_out;
+    // The axisymmetric section is written in its (r, z) plane: x is r, y is z; its tensor
+    // components are (r, theta, z).
+    DataOut<dim> data_out;
     data_out.attach_dof_handler(solid_.dof_handler);
     const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
-        3, DataComponentInterpretation::component_is_part_of_vector);
-    data_out.add_data_vector(u, std::vector<std::string>(3, "displacement_um"),
-                             DataOut<3>::type_dof_data, vector_field);
+        dim, DataComponentInterpretation::component_is_part_of_vector);
+    data_out.add_data_vector(u, std::vector<std::string>(dim, "displacement_um"),
+                             DataOut<dim>::type_dof_data, vector_field);
     data_out.add_data_vector(scalar_dofs, pressure_readable, "contact_pressure_GPa");
     data_out.add_data_vector(scalar_dofs, status_readable, "contact_status");
     data_out.add_data_vector(scalar_dofs, traction_readable, "friction_traction_GPa");
-    const char *names[6] = {"cauchy_xx_GPa", "cauchy_xy_GPa", "cauchy_xz_GPa",
-                            "cauchy_yy_GPa", "cauchy_yz_GPa", "cauchy_zz_GPa"};
+    const char *names_3d[6] = {"cauchy_xx_GPa", "cauchy_xy_GPa", "cauchy_xz_GPa",
+                               "cauchy_yy_GPa", "cauchy_yz_GPa", "cauchy_zz_GPa"};
+    const char *names_axisymmetric[6] = {"cauchy_rr_GPa",         "cauchy_rtheta_GPa",
+                                         "cauchy_rz_GPa",         "cauchy_thetatheta_GPa",
+                                         "cauchy_thetaz_GPa",     "cauchy_zz_GPa"};
+    const char *const *names = dim == 3 ? names_3d : names_axisymmetric;
     for (unsigned int k = 0; k < 6; ++k)
       data_out.add_data_vector(cauchy[k], names[k]);
     data_out.add_data_vector(von_mises, "von_mises_GPa");
@@ -126,7 +159,7 @@ namespace indentsim::problems
     data_out.add_data_vector(subdomain, "mpi_rank");
 
     // The geometry is written in the deformed configuration.
-    const MappingQEulerian<3, GhostedVector> deformed(1, solid_.dof_handler, u);
+    const MappingQEulerian<dim, GhostedVector> deformed(1, solid_.dof_handler, u);
     data_out.build_patches(deformed, 1);
     const std::string pvtu = output::write_vtu_with_pvtu_record(
         data_out, output_directory_, io::output_files::paraview_basename, index, 4, communicator_);
@@ -137,21 +170,25 @@ namespace indentsim::problems
     scalar_dofs.clear();
   }
 
-  std::vector<pileup::SurfaceQuad> IndentationProblem::gather_top_surface() const
+  template <int dim>
+  std::vector<pileup::SurfaceQuad> IndentationProblem<dim>::gather_top_surface() const
   {
-    // Per face: 4 corners in cyclic order x (X, Y, u_x, u_y, u_z). deal.II numbers a face's
+    // 3D: per face, 4 corners in cyclic order x (X, Y, u_x, u_y, u_z). deal.II numbers a face's
     // vertices lexicographically, 0 (0,0), 1 (1,0), 2 (0,1), 3 (1,1): cyclic is 0, 1, 3, 2.
-    constexpr unsigned int n_values = 5, cyclic[4] = {0, 1, 3, 2};
-    std::vector<double>    local;
+    // Axisymmetric: per top edge, its 2 vertices x (R, u_r, u_z).
+    constexpr unsigned int n_corners = dim == 3 ? 4 : 2, n_values = dim == 3 ? 5 : 3;
+    constexpr std::array<unsigned int, 4> cyclic = {0, 1, 3, 2};
+    std::vector<double>                   local;
     for (const auto &cell : solid_.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const auto &face : cell->face_iterators())
           if (face->at_boundary() && face->boundary_id() == mesh::boundary::top)
-            for (const unsigned int v : cyclic)
+            for (unsigned int k = 0; k < n_corners; ++k)
               {
-                local.push_back(face->vertex(v)[0]);
-                local.push_back(face->vertex(v)[1]);
-                for (unsigned int d = 0; d < 3; ++d)
+                const unsigned int v = dim == 3 ? cyclic[k] : k;
+                for (unsigned int d = 0; d + 1 < dim; ++d)
+                  local.push_back(face->vertex(v)[d]);
+                for (unsigned int d = 0; d < dim; ++d)
                   local.push_back(solution_(face->vertex_dof_index(v, d)));
               }
     const std::vector<std::vector<double>> gathered =
@@ -159,20 +196,25 @@ namespace indentsim::problems
 
     std::vector<pileup::SurfaceQuad> surface;
     for (const std::vector<double> &values : gathered)
-      for (std::size_t i = 0; i + 4 * n_values <= values.size(); i += 4 * n_values)
+      for (std::size_t i = 0; i + n_corners * n_values <= values.size();
+           i += n_corners * n_values)
         {
-          pileup::SurfaceQuad quad;
-          for (unsigned int v = 0; v < 4; ++v)
+          const double *c = &values[i];
+          if constexpr (dim == 3)
             {
-              const double *corner = &values[i + v * n_values];
-              quad[v] = {corner[0], corner[1], corner[2], corner[3], corner[4]};
+              pileup::SurfaceQuad quad;
+              for (unsigned int v = 0; v < 4; ++v, c += n_values)
+                quad[v] = {c[0], c[1], c[2], c[3], c[4]};
+              surface.push_back(quad);
             }
-          surface.push_back(quad);
+          else
+            revolve_edge({c[0], c[1], c[2]}, {c[3], c[4], c[5]}, surface);
         }
     return mesh_info_.quarter ? pileup::mirror_quarter(surface) : surface;
   }
 
-  void IndentationProblem::write_pileup(const std::vector<SurfaceSnapshot> &snapshots,
+  template <int dim>
+  void IndentationProblem<dim>::write_pileup(const std::vector<SurfaceSnapshot> &snapshots,
                                         const double                        contact_radius)
   {
     namespace files = io::output_files;
@@ -182,6 +224,11 @@ namespace indentsim::problems
         pileup::PileUpParameters parameters;
         parameters.depth = snapshot.depth;
         parameters.contact_radius = contact_radius;
+        // The revolved axisymmetric surface has sectors far narrower than its elements near the
+        // axis: its map is sampled at half the contact-element size instead.
+        if (mesh_info_.axisymmetric)
+          parameters.grid_spacing =
+              std::max(0.5 * mesh_info_.contact_element_size, 3 * contact_radius / 200);
         // Only a crystal or a pyramid can break the axial symmetry besides the square mesh.
         parameters.sources.anisotropic_material = case_.material.model == io::ModelKind::crystal;
         parameters.sources.non_axisymmetric_indenter =
@@ -218,4 +265,6 @@ namespace indentsim::problems
       std::cerr << "warning: the pile-up plots in " << output_directory_
                 << " could not be written (command: " << command << ")\n";
   }
+  template class IndentationProblem<2>;
+  template class IndentationProblem<3>;
 } // namespace indentsim::problems

@@ -36,22 +36,21 @@ namespace indentsim::problems
 {
   using namespace dealii;
   using fem::CellContribution;
-  using fem::CellWorkspace;
   using fem::copy_to_thread_readable;
-  using fem::element_residual_and_tangent;
   using fem::GhostedVector;
   using fem::run_on_owned_cells;
   using fem::to_thread_readable;
   using linalg::LinearSolver;
   using output::RunStatistics;
 
-  IndentationProblem::IndentationProblem(const io::Case &the_case, const MPI_Comm communicator,
+  template <int dim>
+  IndentationProblem<dim>::IndentationProblem(const io::Case &the_case, const MPI_Comm communicator,
                                          const bool                                       verbose,
                                          std::shared_ptr<const indenter::IndenterSurface> indenter)
     : case_(the_case)
     , communicator_(communicator)
     , pcout_(std::cout, verbose && Utilities::MPI::this_mpi_process(communicator) == 0)
-    , solid_(communicator, Triangulation<3>::limit_level_difference_at_vertices)
+    , solid_(communicator, Triangulation<dim>::limit_level_difference_at_vertices)
     , material_(materials::create_material(the_case.material))
     , indenter_(indenter ? std::move(indenter) : indenter::create_indenter(the_case.indenter))
     , use_f_bar_(the_case.specimen.f_bar)
@@ -59,30 +58,36 @@ namespace indentsim::problems
   {
   }
 
-  IndentationProblem::~IndentationProblem() = default;
+  template <int dim>
+  IndentationProblem<dim>::~IndentationProblem() = default;
 
-  unsigned int IndentationProblem::n_cells() const
+  template <int dim>
+  unsigned int IndentationProblem<dim>::n_cells() const
   {
     return solid_.n_cells();
   }
-  unsigned int IndentationProblem::n_dofs() const
+  template <int dim>
+  unsigned int IndentationProblem<dim>::n_dofs() const
   {
     return solid_.n_dofs();
   }
 
-  unsigned int IndentationProblem::n_constrained_dofs() const
+  template <int dim>
+  unsigned int IndentationProblem<dim>::n_constrained_dofs() const
   {
     return solid_.n_constrained_dofs(constraints_all_);
   }
 
-  unsigned int IndentationProblem::n_hanging_node_constraints() const
+  template <int dim>
+  unsigned int IndentationProblem<dim>::n_hanging_node_constraints() const
   {
     return solid_.n_constrained_dofs(constraints_hanging_);
   }
 
-  // Hanging-node constraints, then the supports (bottom face, symmetry planes) on top of them,
-  // as step-42 layers them.
-  void IndentationProblem::make_constraints()
+  // Hanging-node constraints, then the supports (bottom face, symmetry planes or the axis) on top
+  // of them, as step-42 layers them.
+  template <int dim>
+  void IndentationProblem<dim>::make_constraints()
   {
     constraints_hanging_.clear();
     constraints_hanging_.reinit(solid_.locally_relevant);
@@ -92,9 +97,17 @@ namespace indentsim::problems
     constraints_all_.clear();
     constraints_all_.reinit(solid_.locally_relevant);
     constraints_all_.merge(constraints_hanging_);
-    const Functions::ZeroFunction<3> zero(3);
+    const Functions::ZeroFunction<dim> zero(dim);
     VectorTools::interpolate_boundary_values(solid_.dof_handler, mesh::boundary::bottom, zero,
                                              constraints_all_);
+    if constexpr (dim == 2)
+      {
+        // The axis r = 0: u_r = 0 (the section's nodes there stay on the axis).
+        VectorTools::interpolate_boundary_values(solid_.dof_handler, mesh::boundary::axis, zero,
+                                                 constraints_all_, solid_.component_mask(0));
+        constraints_all_.close();
+        return;
+      }
     if (mesh_info_.quarter)
       {
         VectorTools::interpolate_boundary_values(solid_.dof_handler, mesh::boundary::x_min, zero,
@@ -120,7 +133,8 @@ namespace indentsim::problems
     constraints_all_.close();
   }
 
-  void IndentationProblem::setup()
+  template <int dim>
+  void IndentationProblem<dim>::setup()
   {
     const RunStatistics::Scope timer(statistics_.setup);
     mesh_info_ = mesh::build_indentation_mesh(solid_.triangulation, case_.specimen);
@@ -139,7 +153,9 @@ namespace indentsim::problems
     solid_.reinit_owned(solution_previous_);
     solid_.reinit_owned(residual_);
 
-    history_.reinit(solid_.triangulation.n_active_cells(), 8, material_->n_state_variables());
+    // 2 x 2 x 2 (hexahedra) or 2 x 2 (axisymmetric quadrilaterals) Gauss points per cell.
+    history_.reinit(solid_.triangulation.n_active_cells(), 1u << dim,
+                    material_->n_state_variables());
     // A single crystal: one lattice orientation everywhere (isotropic models ignore it).
     const dealii::Tensor<2, 3> orientation =
         materials::create_orientation(case_.material.orientation);
@@ -153,11 +169,15 @@ namespace indentsim::problems
     contact_ = std::make_unique<contact::NodeToSurfaceContact>(*indenter_, penalty,
                                                                case_.contact.friction_coefficient);
     contact_->set_predictor_activation_depth(case_.contact.penetration_tolerance);
-    contact_->setup(solid_.dof_handler, constraints_hanging_, mesh::boundary::top,
-                    mesh_info_.refined_half_x, mesh_info_.refined_half_y, communicator_);
+    if constexpr (dim == 3)
+      contact_->setup(solid_.dof_handler, constraints_hanging_, mesh::boundary::top,
+                      mesh_info_.refined_half_x, mesh_info_.refined_half_y, communicator_);
+    else
+      contact_->setup(solid_.dof_handler, constraints_hanging_, mesh::boundary::top,
+                      mesh_info_.refined_half_x, communicator_);
 
     linear_solver_.setup(solid_.dof_handler,
-                         LinearSolver::choose_kind(case_.solver.linear_solver, n_dofs()),
+                         LinearSolver::choose_kind(case_.solver.linear_solver, n_dofs(), dim),
                          material_->symmetric_tangent() && contact_->symmetric_tangent());
 
     pcout_ << "Mesh: " << n_cells() << " cells, " << n_dofs() << " DOFs, " << n_constrained_dofs()
@@ -172,7 +192,8 @@ namespace indentsim::problems
            << " % of rank 0's cells by precomputed positions" << std::endl;
   }
 
-  void IndentationProblem::balance_plastic_zone()
+  template <int dim>
+  void IndentationProblem<dim>::balance_plastic_zone()
   {
     const double extra_cost = material_->relative_plastic_cost() - 1.0;
     if (Utilities::MPI::n_mpi_processes(communicator_) == 1 || !(extra_cost > 0))
@@ -187,8 +208,8 @@ namespace indentsim::problems
         std::sqrt(indenter_->projected_area(case_.loading.max_depth) / std::numbers::pi);
     const double radius = 2.5 * a_c;
     const auto   weight = [radius, extra_cost](
-                            const parallel::distributed::Triangulation<3>::cell_iterator &cell,
-                            const parallel::distributed::Triangulation<3>::CellStatus) {
+                            const typename parallel::distributed::Triangulation<dim>::cell_iterator &cell,
+                            const typename parallel::distributed::Triangulation<dim>::CellStatus) {
       return static_cast<unsigned int>(1000 *
                                        (1.0 + (cell->center().norm() < radius ? extra_cost : 0.0)));
     };
@@ -197,8 +218,9 @@ namespace indentsim::problems
     connection.disconnect();
   }
 
-  IndentationProblem::AssemblyResult
-  IndentationProblem::assemble(const bool                                          with_matrix,
+  template <int dim>
+  typename IndentationProblem<dim>::AssemblyResult
+  IndentationProblem<dim>::assemble(const bool                                          with_matrix,
                                contact::NodeToSurfaceContact::DepthCoupling *const coupling)
   {
     AssemblyResult result;
@@ -213,21 +235,20 @@ namespace indentsim::problems
 
     copy_to_thread_readable(solution_, solution_readable_);
     const GhostedVector &u = solution_readable_;
-    const auto           worker = [&](const DoFHandler<3>::active_cell_iterator &cell,
-                            CellWorkspace &workspace, CellContribution &contribution) {
+    const auto           worker = [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
+                            Workspace &workspace, CellContribution &contribution) {
       workspace.reinit(cell, u);
-      contribution.status = element_residual_and_tangent(
-                    *material_, use_f_bar_, workspace.u_local, history_.converged(cell),
-                    history_.current(cell), workspace.scratch, contribution.vector,
-          with_matrix ? &contribution.matrix : nullptr);
+      contribution.status = workspace.evaluate(*material_, use_f_bar_, history_.converged(cell),
+                                               history_.current(cell), contribution.vector,
+                                               with_matrix ? &contribution.matrix : nullptr);
       cell->get_dof_indices(contribution.dof_indices);
       contribution.cell_index = cell->active_cell_index();
-      // Bottom reaction: the internal force at the supported nodes (z components).
+      // Bottom reaction: the internal force at the supported nodes (z components, the last).
       contribution.sums[0] = 0;
       for (const unsigned int f : cell->face_indices())
         if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == mesh::boundary::bottom)
           for (unsigned int a = 0; a < solid_.fe.n_dofs_per_cell(); ++a)
-            if (solid_.fe.system_to_component_index(a).first == 2 &&
+            if (solid_.fe.system_to_component_index(a).first == dim - 1 &&
                 solid_.fe.has_support_on_face(a, f))
               contribution.sums[0] += contribution.vector[a];
     };
@@ -280,7 +301,8 @@ namespace indentsim::problems
     return result;
   }
 
-  bool IndentationProblem::reassemble_contact()
+  template <int dim>
+  bool IndentationProblem<dim>::reassemble_contact()
   {
     const RunStatistics::Scope timer(statistics_.contact);
     if (!contact_->retract(constraints_all_, residual_, matrix_))
@@ -292,7 +314,8 @@ namespace indentsim::problems
     return true;
   }
 
-  double IndentationProblem::depth_guess_for_force(const double target_force) const
+  template <int dim>
+  double IndentationProblem<dim>::depth_guess_for_force(const double target_force) const
   {
     if (target_force > force_converged_ && force_converged_ > 0 && depth_converged_ > 0)
       {
@@ -323,10 +346,11 @@ namespace indentsim::problems
     return depth_converged_;
   }
 
-  contact::ContactPatch IndentationProblem::contact_patch() const
+  template <int dim>
+  contact::ContactPatch IndentationProblem<dim>::contact_patch() const
   {
-    // The indicator phi (x dof of each contact node) and a marker (y dof) distinguishing contact
-    // nodes from the rest, made readable on the ghost vertices of the owned faces.
+    // The indicator phi (first dof of each contact node) and a marker (second dof) distinguishing
+    // contact nodes from the rest, made readable on the ghost vertices of the owned faces.
     PETScWrappers::MPI::Vector indicator(solid_.locally_owned, communicator_);
     for (const contact::ContactNode &node : contact_->nodes())
       {
@@ -339,33 +363,53 @@ namespace indentsim::problems
                                        communicator_);
     ghosted = indicator;
 
-    // deal.II numbers a face's vertices lexicographically; cyclic order is 0, 1, 3, 2.
-    constexpr unsigned int cyclic[4] = {0, 1, 3, 2};
-    contact::ContactPatch  local;
+    contact::ContactPatch local;
+    const auto            add = [&local](const contact::ContactPatch &patch) {
+      local.area += patch.area;
+      local.max_radius = std::max(local.max_radius, patch.max_radius);
+      local.max_abs_x = std::max(local.max_abs_x, patch.max_abs_x);
+      local.max_abs_y = std::max(local.max_abs_y, patch.max_abs_y);
+    };
+    // The indicator and position of a face's vertex v (its first coordinate: r in the
+    // axisymmetric model); false if it is not a contact node.
+    const auto read_vertex = [&](const auto &face, const unsigned int v, double &phi) {
+      phi = ghosted(face->vertex_dof_index(v, 0));
+      return ghosted(face->vertex_dof_index(v, 1)) == 1;
+    };
     for (const auto &cell : solid_.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const auto &face : cell->face_iterators())
           {
             if (!face->at_boundary() || face->boundary_id() != mesh::boundary::top)
               continue;
-            std::array<Point<2>, 4> xy;
-            std::array<double, 4>   phi;
-            bool                    all_contact_nodes = true;
-            for (unsigned int k = 0; k < 4; ++k)
+            bool all_contact_nodes = true;
+            if constexpr (dim == 3)
               {
-                const unsigned int v = cyclic[k];
-                all_contact_nodes = all_contact_nodes && ghosted(face->vertex_dof_index(v, 1)) == 1;
-                phi[k] = ghosted(face->vertex_dof_index(v, 0));
-                for (unsigned int d = 0; d < 2; ++d)
-                  xy[k][d] = face->vertex(v)[d] + solution_(face->vertex_dof_index(v, d));
+                // deal.II numbers a face's vertices lexicographically; cyclic order is 0, 1, 3, 2.
+                constexpr unsigned int  cyclic[4] = {0, 1, 3, 2};
+                std::array<Point<2>, 4> xy;
+                std::array<double, 4>   phi;
+                for (unsigned int k = 0; k < 4; ++k)
+                  {
+                    const unsigned int v = cyclic[k];
+                    all_contact_nodes = read_vertex(face, v, phi[k]) && all_contact_nodes;
+                    for (unsigned int d = 0; d < 2; ++d)
+                      xy[k][d] = face->vertex(v)[d] + solution_(face->vertex_dof_index(v, d));
+                  }
+                if (all_contact_nodes)
+                  add(contact::quad_contact_patch(xy, phi));
               }
-            if (!all_contact_nodes)
-              continue;
-            const contact::ContactPatch patch = contact::quad_contact_patch(xy, phi);
-            local.area += patch.area;
-            local.max_radius = std::max(local.max_radius, patch.max_radius);
-            local.max_abs_x = std::max(local.max_abs_x, patch.max_abs_x);
-            local.max_abs_y = std::max(local.max_abs_y, patch.max_abs_y);
+            else
+              {
+                std::array<double, 2> r, phi;
+                for (unsigned int v = 0; v < 2; ++v)
+                  {
+                    all_contact_nodes = read_vertex(face, v, phi[v]) && all_contact_nodes;
+                    r[v] = face->vertex(v)[0] + solution_(face->vertex_dof_index(v, 0));
+                  }
+                if (all_contact_nodes)
+                  add(contact::segment_contact_patch(r, phi));
+              }
           }
     contact::ContactPatch global;
     global.area = Utilities::MPI::sum(local.area, communicator_);
@@ -375,7 +419,8 @@ namespace indentsim::problems
     return global;
   }
 
-  void IndentationProblem::accept_increment()
+  template <int dim>
+  void IndentationProblem<dim>::accept_increment()
   {
     history_.accept();
     solution_previous_ = solution_converged_;
@@ -389,18 +434,20 @@ namespace indentsim::problems
     contact_->accept_increment();
   }
 
-  void IndentationProblem::reject_increment()
+  template <int dim>
+  void IndentationProblem<dim>::reject_increment()
   {
     history_.reject();
     solution_ = solution_converged_;
     contact_->reject_increment();
   }
 
-  void IndentationProblem::for_each_cell_stress(
-      const std::function<void(const DoFHandler<3>::active_cell_iterator &,
+  template <int dim>
+  void IndentationProblem<dim>::for_each_cell_stress(
+      const std::function<void(const typename DoFHandler<dim>::active_cell_iterator &,
                                const std::vector<Tensor<2, 3>> &, std::span<const double>)> &visit)
   {
-    CellWorkspace             workspace(solid_.fe, history_.n_q_points());
+    Workspace                 workspace(solid_.fe, history_.n_q_points());
     std::vector<Tensor<2, 3>> cauchy(history_.n_q_points());
     std::vector<double>       state(history_.cell_length());
     const GhostedVector       u =
@@ -410,10 +457,11 @@ namespace indentsim::problems
         if (!cell->is_locally_owned())
           continue;
         workspace.reinit(cell, u);
-        element_residual_and_tangent(*material_, use_f_bar_, workspace.u_local,
-                                     history_.converged(cell), state, workspace.scratch,
-                                     workspace.r_local, nullptr, &cauchy);
+        workspace.evaluate(*material_, use_f_bar_, history_.converged(cell), state,
+                           workspace.r_local, nullptr, &cauchy);
         visit(cell, cauchy, state);
       }
   }
+  template class IndentationProblem<2>;
+  template class IndentationProblem<3>;
 } // namespace indentsim::problems

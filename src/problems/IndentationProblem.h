@@ -14,6 +14,7 @@
 #include "case/Case.h"
 #include "contact/ContactArea.h"
 #include "contact/NodeToSurfaceContact.h"
+#include "fem/AxisymmetricCellWorkspace.h"
 #include "fem/CellWorkspace.h"
 #include "fem/FiniteStrainElement.h"
 #include "fem/QuadraturePointHistory.h"
@@ -70,6 +71,10 @@ namespace indentsim::problems
   // Reads only.
   ResumeState check_resume(const io::Case &the_case, MPI_Comm communicator);
 
+  // dim = 3: the block (full or quarter model); dim = 2: the axisymmetric model, the (r, z)
+  // section of the cylinder (mesh/IndentationMesh.h) with the axisymmetric element
+  // (fem/AxisymmetricElement.h).
+  template <int dim>
   class IndentationProblem
   {
   public:
@@ -141,10 +146,11 @@ namespace indentsim::problems
     unsigned int                 n_hanging_node_constraints() const;
     const mesh::MeshInfo        &mesh_info() const { return mesh_info_; }
     double                       symmetry_factor() const { return mesh_info_.quarter ? 4.0 : 1.0; }
-    const dealii::DoFHandler<3> &dof_handler() const { return solid_.dof_handler; }
+    const dealii::DoFHandler<dim> &dof_handler() const { return solid_.dof_handler; }
     const dealii::PETScWrappers::MPI::Vector &solution() const { return solution_; }
 
   private:
+    using Workspace = typename fem::CellWorkspaceFor<dim>::type;
     // Test-only access to the fields and the assembly (tests/problem_test_access.h).
     friend struct ProblemTestAccess;
 
@@ -188,7 +194,7 @@ namespace indentsim::problems
     // Evaluates every locally owned cell at the current displacement from the converged state
     // (no tangent) and passes the Cauchy stress and the updated state of its quadrature points.
     void for_each_cell_stress(
-        const std::function<void(const dealii::DoFHandler<3>::active_cell_iterator &,
+        const std::function<void(const typename dealii::DoFHandler<dim>::active_cell_iterator &,
                                  const std::vector<dealii::Tensor<2, 3>> &,
                                  std::span<const double>)> &visit);
 
@@ -267,7 +273,7 @@ namespace indentsim::problems
     const io::Case                   &case_;
     MPI_Comm                          communicator_;
     dealii::ConditionalOStream        pcout_;
-    fem::SolidDiscretisation          solid_; // mesh, elements, DoFs, index sets
+    fem::SolidDiscretisation<dim>     solid_; // mesh, elements, DoFs, index sets
     mesh::MeshInfo                    mesh_info_;
     dealii::AffineConstraints<double> constraints_hanging_;
     dealii::AffineConstraints<double> constraints_all_; // Dirichlet and hanging nodes

@@ -27,7 +27,8 @@ namespace indentsim::problems
   using nonlinear::SegmentKind;
 
   // What run() carries from step to step besides the problem's own state.
-  struct IndentationProblem::RunContext
+  template <int dim>
+  struct IndentationProblem<dim>::RunContext
   {
     RunContext(const io::Case &the_case, const Timer &timer)
       : programme(the_case.loading)
@@ -50,7 +51,8 @@ namespace indentsim::problems
     double wall_offset = 0;
   };
 
-  IndentationProblem::RunOutcome IndentationProblem::run(const std::string &output_directory,
+  template <int dim>
+  typename IndentationProblem<dim>::RunOutcome IndentationProblem<dim>::run(const std::string &output_directory,
                                                          const bool         resume)
   {
     output_directory_ = output_directory;
@@ -93,7 +95,8 @@ namespace indentsim::problems
 
   // Opens the records; from a checkpoint, the state and the curve so far, else the initial
   // state (record and VTU).
-  void IndentationProblem::start_run(RunContext &context, const bool resume)
+  template <int dim>
+  void IndentationProblem<dim>::start_run(RunContext &context, const bool resume)
   {
     // Collective (an MPI sum): every rank counts, rank 0 writes it.
     const unsigned int n_constrained = n_constrained_dofs();
@@ -132,7 +135,8 @@ namespace indentsim::problems
   }
 
   // A converged step becomes the next recorded step of the run (numbered, stamped, kept).
-  void IndentationProblem::add_record(RunContext &context, const Segment &segment,
+  template <int dim>
+  void IndentationProblem<dim>::add_record(RunContext &context, const Segment &segment,
                                       StepRecord &record)
   {
     LoopState &loop = context.loop;
@@ -148,7 +152,8 @@ namespace indentsim::problems
   // Force control's first step: the first touch under depth control, 0.1 % of a contact element
   // beyond the nearest node (a recorded step; its force lies below the first target in the
   // examples).
-  void IndentationProblem::first_contact_step(RunContext &context, const Segment &segment)
+  template <int dim>
+  void IndentationProblem<dim>::first_contact_step(RunContext &context, const Segment &segment)
   {
     LoopState &loop = context.loop;
     StepRecord record;
@@ -170,7 +175,8 @@ namespace indentsim::problems
   }
 
   // One converged step of `segment`, with retries and cut-backs, then its outputs.
-  void IndentationProblem::converged_step(RunContext &context, const Segment &segment)
+  template <int dim>
+  void IndentationProblem<dim>::converged_step(RunContext &context, const Segment &segment)
   {
     LoopState                         &loop = context.loop;
     const nonlinear::LoadingProgramme &programme = context.programme;
@@ -215,7 +221,8 @@ namespace indentsim::problems
   }
 
   // Records a converged step, writes its outputs, accepts it and moves the programme on.
-  void IndentationProblem::complete_step(RunContext &context, const Segment &segment,
+  template <int dim>
+  void IndentationProblem<dim>::complete_step(RunContext &context, const Segment &segment,
                                          StepRecord &record, const double depth_before,
                                          const double force_before)
   {
@@ -286,7 +293,8 @@ namespace indentsim::problems
 
   // Collective: a failed write of load_penetration.csv or run.log on rank 0 (kept by the
   // recorder) stops every rank with its OutputError.
-  void IndentationProblem::check_records(RunContext &context)
+  template <int dim>
+  void IndentationProblem<dim>::check_records(RunContext &context)
   {
     output::write_collectively(communicator_, [&]() { context.recorder.throw_if_failed(); });
   }
@@ -294,7 +302,8 @@ namespace indentsim::problems
   // Checkpoint and stop, decided together by all ranks (each rank's signal flag and clock may
   // differ). Nothing is saved after the last step: the run is complete. Returns whether the run
   // stops here.
-  bool IndentationProblem::checkpoint_or_stop(RunContext &context)
+  template <int dim>
+  bool IndentationProblem<dim>::checkpoint_or_stop(RunContext &context)
   {
     const LoopState &loop = context.loop;
     if (output_directory_.empty() || loop.segment == context.programme.segments.size())
@@ -331,7 +340,8 @@ namespace indentsim::problems
 
   // The end of a finished run: pile-up analysis, statistics, run_summary.json; the checkpoint
   // is removed.
-  void IndentationProblem::finish_run(RunContext &context)
+  template <int dim>
+  void IndentationProblem<dim>::finish_run(RunContext &context)
   {
     const LoopState &loop = context.loop;
     const bool       root = Utilities::MPI::this_mpi_process(communicator_) == 0;
@@ -384,4 +394,6 @@ namespace indentsim::problems
         std::filesystem::remove_all(checkpoint_directory(), error);
       }
   }
+  template class IndentationProblem<2>;
+  template class IndentationProblem<3>;
 } // namespace indentsim::problems

@@ -118,7 +118,7 @@ namespace indentsim::problems
     const io::Case                    case_;
     MPI_Comm                          communicator_;
     dealii::ConditionalOStream        pcout_;
-    fem::SolidDiscretisation          solid_; // mesh, elements, DoFs, index sets
+    fem::SolidDiscretisation<3>       solid_; // mesh, elements, DoFs, index sets
     dealii::AffineConstraints<double> constraints_homogeneous_;
     dealii::AffineConstraints<double> constraints_increment_;
 

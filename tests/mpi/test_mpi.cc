@@ -16,7 +16,7 @@ namespace
 {
   std::vector<nonlinear::StepRecord> run(const io::Case &c, const MPI_Comm communicator)
   {
-    problems::IndentationProblem problem(c, communicator, false);
+    problems::IndentationProblem<3> problem(c, communicator, false);
     problem.setup();
     problem.run("");
     return problem.records();
@@ -105,22 +105,22 @@ TEST(Mpi, StoppedAndResumedRunEqualsUninterruptedRun)
     }
   MPI_Barrier(MPI_COMM_WORLD);
 
-  using Outcome = problems::IndentationProblem::RunOutcome;
+  using Outcome = problems::IndentationProblem<3>::RunOutcome;
   std::vector<nonlinear::StepRecord> reference, resumed;
   {
-    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     ASSERT_EQ(problem.run(reference_dir), Outcome::finished);
     reference = problem.records();
   }
   {
-    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     problem.stop_after_step(3);
     ASSERT_EQ(problem.run(resumed_dir), Outcome::stopped);
   }
   {
-    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     ASSERT_EQ(problem.run(resumed_dir, true), Outcome::finished);
     resumed = problem.records();

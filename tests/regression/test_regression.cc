@@ -35,7 +35,7 @@ namespace
 TEST(Regression, SmallJ2IndentationMatchesGold)
 {
   const io::Case               c = small_j2_load_unload_case();
-  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run("");
   const auto &records = problem.records();

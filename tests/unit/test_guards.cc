@@ -214,7 +214,7 @@ TEST(RunGuards, ContactOutgrowingTheRefinedRegionStopsTheRun)
   c.loading.max_depth = 1.5;       // contact radius about 4.8 um at the end
   c.loading.steps = 6;
   const auto                   directory = test_files::scratch_directory("guards", "outgrown");
-  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   std::string message;
   try

@@ -34,11 +34,11 @@ namespace
                                                             const double                 max_depth,
                                                             const unsigned int n_increments)
   {
-    std::vector<std::unique_ptr<problems::IndentationProblem>> problems;
+    std::vector<std::unique_ptr<problems::IndentationProblem<3>>> problems;
     for (const auto &c : cases)
       {
         problems.push_back(
-            std::make_unique<problems::IndentationProblem>(c, MPI_COMM_WORLD, false));
+            std::make_unique<problems::IndentationProblem<3>>(c, MPI_COMM_WORLD, false));
         problems.back()->setup();
       }
     std::vector<std::vector<double>> forces(cases.size());
@@ -109,7 +109,7 @@ TEST(CrystalIndentation, SurfaceUnderSharpTipFollowsTheApexFor111)
   const double depth = 0.4;
   c.loading.max_depth = depth;
   c.loading.steps = 4;
-  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run("");
   ASSERT_NEAR(problem.records().back().depth, depth, 1e-12);

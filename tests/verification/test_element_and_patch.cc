@@ -143,7 +143,7 @@ TEST(PatchTest, AffineDisplacementOnHangingNodeMesh)
   for (const bool f_bar : {false, true})
     {
       const io::Case               c = patch_case("neo_hookean", f_bar);
-      problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+      problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
       problem.setup();
       ASSERT_GT(problem.n_hanging_node_constraints(), 0u)
           << "the patch mesh must have hanging nodes";
@@ -169,7 +169,7 @@ TEST(PatchTest, AffineDisplacementOnHangingNodeMesh)
 TEST(PatchTest, AffinePlasticFlowOnHangingNodeMesh)
 {
   const io::Case               c = patch_case("j2", true);
-  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   Tensor<2, 3> G;
   G[0][0] = 0.03, G[1][1] = -0.02, G[0][1] = 0.01, G[2][2] = -0.012;

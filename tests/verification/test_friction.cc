@@ -289,7 +289,7 @@ namespace
     // The answer is defined to the contact tolerance; both paths must reach the same one, whose
     // augmentation passes may differ, so the tolerance is tight enough for the 1e-7 below.
     c.contact.penetration_tolerance = 1e-9;
-    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     problem.run("");
     return problem.records();
@@ -322,7 +322,7 @@ TEST(FrictionIndentation, CoulombConditionsHoldAtConvergence)
   const double mu = 0.2;
   io::Case     c = test_cases::small_j2_case("quarter");
   c.contact.friction_coefficient = mu;
-  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   unsigned int n_stick = 0, n_slip = 0;
   for (unsigned int step = 1; step <= c.loading.steps; ++step)

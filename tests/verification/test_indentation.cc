@@ -35,7 +35,7 @@ namespace
   // at the final depth (increments may be cut back, so the last record is used).
   double elastic_force_error(const io::Case &c)
   {
-    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     problem.run("");
     const auto &r = problem.records().back();
@@ -87,7 +87,7 @@ TEST(ElasticIndentation, EquilibriumAndExactContact)
   c.loading.max_depth = 0.3;
   c.loading.steps = 3;
   c.specimen.contact_elements = 24;
-  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run("");
   for (const auto &r : problem.records())
@@ -112,7 +112,7 @@ TEST(ElasticIndentation, InterpolatedContactAreaFollowsClosedForm)
   c.specimen.contact_elements = 24; // 0.25 um
   c.loading.max_depth = 0.6;
   c.loading.steps = 4;
-  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run("");
   const indenter::SneddonReference reference(
@@ -145,11 +145,11 @@ TEST(ElasticIndentation, InterpolatedContactAreaFollowsClosedForm)
 TEST(Symmetry, QuarterModelEqualsFullModel)
 {
   io::Case                     c = test_cases::small_j2_case("quarter");
-  problems::IndentationProblem quarter(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem<3> quarter(c, MPI_COMM_WORLD, false);
   quarter.setup();
   quarter.run("");
   c.specimen.symmetry = "full";
-  problems::IndentationProblem full(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem<3> full(c, MPI_COMM_WORLD, false);
   full.setup();
   full.run("");
   const auto &q = quarter.records().back(), &f = full.records().back();

@@ -26,7 +26,7 @@ namespace
 
   std::vector<nonlinear::StepRecord> run(const io::Case &c)
   {
-    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     problem.run("");
     return problem.records();
@@ -80,7 +80,7 @@ TEST(ForceControl, PlasticLoadUnloadReplaysUnderDepthControl)
   EXPECT_NEAR(by_force.back().force, 0.06, 1e-8 * 6.0);
 
   io::Case                     depth_case = test_cases::small_j2_case();
-  problems::IndentationProblem replay(depth_case, MPI_COMM_WORLD, false);
+  problems::IndentationProblem<3> replay(depth_case, MPI_COMM_WORLD, false);
   replay.setup();
   double largest_difference = 0;
   for (std::size_t i = 1; i < by_force.size(); ++i)

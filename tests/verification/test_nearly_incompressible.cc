@@ -27,7 +27,7 @@ namespace
             "}\n"
             "loading: {max_depth: 1.0, steps: 8, unload: false}\n",
         "nearly_incompressible.yaml");
-    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     problem.run("");
     EXPECT_NEAR(problem.records().back().depth, 1.0, 1e-12);

@@ -265,7 +265,7 @@ TEST(OliverPharr, ElasticIndentationRecoversTheReducedModulus)
   c.loading.steps = 4;
   c.loading.unload = true;
   c.loading.unload_points = 12;
-  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run("");
   LoadCurve curve;

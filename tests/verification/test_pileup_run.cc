@@ -43,7 +43,7 @@ TEST(PileUpRun, IsotropicJ2PilesUpWithTheMeshSymmetry)
   io::Case c = test_cases::small_j2_case("quarter");
   c.loading.unload = true;
   const fs::path               directory = scratch_directory("small_j2");
-  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run(directory.string());
 

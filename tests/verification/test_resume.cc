@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 
 namespace
 {
-  using Outcome = problems::IndentationProblem::RunOutcome;
+  using Outcome = problems::IndentationProblem<3>::RunOutcome;
 
   struct RunResult
   {
@@ -35,7 +35,7 @@ namespace
   RunResult run(const io::Case &c, const fs::path &directory,
                 std::optional<unsigned int> stop_after, bool resume)
   {
-    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     if (stop_after)
       problem.stop_after_step(*stop_after);

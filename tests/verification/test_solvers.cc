@@ -23,7 +23,7 @@ namespace
   std::vector<nonlinear::StepRecord> run_indentation(const io::Case    &c,
                                                      const std::string &directory = "")
   {
-    problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+    problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     problem.run(directory);
     return problem.records();
@@ -177,7 +177,7 @@ TEST(RunSummary, CountersAndTimesAreConsistentWithTheRun)
   io::Case c = test_cases::small_j2_case();
   c.loading.unload = true;
   const auto                   directory = test_files::scratch_directory("solvers", "summary");
-  problems::IndentationProblem problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   problem.run(directory.string());
   const auto numbers = json_numbers(test_files::read_text(directory / "run_summary.json"));

@@ -108,23 +108,20 @@ namespace indentsim::fem
 
   void reinit_axisymmetric(AxisymmetricScratch &s, const std::array<Point<2>, 4> &vertices)
   {
-    for (unsigned int q = 0; q <= s.n_q_points; ++q)
+    for (unsigned int q = 0; q <= s.n_q_points; ++q) // q = n_q_points: the centre
       {
         const bool   centre = q == s.n_q_points;
-        double       R = 0;
-        const double det = centre ? map_point(vertices, s.reference_values0, s.reference_grad0,
-                                              s.values0, s.grad0, s.radius0)
-                                  : map_point(vertices, s.reference_values[q], s.reference_grad[q],
-                                              s.values[q], s.grad[q], R);
+        double      &R = centre ? s.radius0 : s.radius[q];
+        const double det =
+            map_point(vertices, centre ? s.reference_values0 : s.reference_values[q],
+                      centre ? s.reference_grad0 : s.reference_grad[q],
+                      centre ? s.values0 : s.values[q], centre ? s.grad0 : s.grad[q], R);
         if (!(det > 0))
           bad_cell(vertices, "is not mapped orientation-preserving (det dX/dxi <= 0)");
-        if (!((centre ? s.radius0 : R) > 0))
+        if (!(R > 0))
           bad_cell(vertices, "has a Gauss point or its centre at R <= 0 (a vertex at R < 0?)");
         if (!centre)
-          {
-            s.radius[q] = R;
-            s.dV[q] = 2 * numbers::PI * R * det * s.weights[q]; // the full ring
-          }
+          s.dV[q] = 2 * numbers::PI * R * det * s.weights[q]; // the full ring
       }
   }
 
@@ -297,6 +294,14 @@ namespace indentsim::fem
   {
     constexpr unsigned int n_dofs = AxisymmetricScratch::n_dofs;
     const unsigned int     n_state = material.n_state_variables();
+    AssertDimension(u_local.size(), n_dofs);
+    AssertDimension(residual.size(), n_dofs);
+    Assert(!tangent || (tangent->m() == n_dofs && tangent->n() == n_dofs),
+           ExcMessage("the element tangent must be 8 x 8"));
+    Assert(!cauchy_stress || cauchy_stress->size() >= s.n_q_points,
+           ExcMessage("one Cauchy stress per Gauss point"));
+    Assert(state_old.size() >= s.n_q_points * n_state && state_new.size() >= s.n_q_points * n_state,
+           ExcMessage("one material state per Gauss point"));
     residual = 0;
     if (tangent)
       *tangent = 0;

@@ -1,0 +1,364 @@
+#include "fem/AxisymmetricElement.h"
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_q.h>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace indentsim::fem
+{
+  using namespace dealii;
+
+  namespace
+  {
+    // Components of the 3x3 tensors: (r, theta, z).
+    constexpr unsigned int r_ = 0, theta_ = 1, z_ = 2;
+
+    unsigned int gauss_points_per_direction(const unsigned int n_q_points)
+    {
+      const auto k = static_cast<unsigned int>(std::lround(std::sqrt(double(n_q_points))));
+      if (n_q_points == 0 || k * k != n_q_points)
+        throw std::invalid_argument("AxisymmetricScratch: n_q_points must be k^2 (k x k Gauss "
+                                    "points), not " +
+                                    std::to_string(n_q_points));
+      return k;
+    }
+  } // namespace
+
+  AxisymmetricScratch::AxisymmetricScratch(const unsigned int n_q_points)
+    : n_q_points(n_q_points)
+    , values(n_q_points)
+    , grad(n_q_points)
+    , radius(n_q_points)
+    , dV(n_q_points)
+    , reference_values(n_q_points)
+    , reference_grad(n_q_points)
+    , F(n_q_points)
+    , trace(n_q_points)
+  {
+    const QGauss<2> gauss(gauss_points_per_direction(n_q_points));
+    const FE_Q<2>   bilinear(1);
+    const Point<2>  centre(0.5, 0.5);
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        for (unsigned int q = 0; q < n_q_points; ++q)
+          {
+            reference_values[q][i] = bilinear.shape_value(i, gauss.point(q));
+            reference_grad[q][i] = bilinear.shape_grad(i, gauss.point(q));
+          }
+        reference_values0[i] = bilinear.shape_value(i, centre);
+        reference_grad0[i] = bilinear.shape_grad(i, centre);
+      }
+    weights = gauss.get_weights();
+  }
+
+  void require_axisymmetric_dof_layout(const FiniteElement<2> &fe)
+  {
+    bool ordered = fe.n_components() == 2 && fe.n_dofs_per_cell() == AxisymmetricScratch::n_dofs &&
+                   fe.n_dofs_per_vertex() == 2;
+    for (unsigned int a = 0; ordered && a < fe.n_dofs_per_cell(); ++a)
+      ordered = fe.system_to_component_index(a) == std::make_pair(a % 2, a / 2);
+    if (!ordered)
+      throw std::invalid_argument("axisymmetric element: the displacement element must be "
+                                  "FESystem(FE_Q<2>(1), 2) with node-wise dof numbering "
+                                  "(a = 2 i + c), not " +
+                                  fe.get_name());
+  }
+
+  namespace
+  {
+    // The bilinear map X(xi) = sum_i X_i N_i(xi) at one point: R = X_r, grad_X N_i =
+    // J^-T grad_xi N_i with J = dX/dxi = sum_i X_i (x) grad_xi N_i; returns det J.
+    double map_point(const std::array<Point<2>, 4> &vertices, const std::array<double, 4> &N,
+                     const std::array<Tensor<1, 2>, 4> &reference, std::array<double, 4> &values,
+                     std::array<Tensor<1, 2>, 4> &gradients, double &radius)
+    {
+      Tensor<2, 2> J;
+      radius = 0;
+      for (unsigned int i = 0; i < 4; ++i)
+        {
+          radius += N[i] * vertices[i][0];
+          for (unsigned int k = 0; k < 2; ++k)
+            J[k] += vertices[i][k] * reference[i];
+        }
+      const double       det = determinant(J);
+      const Tensor<2, 2> J_inv_T = transpose(invert(J));
+      for (unsigned int i = 0; i < 4; ++i)
+        {
+          values[i] = N[i];
+          gradients[i] = J_inv_T * reference[i];
+        }
+      return det;
+    }
+
+    [[noreturn]] void bad_cell(const std::array<Point<2>, 4> &vertices, const std::string &why)
+    {
+      std::ostringstream message;
+      message << "reinit_axisymmetric: the cell with vertices (R, Z) [um]";
+      for (const Point<2> &v : vertices)
+        message << " (" << v[0] << ", " << v[1] << ")";
+      message << " " << why;
+      throw std::invalid_argument(message.str());
+    }
+  } // namespace
+
+  void reinit_axisymmetric(AxisymmetricScratch &s, const std::array<Point<2>, 4> &vertices)
+  {
+    for (unsigned int q = 0; q <= s.n_q_points; ++q) // q = n_q_points: the centre
+      {
+        const bool   centre = q == s.n_q_points;
+        double      &R = centre ? s.radius0 : s.radius[q];
+        const double det =
+            map_point(vertices, centre ? s.reference_values0 : s.reference_values[q],
+                      centre ? s.reference_grad0 : s.reference_grad[q],
+                      centre ? s.values0 : s.values[q], centre ? s.grad0 : s.grad[q], R);
+        if (!(det > 0))
+          bad_cell(vertices, "is not mapped orientation-preserving (det dX/dxi <= 0)");
+        if (!(R > 0))
+          bad_cell(vertices, "has a Gauss point or its centre at R <= 0 (a vertex at R < 0?)");
+        if (!centre)
+          s.dV[q] = 2 * numbers::PI * R * det * s.weights[q]; // the full ring
+      }
+  }
+
+  Tensor<2, 3> axisymmetric_deformation_gradient(const AxisymmetricScratch &s, const unsigned int q,
+                                                 const Vector<double> &u_local)
+  {
+    const bool   centre = q == s.n_q_points;
+    const auto  &N = centre ? s.values0 : s.values[q];
+    const auto  &g = centre ? s.grad0 : s.grad[q];
+    const double R = centre ? s.radius0 : s.radius[q];
+    Tensor<2, 3> F = unit_symmetric_tensor<3>();
+    double       u_r = 0;
+    for (unsigned int i = 0; i < AxisymmetricScratch::n_nodes; ++i)
+      {
+        const double ur_i = u_local[2 * i], uz_i = u_local[2 * i + 1];
+        u_r += N[i] * ur_i;
+        F[r_][r_] += ur_i * g[i][0];
+        F[r_][z_] += ur_i * g[i][1];
+        F[z_][r_] += uz_i * g[i][0];
+        F[z_][z_] += uz_i * g[i][1];
+      }
+    F[theta_][theta_] += u_r / R; // hoop stretch 1 + u_r/R
+    return F;
+  }
+
+  namespace
+  {
+    // G_a = dF/du_a of dof a = 2 i + c at Gauss point q (q = n_q_points: the centre).
+    Tensor<2, 3> dof_gradient(const AxisymmetricScratch &s, const unsigned int q,
+                              const unsigned int a)
+    {
+      const bool         centre = q == s.n_q_points;
+      const auto        &N = centre ? s.values0 : s.values[q];
+      const auto        &g = centre ? s.grad0 : s.grad[q];
+      const double       R = centre ? s.radius0 : s.radius[q];
+      const unsigned int i = a / 2, row = a % 2 == 0 ? r_ : z_;
+      Tensor<2, 3>       G;
+      G[row][r_] = g[i][0];
+      G[row][z_] = g[i][1];
+      if (row == r_)
+        G[theta_][theta_] = N[i] / R;
+      return G;
+    }
+
+    // F has the block form [[F_rr, 0, F_rz], [0, F_tt, 0], [F_zr, 0, F_zz]]: J > 0 alone would
+    // let a negative hoop stretch and a folded (r, z) section pass together.
+    bool admissible(const Tensor<2, 3> &F)
+    {
+      const double in_plane = F[r_][r_] * F[z_][z_] - F[r_][z_] * F[z_][r_];
+      return F[theta_][theta_] > 0 && in_plane > 0 && std::isfinite(F[theta_][theta_]) &&
+             std::isfinite(in_plane);
+    }
+
+    // tr(X Y) for 3x3 tensors.
+    double trace_of_product(const Tensor<2, 3> &X, const Tensor<2, 3> &Y)
+    {
+      double t = 0;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          t += X[i][j] * Y[j][i];
+      return t;
+    }
+
+    // J_0 at the element centre: d ln J_0/du_a = tr(F_0^-1 G0_a),
+    // d^2 ln J_0/du_a du_b = -tr(F_0^-1 G0_b F_0^-1 G0_a). Returns J_0 (0 if inadmissible).
+    double centre_dilatation(AxisymmetricScratch &s, const Vector<double> &u_local)
+    {
+      const Tensor<2, 3> F0 = axisymmetric_deformation_gradient(s, s.n_q_points, u_local);
+      if (!admissible(F0))
+        return 0;
+      const Tensor<2, 3> F0_inv = invert(F0);
+      for (unsigned int a = 0; a < AxisymmetricScratch::n_dofs; ++a)
+        {
+          s.H[a] = F0_inv * dof_gradient(s, s.n_q_points, a);
+          s.dlnJ0[a] = trace(s.H[a]);
+        }
+      for (unsigned int a = 0; a < AxisymmetricScratch::n_dofs; ++a)
+        for (unsigned int b = 0; b < AxisymmetricScratch::n_dofs; ++b)
+          s.d2lnJ0[a][b] = -trace_of_product(s.H[b], s.H[a]);
+      return determinant(F0);
+    }
+
+    // J_0 = J_bar = sum_q J_q dV_q / V (Nagtegaal, Parks and Rice 1974), with
+    //   dJ_q/du_a = J_q tr(F_q^-1 G_a),
+    //   d^2 J_q/du_a du_b = J_q [tr(F_q^-1 G_a) tr(F_q^-1 G_b) - tr(F_q^-1 G_b F_q^-1 G_a)],
+    //   d ln J_bar/du_a = sum_q dV_q dJ_q/du_a / (V J_bar),
+    //   d^2 ln J_bar/du_a du_b = sum_q dV_q d^2 J_q/du_a du_b / (V J_bar)
+    //                            - d ln J_bar/du_a d ln J_bar/du_b.
+    // Needs s.F and s.trace at every Gauss point (element_residual_and_tangent fills them).
+    double mean_dilatation(AxisymmetricScratch &s)
+    {
+      constexpr unsigned int n_dofs = AxisymmetricScratch::n_dofs;
+      double                 volume = 0, weighted_J = 0;
+      for (unsigned int q = 0; q < s.n_q_points; ++q)
+        {
+          volume += s.dV[q];
+          weighted_J += s.dV[q] * determinant(s.F[q]);
+        }
+      const double J_bar = weighted_J / volume;
+      s.dlnJ0.fill(0);
+      for (auto &row : s.d2lnJ0)
+        row.fill(0);
+      for (unsigned int q = 0; q < s.n_q_points; ++q)
+        {
+          const double       weight = s.dV[q] * determinant(s.F[q]) / weighted_J;
+          const Tensor<2, 3> F_inv = invert(s.F[q]);
+          for (unsigned int a = 0; a < n_dofs; ++a)
+            {
+              s.H[a] = F_inv * dof_gradient(s, q, a);
+              s.dlnJ0[a] += weight * s.trace[q][a];
+            }
+          for (unsigned int a = 0; a < n_dofs; ++a)
+            for (unsigned int b = 0; b < n_dofs; ++b)
+              s.d2lnJ0[a][b] +=
+                  weight * (s.trace[q][a] * s.trace[q][b] - trace_of_product(s.H[b], s.H[a]));
+        }
+      for (unsigned int a = 0; a < n_dofs; ++a)
+        for (unsigned int b = 0; b < n_dofs; ++b)
+          s.d2lnJ0[a][b] -= s.dlnJ0[a] * s.dlnJ0[b];
+      return J_bar;
+    }
+
+    // (A : X)_ij = A_ijkl X_kl.
+    Tensor<2, 3> contract(const Tensor<4, 3> &A, const Tensor<2, 3> &X)
+    {
+      Tensor<2, 3> result;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          for (unsigned int k = 0; k < 3; ++k)
+            for (unsigned int l = 0; l < 3; ++l)
+              result[i][j] += A[i][j][k][l] * X[k][l];
+      return result;
+    }
+
+    // Adds one Gauss point's K_ab = (B_a : A : B_b + P : dB_a/du_b) dV, the second term (F-bar
+    // only) theta/3 [c_b P:G_a + c_a P:G_b + p/3 c_a c_b + p d_ab] with p = P : F and
+    // d_ab = d^2 ln J_0/du_a du_b + tr(F^-1 G_b F^-1 G_a) (s.H[a] = F^-1 G_a).
+    void add_point_tangent(AxisymmetricScratch &s, const materials::MaterialPointResponse &response,
+                           const Tensor<2, 3> &F, const double theta, const bool use_f_bar,
+                           const double dV, FullMatrix<double> &K)
+    {
+      constexpr unsigned int n_dofs = AxisymmetricScratch::n_dofs;
+      for (unsigned int b = 0; b < n_dofs; ++b)
+        s.AB[b] = contract(response.dP_dF, s.B[b]);
+      for (unsigned int a = 0; a < n_dofs; ++a)
+        for (unsigned int b = 0; b < n_dofs; ++b)
+          K(a, b) += scalar_product(s.B[a], s.AB[b]) * dV;
+      if (!use_f_bar)
+        return;
+      const Tensor<2, 3>        &P = response.P;
+      const double               p = scalar_product(P, F);
+      std::array<double, n_dofs> PG; // P : G_a
+      for (unsigned int a = 0; a < n_dofs; ++a)
+        PG[a] = scalar_product(P, s.G[a]);
+      for (unsigned int a = 0; a < n_dofs; ++a)
+        for (unsigned int b = 0; b < n_dofs; ++b)
+          {
+            const double d_ab = s.d2lnJ0[a][b] + trace_of_product(s.H[b], s.H[a]);
+            K(a, b) += theta / 3. *
+                       (s.c[b] * PG[a] + s.c[a] * PG[b] + p / 3. * s.c[a] * s.c[b] + p * d_ab) * dV;
+          }
+    }
+  } // namespace
+
+  materials::UpdateStatus axisymmetric_element_residual_and_tangent(
+      const materials::MaterialModel &material, const bool use_f_bar, const Vector<double> &u_local,
+      std::span<const double> state_old, std::span<double> state_new, AxisymmetricScratch &s,
+      Vector<double> &residual, FullMatrix<double> *tangent,
+      std::vector<Tensor<2, 3>> *cauchy_stress)
+  {
+    constexpr unsigned int n_dofs = AxisymmetricScratch::n_dofs;
+    const unsigned int     n_state = material.n_state_variables();
+    AssertDimension(u_local.size(), n_dofs);
+    AssertDimension(residual.size(), n_dofs);
+    Assert(!tangent || (tangent->m() == n_dofs && tangent->n() == n_dofs),
+           ExcMessage("the element tangent must be 8 x 8"));
+    Assert(!cauchy_stress || cauchy_stress->size() >= s.n_q_points,
+           ExcMessage("one Cauchy stress per Gauss point"));
+    Assert(state_old.size() >= s.n_q_points * n_state && state_new.size() >= s.n_q_points * n_state,
+           ExcMessage("one material state per Gauss point"));
+    residual = 0;
+    if (tangent)
+      *tangent = 0;
+
+    // Kinematics at every Gauss point first: the mean dilatation needs them all, with
+    // tr(F^-1 G_a) (= d ln J/du_a).
+    for (unsigned int q = 0; q < s.n_q_points; ++q)
+      {
+        s.F[q] = axisymmetric_deformation_gradient(s, q, u_local);
+        if (!admissible(s.F[q]))
+          return materials::UpdateStatus::invalid_deformation;
+        if (!use_f_bar)
+          continue;
+        const Tensor<2, 3> F_inv = invert(s.F[q]);
+        for (unsigned int a = 0; a < n_dofs; ++a)
+          s.trace[q][a] = trace_of_product(F_inv, dof_gradient(s, q, a));
+      }
+    double J0 = 1;
+    if (use_f_bar)
+      {
+        J0 = s.dilatation == FBarDilatation::element_centre ? centre_dilatation(s, u_local)
+                                                            : mean_dilatation(s);
+        if (!(J0 > 0) || !std::isfinite(J0))
+          return materials::UpdateStatus::invalid_deformation;
+      }
+
+    materials::MaterialPointResponse response;
+    for (unsigned int q = 0; q < s.n_q_points; ++q)
+      {
+        const Tensor<2, 3> &F = s.F[q];
+        const double        theta = use_f_bar ? std::cbrt(J0 / determinant(F)) : 1.0;
+        const Tensor<2, 3>  F_bar = theta * F;
+        const auto          status =
+            material.update(F_bar, state_old.subspan(q * n_state, n_state), response,
+                            state_new.subspan(q * n_state, n_state), tangent != nullptr);
+        if (status != materials::UpdateStatus::success)
+          return status;
+        if (cauchy_stress)
+          (*cauchy_stress)[q] = response.tau / determinant(F_bar);
+
+        // B_a = theta G_a + beta_a F with beta_a = theta c_a / 3.
+        const Tensor<2, 3> F_inv = use_f_bar ? invert(F) : Tensor<2, 3>();
+        for (unsigned int a = 0; a < n_dofs; ++a)
+          {
+            s.G[a] = dof_gradient(s, q, a);
+            s.B[a] = s.G[a];
+            if (use_f_bar)
+              {
+                s.H[a] = F_inv * s.G[a];
+                s.c[a] = s.dlnJ0[a] - s.trace[q][a];
+                s.B[a] = theta * s.G[a] + (theta * s.c[a] / 3.) * F;
+              }
+            residual[a] += scalar_product(response.P, s.B[a]) * s.dV[q];
+          }
+        if (tangent)
+          add_point_tangent(s, response, F, theta, use_f_bar, s.dV[q], *tangent);
+      }
+    return materials::UpdateStatus::success;
+  }
+} // namespace indentsim::fem

@@ -194,26 +194,4 @@ namespace indentsim::materials
       }
     return segment_line(segment(eps_p), eps_p);
   }
-
-  std::string IsotropicHardening::description() const
-  {
-    switch (kind)
-      {
-      case Law::linear:
-        return "linear (sigma_y0 = " + number_text(yield_stress) +
-               " GPa, H = " + number_text(hardening_modulus) + " GPa)";
-      case Law::power:
-        return "power (sigma_y0 = " + number_text(yield_stress) +
-               " GPa, E = " + number_text(young_modulus) + " GPa, n = " + number_text(exponent) +
-               ")";
-      case Law::voce:
-        return "voce (sigma_y0 = " + number_text(yield_stress) +
-               " GPa, Q = " + number_text(saturation) + " GPa, b = " + number_text(rate) +
-               ", H = " + number_text(hardening_modulus) + " GPa)";
-      case Law::table:
-        return "table (" + std::to_string(table_strain.size()) +
-               " points, sigma_y0 = " + number_text(yield_stress) + " GPa)";
-      }
-    return "";
-  }
 } // namespace indentsim::materials

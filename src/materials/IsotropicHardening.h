@@ -97,9 +97,6 @@ namespace indentsim::materials
     // Segment k's line sigma_y = stress + slope (eps - eps_p) evaluated at eps_p.
     FlowStress segment_line(unsigned int k, double eps_p) const;
 
-    // "linear (H = 0.5 GPa)" and so on, for messages.
-    std::string description() const;
-
   private:
     IsotropicHardening() = default;
 

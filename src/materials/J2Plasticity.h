@@ -19,6 +19,10 @@
 // the return is a 7-unknown local Newton (eps_e, Delta gamma) solved by ImplicitLocalProblem;
 // the consistent tangent follows from the implicit function theorem, with forward AD through
 // the AD-safe tensor log/exp of TensorFunctions.h (exact also at repeated principal stretches).
+// The flow stress sigma_y(gamma_p,n + Delta gamma) is any law of IsotropicHardening.h: a smooth
+// law (power, Voce) enters the Newton with its value and slope; a piecewise-linear one (linear,
+// table) is solved segment by segment, so that no Newton iteration crosses a kink (J2Plasticity.cc,
+// docs/theory.md).
 //
 // State (7 doubles): C_p^-1 in deal.II's unrolled symmetric order (00, 11, 22, 01, 02, 12),
 // then gamma_p. Units: GPa for moduli and stresses.

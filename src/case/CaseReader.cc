@@ -3,6 +3,7 @@
 // CaseValidator.cc. Every message names the file, the line, the key path and the value.
 #include "case/CaseReading.h"
 #include "case/Schema.h"
+#include "io/HardeningTableCsv.h"
 #include "io/TextNumber.h"
 
 #include <yaml-cpp/yaml.h>
@@ -57,6 +58,8 @@ namespace indentsim::io
                    "missing required key '" + key.path +
                        "' (allowed: " + join(key.choice.words(true)) + ")");
           }
+
+        read_hardening_law(result.material);
 
         // F-bar by default for plasticity (isochoric flow locks plain hexahedra) and for nearly
         // incompressible hyperelasticity (nu > 0.45: the volumetric stiffness locks them as
@@ -209,6 +212,9 @@ namespace indentsim::io
           case ValueType::triple:
             key.triple(result) = parse_triple(node, key);
             break;
+          case ValueType::list:
+            key.list(result) = parse_list(node, key);
+            break;
           }
         return true;
       }
@@ -257,6 +263,116 @@ namespace indentsim::io
             read_form("surface_normal", orientation.surface_normal);
             read_form("reference_direction", orientation.reference_direction);
           }
+      }
+
+      // material.hardening.law of J2 and its keys: each law takes its own keys, all required
+      // except the Voce law's linear term (default 0); H is given once (hardening_modulus, or
+      // the law's modulus); a table is inline or a file, which is read here into the lists. The
+      // values are checked in CaseValidator.cc.
+      void read_hardening_law(MaterialParameters &material)
+      {
+        const std::string prefix = "material.hardening.";
+        const auto        given = [&](const std::string &name) {
+          return value_origins.count(prefix + name) > 0;
+        };
+        const auto line = [&](const std::string &path) {
+          const auto origin = value_origins.find(path);
+          return origin == value_origins.end() ? -1 : origin->second.line;
+        };
+        const auto shown = [&](const std::string &name) {
+          return prefix + name + " = " + value_origins.at(prefix + name).text;
+        };
+        const std::vector<std::string> parameters = {
+            "modulus", "exponent", "saturation", "rate", "plastic_strain", "stress", "file"};
+        const std::string laws = join(choice_words<HardeningLaw>(true), " | ");
+        if (!given("law"))
+          {
+            for (const auto &name : parameters)
+              if (given(name))
+                fail(line(prefix + name),
+                     shown(name) +
+                         ": a parameter of a J2 hardening law, given without "
+                         "material.hardening.law; give law: " +
+                         laws + " with its keys (linear hardening alone: hardening_modulus)");
+            return;
+          }
+        if (value_origins.count("material.hardening_modulus") > 0)
+          fail(line("material.hardening_modulus"),
+               "material.hardening_modulus = " +
+                   value_origins.at("material.hardening_modulus").text +
+                   ": give the hardening once, either hardening_modulus (linear) or "
+                   "hardening: {law: ...} (here law: " +
+                   material.hardening_law.word() + "; for linear: {law: linear, modulus: H})");
+        if (!material.hardening_law.known())
+          return; // named by the validator, with the allowed words
+
+        struct LawKeys
+        {
+          HardeningLaw             law;
+          std::vector<std::string> required, optional;
+        };
+        const std::vector<LawKeys> law_keys = {
+            {HardeningLaw::linear, {"modulus"}, {}},
+            {HardeningLaw::power, {"exponent"}, {}},
+            {HardeningLaw::voce, {"saturation", "rate"}, {"modulus"}},
+            {HardeningLaw::table, {}, {"plastic_strain", "stress", "file"}},
+        };
+        const std::string law = material.hardening_law.word();
+        for (const auto &keys : law_keys)
+          {
+            if (material.hardening_law != keys.law)
+              continue;
+            std::vector<std::string> own = keys.required;
+            own.insert(own.end(), keys.optional.begin(), keys.optional.end());
+            for (const auto &name : parameters)
+              if (given(name) && std::find(own.begin(), own.end(), name) == own.end())
+                fail(line(prefix + name), shown(name) + ": not a parameter of law: " + law +
+                                              " (its keys: " + join(own) + ")");
+            for (const auto &name : keys.required)
+              if (!given(name))
+                fail(line(prefix + "law"), "material.hardening: law: " + law + " needs " + prefix +
+                                               name + " (its keys: " + join(own) + ")");
+          }
+        if (material.hardening_law == HardeningLaw::voce && !given("modulus"))
+          material.hardening_modulus = 0.0;
+        if (material.hardening_law == HardeningLaw::table)
+          read_hardening_table(material, given("plastic_strain"), given("stress"), given("file"),
+                               line(prefix + "law"));
+      }
+
+      // law: table: the two lists, or the file read into them.
+      void read_hardening_table(MaterialParameters &material, const bool has_strain,
+                                const bool has_stress, const bool has_file, const int law_line)
+      {
+        const std::string prefix = "material.hardening.";
+        const std::string either =
+            "give plastic_strain: [...] together with stress: [...] (GPa), or file: a CSV with "
+            "the header plastic_strain,true_stress_GPa";
+        if (has_file && (has_strain || has_stress))
+          fail(value_origins.at(prefix + "file").line,
+               prefix + "file = " + value_origins.at(prefix + "file").text +
+                   ": the table is given twice (file and lists); " + either);
+        if (has_file)
+          {
+            try
+              {
+                const HardeningTable table = read_hardening_table_csv(material.hardening_file);
+                material.hardening_plastic_strain = table.plastic_strain;
+                material.hardening_stress = table.stress;
+              }
+            catch (const std::invalid_argument &error)
+              {
+                fail(value_origins.at(prefix + "file").line,
+                     prefix + "file = \"" + material.hardening_file + "\": " + error.what());
+              }
+            return;
+          }
+        if (!has_strain || !has_stress)
+          fail(law_line, std::string("material.hardening: law: table needs ") +
+                             (has_strain   ? "stress"
+                              : has_stress ? "plastic_strain"
+                                           : "the table") +
+                             "; " + either);
       }
 
       // A path given relative to the case file's directory, made absolute (the resolved case
@@ -356,6 +472,18 @@ namespace indentsim::io
           fail(line_of(node),
                path + " = " + node_text(node) + ": expected " + meaning + " (a single word)");
         return node.Scalar();
+      }
+
+      std::vector<double> parse_list(const YAML::Node &node, const Key &key) const
+      {
+        const std::string expected = "expected a list of numbers (" + key.expected + ")";
+        if (!node.IsSequence() || node.size() == 0)
+          fail(line_of(node), key.path + " = " + node_text(node) + ": " + expected);
+        std::vector<double> values(node.size());
+        for (std::size_t i = 0; i < node.size(); ++i)
+          values[i] =
+              parse_double(node[i], key.path + "[" + std::to_string(i) + "]", key.entry_unit);
+        return values;
       }
 
       std::array<double, 3> parse_triple(const YAML::Node &node, const Key &key) const

@@ -47,6 +47,8 @@ namespace indentsim::io
           return "text";
         case ValueType::triple:
           return "3 numbers";
+        case ValueType::list:
+          return "list of numbers";
         }
       return {};
     }
@@ -82,7 +84,13 @@ namespace indentsim::io
       if (key.non_empty)
         return "non-empty";
       if (key.has_range)
-        return key.type == ValueType::triple ? "3 numbers " + key.range.text() : key.range.text();
+        {
+          if (key.type == ValueType::triple)
+            return "3 numbers " + key.range.text();
+          if (key.type == ValueType::list)
+            return "numbers " + key.range.text();
+          return key.range.text();
+        }
       if (key.type == ValueType::whole_number)
         return "≥ 0";
       return key.type == ValueType::text ? "a path, or \"\"" : "any";

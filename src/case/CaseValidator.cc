@@ -37,6 +37,7 @@ namespace indentsim::io
         check_section("");
         check_top_level();
         check_section("material");
+        check_hardening_law();
         check_crystal_parameters();
         check_section("indenter");
         std::unique_ptr<indenter::IndenterSurface> surface = check_indenter();
@@ -71,6 +72,18 @@ namespace indentsim::io
           }
       }
 
+      // The key that gave a number: `key`, or another key with the same storage that the case
+      // file gave (material.hardening.modulus for material.hardening_modulus).
+      std::string given_path(const Key &key) const
+      {
+        if (value_origins != nullptr && value_origins->count(key.path) == 0)
+          for (const auto &other : case_keys())
+            if (other.number != nullptr && other.number == key.number &&
+                value_origins->count(other.path) > 0)
+              return other.path;
+        return key.path;
+      }
+
       void check_key(const Key &key) const
       {
         Case &c = const_cast<Case &>(checked); // the accessors only read here
@@ -78,7 +91,7 @@ namespace indentsim::io
           {
           case ValueType::number:
             if (key.has_range && !key.range.contains(key.number(c)))
-              reject(key.path, format_number(key.number(c)), key.range_message);
+              reject(given_path(key), format_number(key.number(c)), key.range_message);
             break;
           case ValueType::whole_number:
             if (key.has_range && !key.range.contains(key.whole_number(c)))
@@ -89,6 +102,13 @@ namespace indentsim::io
               if (key.has_range && !key.range.contains(key.triple(c)[d]))
                 reject(key.path, format_triple(key.triple(c)),
                        key.range_message + "; the " + axis_names[d] + " entry is not");
+            break;
+          case ValueType::list:
+            for (std::size_t i = 0; i < key.list(c).size(); ++i)
+              if (key.has_range && !key.range.contains(key.list(c)[i]))
+                reject(key.path, format_list(key.list(c)),
+                       key.range_message + "; entry " + std::to_string(i) + " (" +
+                           format_number(key.list(c)[i]) + ") is not");
             break;
           case ValueType::choice:
             if (!key.choice.known(c))
@@ -111,6 +131,84 @@ namespace indentsim::io
           reject("compare_j2", format_bool(checked.compare_j2),
                  "only the tensile test can repeat the run with J2 (test: tensile); the "
                  "indentation test compares models through separate case files");
+      }
+
+      // The J2 hardening law (the keys each law takes were checked by the reader): only J2 has
+      // one (and the J2 comparison of the tensile test); the law is built as the run builds
+      // it, and a table's first stress must be the initial yield stress.
+      void check_hardening_law() const
+      {
+        const auto       &m = checked.material;
+        const std::string law_path = "material.hardening.law";
+        const bool        j2 = m.model == ModelKind::j2 || (tensile() && checked.compare_j2);
+        if (!j2 && m.hardening_law != HardeningLaw::linear)
+          reject(law_path, m.hardening_law.word(),
+                 "a J2 hardening law belongs to model: j2 (or to the J2 comparison of the "
+                 "tensile test, compare_j2: true), not to model: " +
+                     to_string(m.model) +
+                     (m.model == ModelKind::crystal
+                          ? " (its hardening is the extended Voce law: material.hardening.tau0, "
+                            "tau1, theta0, theta1, q)"
+                          : " (no plasticity)"));
+        const bool from_file = !m.hardening_file.empty();
+        try
+          {
+            materials::create_hardening_law(m);
+          }
+        catch (const materials::InvalidHardeningParameter &error)
+          {
+            reject_hardening_parameter(error.parameter, error.detail);
+          }
+        if (m.hardening_law == HardeningLaw::table &&
+            std::abs(m.hardening_stress.front() - m.yield_stress) > 1e-9 * m.yield_stress)
+          {
+            const std::string first =
+                "the table's first stress (" +
+                (from_file ? "the first row of material.hardening.file \"" + m.hardening_file + "\""
+                           : std::string("material.hardening.stress[0]")) +
+                " = " + format_number(m.hardening_stress.front()) + " GPa)";
+            const std::string path =
+                given_or_first({"material.yield_stress", from_file ? "material.hardening.file"
+                                                                   : "material.hardening.stress"});
+            const std::string rule =
+                "is the initial yield stress and must equal material.yield_stress (to 1e-9 "
+                "relative); give yield_stress: " +
+                format_number(m.hardening_stress.front()) + " or correct the table";
+            if (path == "material.yield_stress")
+              reject(path, format_number(m.yield_stress), first + " " + rule);
+            reject(path,
+                   from_file ? "\"" + m.hardening_file + "\"" : format_list(m.hardening_stress),
+                   first + " differs from yield_stress = " + format_number(m.yield_stress) +
+                       " GPa; it " + rule);
+          }
+      }
+
+      // An invalid parameter of the hardening law, named by its key.
+      [[noreturn]] void reject_hardening_parameter(const std::string &parameter,
+                                                   const std::string &detail) const
+      {
+        const auto &m = checked.material;
+        if (parameter == "plastic_strain" || parameter == "stress")
+          {
+            if (!m.hardening_file.empty())
+              reject("material.hardening.file", "\"" + m.hardening_file + "\"",
+                     "the table's " + detail + " (entries counted from 0 in file order)");
+            const std::string path = "material.hardening." + parameter;
+            reject(path,
+                   format_list(parameter == "stress" ? m.hardening_stress
+                                                     : m.hardening_plastic_strain),
+                   detail);
+          }
+        if (parameter == "hardening_modulus")
+          {
+            const std::string path =
+                given_or_first({"material.hardening.modulus", "material.hardening_modulus"});
+            reject(path, format_number(m.hardening_modulus), detail);
+          }
+        const std::string path = parameter == "yield_stress"    ? "material.yield_stress"
+                                 : parameter == "young_modulus" ? "material.young_modulus"
+                                                                : "material.hardening." + parameter;
+        reject(path, find_key(path).value_text(checked), detail);
       }
 
       // Keys of the crystal model. They are checked for every model (the resolved case always

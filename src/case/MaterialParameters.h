@@ -5,6 +5,8 @@
 #include "case/Choice.h"
 
 #include <array>
+#include <string>
+#include <vector>
 
 namespace indentsim::io
 {
@@ -34,6 +36,24 @@ namespace indentsim::io
   {
     static constexpr std::array<ChoiceWord<YieldStressMeasure>, 2> words = {
         {{YieldStressMeasure::cauchy, "cauchy"}, {YieldStressMeasure::kirchhoff, "kirchhoff"}}};
+  };
+
+  // The isotropic hardening law of J2 (material.hardening.law; materials/IsotropicHardening.h).
+  enum class HardeningLaw
+  {
+    linear,
+    power,
+    voce,
+    table
+  };
+  template <>
+  struct ChoiceWords<HardeningLaw>
+  {
+    static constexpr std::array<ChoiceWord<HardeningLaw>, 4> words = {
+        {{HardeningLaw::linear, "linear"},
+         {HardeningLaw::power, "power"},
+         {HardeningLaw::voce, "voce"},
+         {HardeningLaw::table, "table"}}};
   };
 
   // The crystal lattice and its slip systems; bcc and hcp are recognised but not implemented.
@@ -86,6 +106,16 @@ namespace indentsim::io
     double                     yield_stress = 0.305;    // sigma_y0 [GPa]
     double                     hardening_modulus = 0.5; // H [GPa], linear isotropic hardening
     Choice<YieldStressMeasure> yield_stress_measure = YieldStressMeasure::cauchy;
+
+    // The J2 hardening law (material.hardening.law and its keys); linear uses
+    // hardening_modulus, voce adds it as its linear term.
+    Choice<HardeningLaw> hardening_law = HardeningLaw::linear;
+    double               hardening_exponent = 0.0;   // n (power), 0 <= n < 1
+    double               hardening_saturation = 0.0; // Q [GPa] (voce)
+    double               hardening_rate = 1.0;       // b [-] (voce); a placeholder unless voce
+    std::vector<double>  hardening_plastic_strain;   // table: eps_p,i [-]
+    std::vector<double>  hardening_stress;           // table: true stress sigma_i [GPa]
+    std::string          hardening_file; // table: CSV read into the two lists above ("": inline)
 
     // Crystal plasticity (model: crystal), the paper's section 2.2 and Table 2.
     Choice<Lattice> lattice = Lattice::fcc;              // fcc: {111}<110>, 12 slip systems

@@ -46,6 +46,31 @@ namespace indentsim::io
     using SP = SolverParameters;
     using OU = OutputParameters;
 
+    bool linear_hardening(const Case &c)
+    {
+      return c.material.hardening_law == HardeningLaw::linear;
+    }
+    bool nonlinear_hardening(const Case &c)
+    {
+      return !linear_hardening(c);
+    }
+    bool power_hardening(const Case &c)
+    {
+      return c.material.hardening_law == HardeningLaw::power;
+    }
+    bool voce_hardening(const Case &c)
+    {
+      return c.material.hardening_law == HardeningLaw::voce;
+    }
+    bool inline_hardening_table(const Case &c)
+    {
+      return c.material.hardening_law == HardeningLaw::table && c.material.hardening_file.empty();
+    }
+    bool hardening_table_file(const Case &c)
+    {
+      return c.material.hardening_law == HardeningLaw::table && !c.material.hardening_file.empty();
+    }
+
     bool orientation_by_normal(const Case &c)
     {
       return c.material.orientation.kind == OrientationKind::surface_normal;
@@ -106,8 +131,10 @@ namespace indentsim::io
               .expect("H in GPa")
               .range(at_least(0),
                      "the hardening modulus H must be >= 0 GPa (0: perfect plasticity)")
+              .written_if(&linear_hardening)
               .comment("H [GPa], linear isotropic hardening (j2)")
-              .describe("linear isotropic hardening modulus H; 0: perfect plasticity (j2)"),
+              .describe("linear isotropic hardening modulus H, σy = σy0 + H εp; 0: perfect "
+                        "plasticity (j2; or `hardening: {law: linear, modulus: H}`, never both)"),
           D::at<&C::material, &M::yield_stress_measure>("material.yield_stress_measure")
               .expect("a stress measure")
               .comment("cauchy | kirchhoff: stress in the Mises yield function (j2)")
@@ -135,6 +162,81 @@ namespace indentsim::io
               .allowed_is("> 0; checked with C11 and C12 (positive definite)")
               .comment("[GPa]")
               .describe("cubic shear stiffness in the lattice frame (crystal)"),
+          D::at<&C::material, &M::hardening_law>("material.hardening.law")
+              .expect("a hardening law")
+              .written_if(&nonlinear_hardening)
+              .default_is("`linear` with `hardening_modulus`")
+              .comment("j2: linear | power | voce | table")
+              .describe("the J2 hardening law σy(εp) (j2; see the user guide): `linear` needs "
+                        "`modulus`; `power` σy0 (1 + E εp/σy0)^n needs `exponent`; `voce` "
+                        "σy0 + Q (1 − exp(−b εp)) + H εp needs `saturation`, `rate` (`modulus` "
+                        "optional); `table` needs `plastic_strain` and `stress`, or `file`"),
+          D::at<&C::material, &M::hardening_modulus>("material.hardening.modulus")
+              .unit("GPa")
+              .expect("H in GPa")
+              .range(at_least(0),
+                     "the hardening modulus H must be >= 0 GPa (0: perfect plasticity)")
+              .written_if(&voce_hardening)
+              .default_is("– (linear: required; voce: 0)")
+              .comment("H [GPa], linear term")
+              .describe("H: the slope of `law: linear` (the same as `hardening_modulus`), the "
+                        "linear term of `law: voce` (default 0) (j2)"),
+          D::at<&C::material, &M::hardening_exponent>("material.hardening.exponent")
+              .expect("the power-law exponent n")
+              .range(between(0, true, 1, false),
+                     "the power-law exponent n must satisfy 0 <= n < 1 (0: perfect plasticity)")
+              .written_if(&power_hardening)
+              .default_is("– (required for power)")
+              .comment("n [-], 0 <= n < 1")
+              .describe("n of `law: power`, σy = σy0 (1 + E εp/σy0)^n with E = `young_modulus` "
+                        "(Dao et al. 2001); 0: perfect plasticity (j2)"),
+          D::at<&C::material, &M::hardening_saturation>("material.hardening.saturation")
+              .unit("GPa")
+              .expect("Q in GPa")
+              .range(finite_at_least(0), "the Voce saturation Q must be a finite stress >= 0 GPa")
+              .written_if(&voce_hardening)
+              .default_is("– (required for voce)")
+              .comment("Q [GPa]")
+              .describe("Q of `law: voce`: σy tends to σy0 + Q (+ H εp) (j2)"),
+          D::at<&C::material, &M::hardening_rate>("material.hardening.rate")
+              .expect("the Voce rate b")
+              .range(finite_above(0), "the Voce rate b must be finite and > 0 (dimensionless)")
+              .written_if(&voce_hardening)
+              .default_is("– (required for voce)")
+              .comment("b [-]")
+              .describe("b of `law: voce`: the saturation is reached at εp of a few 1/b; the "
+                        "initial slope is Q b + H (j2)"),
+          D::at<&C::material, &M::hardening_plastic_strain>("material.hardening.plastic_strain")
+              .entries("plastic strains", "a plastic strain")
+              .range(finite_at_least(0), "the plastic strains must be finite and >= 0")
+              .written_if(&inline_hardening_table)
+              .default_is("– (table)")
+              .allowed_is("from 0, strictly increasing, ≥ 2 points")
+              .comment("eps_p [-], from 0, increasing")
+              .describe("`law: table`: the equivalent plastic strains εp of the points, from 0 "
+                        "and strictly increasing (j2)"),
+          D::at<&C::material, &M::hardening_stress>("material.hardening.stress")
+              .unit("GPa")
+              .entries("true stresses in GPa", "a stress in GPa")
+              .range(finite_above(0), "the stresses must be finite and > 0 GPa")
+              .written_if(&inline_hardening_table)
+              .default_is("– (table)")
+              .allowed_is("> 0, non-decreasing, the first = `yield_stress`")
+              .comment("true stress [GPa], the first = yield_stress")
+              .describe("`law: table`: the true (Cauchy) stress at each plastic strain; "
+                        "non-decreasing; the first is the initial yield stress and must equal "
+                        "`yield_stress`; piecewise linear between the points, beyond the last "
+                        "continued with the last segment's slope (j2)"),
+          D::at<&C::material, &M::hardening_file>("material.hardening.file")
+              .unit("path")
+              .expect("the path of a CSV hardening table")
+              .relative_to_case_file()
+              .written_if(&hardening_table_file)
+              .default_is("– (table)")
+              .comment("table: CSV plastic_strain,true_stress_GPa")
+              .describe("`law: table` from a CSV file instead of the two lists, relative to the "
+                        "case file's directory: a header `plastic_strain,true_stress_GPa` (or "
+                        "`..._MPa`), then one point per line (j2)"),
           D::at<&C::material, &M::tau0>("material.hardening.tau0")
               .unit("GPa")
               .expect("tau0 in GPa")
@@ -545,7 +647,9 @@ namespace indentsim::io
           {"material.elastic", "cubic constants, lattice frame (crystal)",
            "Cubic elastic constants in the lattice frame (crystal)."},
           {"material.hardening", "extended Voce law (crystal)",
-           "The extended Voce hardening law of the crystal model."},
+           "The hardening law: for `j2` the law σy(εp) (`law` and its keys; without `law`, "
+           "linear with `hardening_modulus`), for `crystal` the extended Voce law (`tau0` to "
+           "`q`)."},
           {"material.orientation", "Bunge, passive: v_crystal = g v_sample (crystal)",
            "Crystal orientation: `euler_bunge_deg`, or `surface_normal` with "
            "`reference_direction`."},
@@ -617,6 +721,8 @@ namespace indentsim::io
         return text(readable);
       case ValueType::triple:
         return format_triple(triple(readable));
+      case ValueType::list:
+        return format_list(list(readable));
       }
     return {};
   }
@@ -696,6 +802,14 @@ namespace indentsim::io
   {
     return "[" + format_number(values[0]) + ", " + format_number(values[1]) + ", " +
            format_number(values[2]) + "]";
+  }
+
+  std::string format_list(const std::vector<double> &values)
+  {
+    std::string text = "[";
+    for (std::size_t i = 0; i < values.size(); ++i)
+      text += (i == 0 ? "" : ", ") + format_number(values[i]);
+    return text + "]";
   }
 
   std::string format_bool(const bool value)

@@ -26,7 +26,8 @@ namespace indentsim::io
     boolean,
     choice, // Choice<E>: a word of its table
     text,   // a string the user chooses freely (a path)
-    triple  // three numbers
+    triple, // three numbers
+    list    // one or more numbers (std::vector<double>)
   };
 
   // Admissible values: an interval, open or closed at each end (infinite ends exclude infinity),
@@ -82,6 +83,7 @@ namespace indentsim::io
     bool &(*boolean)(Case &) = nullptr;
     std::string &(*text)(Case &) = nullptr;
     std::array<double, 3> &(*triple)(Case &) = nullptr;
+    std::vector<double> &(*list)(Case &) = nullptr;
     ChoiceAccess choice;
 
     // "C11" for "material.elastic.C11"; the map holding it: "material.elastic" ("" on top).
@@ -114,5 +116,6 @@ namespace indentsim::io
   // Shortest text that reads back to the identical double, independent of the locale.
   std::string format_number(double value);
   std::string format_triple(const std::array<double, 3> &values);
+  std::string format_list(const std::vector<double> &values);
   std::string format_bool(bool value);
 } // namespace indentsim::io

@@ -100,6 +100,11 @@ namespace indentsim::io::schema_builder
           k.expected = "[x, y, z] in um";
           k.entry_unit = "um";
         }
+      else if constexpr (std::is_same_v<T, std::vector<double>>)
+        {
+          k.type = ValueType::list;
+          k.list = &stored<Members...>;
+        }
       else
         {
           using Enum = typename ChoiceEnum<T>::type;

@@ -31,14 +31,33 @@ namespace indentsim::materials
     // Residual of the backward-Euler exponential-map return (see J2Plasticity.h), scaled to
     // strain units (the yield condition is divided by mu) so one tolerance fits both parts:
     //   R_eps = eps_e - eps_e^tr + Delta gamma N(eps_e),   N = sqrt(3/2) dev b_e / |dev b_e|,
-    //   R_f   = (sqrt(3/2) |dev tau| / J^m - sigma_y0 - H (gamma_p,n + Delta gamma)) / mu,
-    // using dev tau = mu dev b_e (eq. 3 with eq. 2) and b_e = exp(2 eps_e) (eq. 9).
+    //   R_f   = (sqrt(3/2) |dev tau| / J^m - sigma_y(gamma_p,n + Delta gamma)) / mu,
+    // using dev tau = mu dev b_e (eq. 3 with eq. 2) and b_e = exp(2 eps_e) (eq. 9). The flow
+    // stress is the line sigma_y,n + H Delta gamma (a linear law, or one segment of a table),
+    // or, when `smooth_law` is set, that law (power, Voce) with its value and slope: the
+    // Jacobian and the sensitivity need first derivatives only.
     struct ReturnMappingResidual
     {
       double mu;
-      double yield_stress_n; // sigma_y(gamma_p,n)
-      double hardening_modulus;
+      double yield_stress_n;    // the line's sigma_y at gamma_p,n; the law's sigma_y(gamma_p,n)
+      double hardening_modulus; // the line's slope H; the law's slope at gamma_p,n (initial guess)
       bool   cauchy;
+      double gamma_p_n = 0.0;
+      const IsotropicHardening *smooth_law = nullptr;
+
+      template <typename Number>
+      Number flow_stress(const Number &delta_gamma) const
+      {
+        if (smooth_law == nullptr)
+          return yield_stress_n + hardening_modulus * delta_gamma;
+        if constexpr (std::is_same_v<Number, double>)
+          return smooth_law->flow_stress(gamma_p_n + delta_gamma);
+        else
+          {
+            const auto value = smooth_law->evaluate(gamma_p_n + delta_gamma.val());
+            return value.stress + value.slope * (delta_gamma - delta_gamma.val());
+          }
+      }
 
       template <typename Number>
       void operator()(const std::array<Number, n_unknowns>   &x,
@@ -60,8 +79,8 @@ namespace indentsim::materials
           R[k] = x[k] - p[k] + flow_factor * dev_b_e.access_raw_entry(k);
         const Number equivalent_stress_over_mu =
             cauchy ? Number(sqrt_3_2 * norm_dev_b_e / p[J_index]) : Number(sqrt_3_2 * norm_dev_b_e);
-        R[delta_gamma_index] = equivalent_stress_over_mu -
-                               (yield_stress_n + hardening_modulus * x[delta_gamma_index]) / mu;
+        R[delta_gamma_index] =
+            equivalent_stress_over_mu - flow_stress<Number>(x[delta_gamma_index]) / mu;
       }
     };
 
@@ -168,6 +187,79 @@ namespace indentsim::materials
       return ReturnOutcome::not_converged;
     }
 
+    // The return on a piecewise-linear law (linear, table), segment by segment. With segment k's
+    // line sigma_k(gamma_p) in place of sigma_y, the yield residual
+    //   g_k(Delta gamma) = sigma_HMH(Delta gamma) - sigma_k(gamma_p,n + Delta gamma)
+    // decreases strictly (sigma_HMH falls along the return, the slope of sigma_k is >= 0), and
+    // it equals the true residual g at the segment's ends. So if line k's root lands beyond the
+    // segment's end, g > 0 there and the true root lies further on; if it lands before the
+    // segment's start, the true root lies before it; otherwise it is the true root. The walk
+    // starts at the segment where the Hencky estimate of the return (a scalar, piecewise-linear
+    // equation solved here exactly) ends, and moves one segment at a time; each solve is the
+    // smooth linear-hardening return, so a kink is never inside a Newton iteration. A root on a
+    // kink to round-off (the walk turns back) is accepted where it is.
+    ReturnOutcome solve_piecewise_linear_return(const IsotropicHardening        &law,
+                                                ReturnMappingResidual           &residual,
+                                                const ReturnMapping::Parameters &parameters,
+                                                const double J_m, ReturnMapping::Unknowns &unknowns)
+    {
+      const double       gamma_p_n = residual.gamma_p_n;
+      const unsigned int first = law.segment(gamma_p_n), last = law.n_segments() - 1;
+      const auto         use_segment = [&](const unsigned int k) {
+        const IsotropicHardening::FlowStress line = law.segment_line(k, gamma_p_n);
+        residual.yield_stress_n = line.stress;
+        residual.hardening_modulus = line.slope;
+      };
+      if (first == last)
+        {
+          use_segment(first);
+          return solve_return_mapping(residual, parameters, J_m, unknowns);
+        }
+
+      // Hencky estimate: sqrt(3/2) 2 mu |dev eps_e^tr| / J^m - 3 mu Delta gamma / J^m on line k.
+      const double mean = (parameters[0] + parameters[1] + parameters[2]) / 3.0;
+      double       norm_squared = 0.0;
+      for (unsigned int k = 0; k < 6; ++k)
+        {
+          const double dev = parameters[k] - (k < 3 ? mean : 0.0);
+          norm_squared += (k < 3 ? 1.0 : 2.0) * dev * dev;
+        }
+      const double trial_stress = sqrt_3_2 * 2.0 * residual.mu * std::sqrt(norm_squared) / J_m;
+      unsigned int k = first;
+      while (k < last)
+        {
+          const IsotropicHardening::FlowStress line = law.segment_line(k, gamma_p_n);
+          const double                         delta_gamma =
+              (trial_stress - line.stress) / (3.0 * residual.mu / J_m + line.slope);
+          if (gamma_p_n + delta_gamma <= law.segment_end(k))
+            break;
+          ++k;
+        }
+
+      int previous_move = 0;
+      for (unsigned int attempt = 0; attempt <= last - first + 1; ++attempt)
+        {
+          use_segment(k);
+          const ReturnOutcome outcome = solve_return_mapping(residual, parameters, J_m, unknowns);
+          if (outcome == ReturnOutcome::not_converged)
+            return outcome;
+          const double gamma_p = gamma_p_n + unknowns[delta_gamma_index];
+          if (k < last && gamma_p > law.segment_end(k) && previous_move >= 0)
+            {
+              ++k;
+              previous_move = 1;
+            }
+          else if (k > first && gamma_p < law.segment_start(k) && previous_move <= 0)
+            {
+              --k;
+              previous_move = -1;
+            }
+          else
+            return outcome;
+        }
+      return ReturnOutcome::not_converged;
+    }
+
     // Consistent tangent: eps_e(F) through the implicit function theorem, then
     // P = tau(b_e) F^-T differentiated by forward AD over the components of F. Fills `response`
     // and returns b_e, or nothing if the local Jacobian is singular.
@@ -246,18 +338,19 @@ namespace indentsim::materials
   J2Plasticity::J2Plasticity(const double young_modulus, const double poisson_ratio,
                              const double yield_stress, const double hardening_modulus,
                              const YieldStressMeasure yield_stress_measure)
+    : J2Plasticity(young_modulus, poisson_ratio,
+                   IsotropicHardening::linear(yield_stress, hardening_modulus),
+                   yield_stress_measure)
+  {
+  }
+
+  J2Plasticity::J2Plasticity(const double young_modulus, const double poisson_ratio,
+                             IsotropicHardening       hardening_law,
+                             const YieldStressMeasure yield_stress_measure)
     : elasticity(young_modulus, poisson_ratio)
-    , yield_stress(yield_stress)
-    , hardening_modulus(hardening_modulus)
+    , hardening(std::move(hardening_law))
     , measure(yield_stress_measure)
   {
-    if (!(yield_stress > 0.0) || !std::isfinite(yield_stress))
-      throw std::invalid_argument("J2Plasticity: yield_stress = " + std::to_string(yield_stress) +
-                                  " GPa; it must be positive and finite");
-    if (!(hardening_modulus >= 0.0) || !std::isfinite(hardening_modulus))
-      throw std::invalid_argument(
-          "J2Plasticity: hardening_modulus = " + std::to_string(hardening_modulus) +
-          " GPa; it must be non-negative and finite");
   }
 
   void J2Plasticity::initial_state(std::span<double> state) const
@@ -324,9 +417,19 @@ namespace indentsim::materials
 
     // Plastic corrector: the return mapping from eps_e^tr.
     const TrialParameters trial = trial_parameters(F, C_p_inverse_n, b_e_trial, J, compute_tangent);
-    const ReturnMappingResidual residual{mu, yield_stress_n, hardening_modulus, cauchy};
-    ReturnMapping::Unknowns     unknowns;
-    switch (solve_return_mapping(residual, trial.values, cauchy ? J : 1.0, unknowns))
+    ReturnMappingResidual residual{mu, yield_stress_n, 0.0, cauchy, gamma_p_n};
+    ReturnMapping::Unknowns unknowns;
+    ReturnOutcome           outcome;
+    if (hardening.piecewise_linear())
+      outcome = solve_piecewise_linear_return(hardening, residual, trial.values, cauchy ? J : 1.0,
+                                              unknowns);
+    else
+      {
+        residual.hardening_modulus = hardening.slope(gamma_p_n);
+        residual.smooth_law = &hardening;
+        outcome = solve_return_mapping(residual, trial.values, cauchy ? J : 1.0, unknowns);
+      }
+    switch (outcome)
       {
       case ReturnOutcome::on_yield_surface:
         return elastic_step();

@@ -1,9 +1,10 @@
-// Finite-strain J2 elastoplasticity with linear isotropic hardening and the exponential-map
-// return, exactly as the paper's section 2.1 (eqs 1-9; AceFEM's "NeoHookeWAMisesExH" element):
+// Finite-strain J2 elastoplasticity with isotropic hardening and the exponential-map return,
+// exactly as the paper's section 2.1 (eqs 1-9; AceFEM's "NeoHookeWAMisesExH" element):
 //   F = F_e F_p (eq. 1); neo-Hookean energy (eq. 2) in b_e = F_e F_e^T = F C_p^-1 F^T;
 //   Huber-Mises-Hencky stress sigma_HMH = sqrt(3/2) |dev s| (eq. 4), s = tau / J (Cauchy, the
 //   paper's choice and our default) or s = tau (Kirchhoff, selectable);
-//   sigma_y = sigma_y0 + H gamma_p (eq. 5); yield function f = sigma_HMH - sigma_y (eq. 6);
+//   sigma_y = sigma_y0 + H gamma_p (eq. 5), or another law sigma_y(gamma_p) of
+//   IsotropicHardening.h (power, Voce, table); yield function f = sigma_HMH - sigma_y (eq. 6);
 //   associative flow (eq. 7), KKT conditions (eq. 8) and the exponential map (eq. 9).
 //
 // Backward-Euler exponential map in spatial form: with the trial state
@@ -18,11 +19,16 @@
 // the return is a 7-unknown local Newton (eps_e, Delta gamma) solved by ImplicitLocalProblem;
 // the consistent tangent follows from the implicit function theorem, with forward AD through
 // the AD-safe tensor log/exp of TensorFunctions.h (exact also at repeated principal stretches).
+// The flow stress sigma_y(gamma_p,n + Delta gamma) is any law of IsotropicHardening.h: a smooth
+// law (power, Voce) enters the Newton with its value and slope; a piecewise-linear one (linear,
+// table) is solved segment by segment, so that no Newton iteration crosses a kink (J2Plasticity.cc,
+// docs/theory.md).
 //
 // State (7 doubles): C_p^-1 in deal.II's unrolled symmetric order (00, 11, 22, 01, 02, 12),
 // then gamma_p. Units: GPa for moduli and stresses.
 #pragma once
 
+#include "materials/IsotropicHardening.h"
 #include "materials/MaterialModel.h"
 #include "materials/NeoHookean.h"
 
@@ -43,10 +49,14 @@ namespace indentsim::materials
     static constexpr unsigned int n_state = 7;
     static constexpr unsigned int gamma_p_index = 6;
 
-    // E, nu as NeoHookean; yield_stress sigma_y0 > 0 and hardening_modulus H >= 0 [GPa].
-    // Throws std::invalid_argument on invalid values.
+    // E, nu as NeoHookean; yield_stress sigma_y0 > 0 and hardening_modulus H >= 0 [GPa]
+    // (linear hardening). Throws std::invalid_argument on invalid values.
     J2Plasticity(double young_modulus, double poisson_ratio, double yield_stress,
                  double             hardening_modulus,
+                 YieldStressMeasure yield_stress_measure = YieldStressMeasure::cauchy);
+
+    // Any hardening law of IsotropicHardening.h.
+    J2Plasticity(double young_modulus, double poisson_ratio, IsotropicHardening hardening_law,
                  YieldStressMeasure yield_stress_measure = YieldStressMeasure::cauchy);
 
     unsigned int n_state_variables() const override { return n_state; }
@@ -76,23 +86,20 @@ namespace indentsim::materials
     // C_p^-1 stored in a state.
     static dealii::SymmetricTensor<2, 3> plastic_metric_inverse(std::span<const double> state);
 
-    // sigma_y = sigma_y0 + H gamma_p (eq. 5).
-    double flow_stress(const double gamma_p) const
-    {
-      return yield_stress + hardening_modulus * gamma_p;
-    }
+    // sigma_y(gamma_p) (eq. 5 for the linear law).
+    double flow_stress(const double gamma_p) const { return hardening.flow_stress(gamma_p); }
 
     // f = sqrt(3/2) |dev tau| / J^m - sigma_y(gamma_p) (eqs 4-6), m = 1 for the Cauchy and
     // m = 0 for the Kirchhoff measure [GPa].
     double yield_function(const Tensor<2, 3> &tau, double J, double gamma_p) const;
 
-    YieldStressMeasure yield_stress_measure() const { return measure; }
-    const NeoHookean  &elastic_law() const { return elasticity; }
+    YieldStressMeasure        yield_stress_measure() const { return measure; }
+    const NeoHookean         &elastic_law() const { return elasticity; }
+    const IsotropicHardening &hardening_law() const { return hardening; }
 
   private:
     NeoHookean         elasticity;
-    double             yield_stress;      // sigma_y0 [GPa]
-    double             hardening_modulus; // H [GPa]
+    IsotropicHardening hardening;
     YieldStressMeasure measure;
   };
 } // namespace indentsim::materials

@@ -25,8 +25,7 @@ namespace indentsim::materials
                                       to_string(parameters.yield_stress_measure) +
                                       "\" is not supported; allowed: cauchy, kirchhoff");
         return std::make_unique<J2Plasticity>(parameters.young_modulus, parameters.poisson_ratio,
-                                              parameters.yield_stress, parameters.hardening_modulus,
-                                              measure);
+                                              create_hardening_law(parameters), measure);
       }
 
     if (parameters.model == io::ModelKind::crystal)
@@ -39,6 +38,22 @@ namespace indentsim::materials
 
     throw std::invalid_argument("material.model = \"" + to_string(parameters.model) +
                                 "\" is not supported; allowed: neo_hookean, j2, crystal");
+  }
+
+  IsotropicHardening create_hardening_law(const io::MaterialParameters &parameters)
+  {
+    const auto &p = parameters;
+    if (p.hardening_law == io::HardeningLaw::linear)
+      return IsotropicHardening::linear(p.yield_stress, p.hardening_modulus);
+    if (p.hardening_law == io::HardeningLaw::power)
+      return IsotropicHardening::power(p.yield_stress, p.young_modulus, p.hardening_exponent);
+    if (p.hardening_law == io::HardeningLaw::voce)
+      return IsotropicHardening::voce(p.yield_stress, p.hardening_saturation, p.hardening_rate,
+                                      p.hardening_modulus);
+    if (p.hardening_law == io::HardeningLaw::table)
+      return IsotropicHardening::table(p.hardening_plastic_strain, p.hardening_stress);
+    throw std::invalid_argument("material.hardening.law = \"" + to_string(p.hardening_law) +
+                                "\" is not supported; allowed: linear, power, voce, table");
   }
 
   dealii::Tensor<2, 3> create_orientation(const io::OrientationParameters &orientation)

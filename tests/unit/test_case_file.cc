@@ -1156,7 +1156,16 @@ TEST(CaseFile, EveryKeyIsDocumentedAndWritten)
   const std::string reference = case_file_reference_markdown();
   Case              by_normal;
   by_normal.material.orientation.kind = OrientationKind::surface_normal;
-  const std::string written = resolved_case_yaml(Case()) + resolved_case_yaml(by_normal);
+  std::string written = resolved_case_yaml(Case()) + resolved_case_yaml(by_normal);
+  // The J2 hardening laws other than linear write their own keys.
+  for (const auto law : {HardeningLaw::power, HardeningLaw::voce, HardeningLaw::table})
+    {
+      Case c;
+      c.material.hardening_law = law;
+      written += resolved_case_yaml(c);
+      c.material.hardening_file = "curve.csv";
+      written += resolved_case_yaml(c);
+    }
   for (const auto &key : case_keys())
     {
       EXPECT_NE(reference.find("| `" + key.path + "` |"), std::string::npos) << key.path;

@@ -98,7 +98,7 @@ namespace
   bool run_indentation(const io::RunCase &run_case, const MPI_Comm communicator, const bool root,
                        const bool resume, const std::string &resume_hint)
   {
-    const io::Case              &the_case = run_case.the_case;
+    const io::Case                   &the_case = run_case.the_case;
     problems::IndentationProblem<dim> problem(the_case, communicator, true, run_case.indenter);
     problem.set_resume_command(resume_hint);
     problem.setup();
@@ -259,8 +259,9 @@ namespace
         run_tensile(the_case, communicator, root);
         return 0;
       }
-    const std::string resume = resume_command(
-        program, options, case_file_directory, dealii::Utilities::MPI::n_mpi_processes(communicator));
+    const std::string resume =
+        resume_command(program, options, case_file_directory,
+                       dealii::Utilities::MPI::n_mpi_processes(communicator));
     const bool finished =
         the_case.specimen.symmetry == io::Symmetry::axisymmetric
             ? run_indentation<2>(run_case, communicator, root, options.resume, resume)

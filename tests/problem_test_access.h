@@ -18,10 +18,10 @@ namespace indentsim::problems
   {
     // Sets the displacement to u(X); hanging-node constraints are applied.
     template <int dim>
-    static void set_displacement(
-        IndentationProblem<dim> &p,
-        const std::type_identity_t<
-            std::function<dealii::Tensor<1, dim>(const dealii::Point<dim> &)>> &u)
+    static void
+    set_displacement(IndentationProblem<dim> &p,
+                     const std::type_identity_t<
+                         std::function<dealii::Tensor<1, dim>(const dealii::Point<dim> &)>> &u)
     {
       dealii::PETScWrappers::MPI::Vector u_owned(p.solid_.locally_owned, p.communicator_);
       for (const auto &cell : p.solid_.dof_handler.active_cell_iterators())

@@ -449,8 +449,9 @@ namespace indentsim::io
         const auto &shape = checked.indenter.shape;
         if (shape == IndenterShape::vickers || shape == IndenterShape::berkovich)
           reject("specimen.symmetry", "axisymmetric",
-                 why + "axisymmetric indenters (rounded_cone, sphere, cone, flat_punch, "
-                       "profile_table), not indenter.shape: " +
+                 why +
+                     "axisymmetric indenters (rounded_cone, sphere, cone, flat_punch, "
+                     "profile_table), not indenter.shape: " +
                      to_string(shape) +
                      "; use symmetry: full, or the cone of the same area function (half-angle "
                      "70.3 deg) in axisymmetric mode");

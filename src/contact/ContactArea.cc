@@ -1,8 +1,8 @@
 #include "contact/ContactArea.h"
 
 #include <algorithm>
-#include <numbers>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 namespace indentsim::contact
@@ -62,7 +62,7 @@ namespace indentsim::contact
       return patch;
     // The zero crossing of phi, where phi changes sign along the edge.
     const auto crossing = [&]() { return r[0] + (r[1] - r[0]) * phi[0] / (phi[0] - phi[1]); };
-    double r1 = r[0], r2 = r[1];
+    double     r1 = r[0], r2 = r[1];
     if (phi[0] <= 0)
       r1 = crossing();
     else if (phi[1] <= 0)

@@ -358,7 +358,8 @@ namespace indentsim::contact
     bool possible = kept_valid_;
     for (const Contribution &kept : kept_)
       for (unsigned int k = 0; k < axes_.size(); ++k)
-        if (const types::global_dof_index dof = kept.dofs[k]; constraints.is_constrained(dof) && (constraints.is_inhomogeneously_constrained(dof) ||
+        if (const types::global_dof_index dof = kept.dofs[k];
+            constraints.is_constrained(dof) && (constraints.is_inhomogeneously_constrained(dof) ||
                                                 !constraints.get_constraint_entries(dof)->empty()))
           possible = false;
     if (Utilities::MPI::min(static_cast<unsigned int>(possible), communicator_) == 0)

@@ -63,9 +63,9 @@ namespace indentsim::contact
     // Displacement dofs of the model's components: x, y, z (3D) or r, z (axisymmetric, the
     // third unused); component k moves the 3D coordinate axis(k) (NodeToSurfaceContact::axes).
     std::array<dealii::types::global_dof_index, 3> dofs;
-    Point<3>                                       X;        // reference position [um]
-    double area = 0; // tributary reference area [um^2] (axisymmetric: of the whole ring)
-    double       lambda = 0;                    // normal multiplier (nominal pressure) [GPa]
+    Point<3>                                       X; // reference position [um]
+    double       area = 0;   // tributary reference area [um^2] (axisymmetric: of the whole ring)
+    double       lambda = 0; // normal multiplier (nominal pressure) [GPa]
     double       lambda_converged = 0;          // normal multiplier of the last converged increment
     double       lambda_previous = 0;           // ... and of the one before
     Tensor<1, 3> traction_multiplier;           // tangential multiplier t_i [GPa]

@@ -28,8 +28,8 @@ namespace indentsim::fem
     // The axisymmetric kernel on the cell of the last reinit (whole-ring forces [mN]); Cauchy
     // stresses in (r, theta, z) components when asked.
     materials::UpdateStatus evaluate(const materials::MaterialModel &material, bool use_f_bar,
-                                     std::span<const double> state_old,
-                                     std::span<double> state_new, dealii::Vector<double> &residual,
+                                     std::span<const double> state_old, std::span<double> state_new,
+                                     dealii::Vector<double>            &residual,
                                      dealii::FullMatrix<double>        *tangent,
                                      std::vector<dealii::Tensor<2, 3>> *cauchy = nullptr);
 

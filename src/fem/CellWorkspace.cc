@@ -89,10 +89,10 @@ namespace indentsim::fem
                     Workspace(dof_handler.get_fe(), n_q_points), CellContribution(n_dofs));
   }
 
-  template void run_on_owned_cells<2>(const DoFHandler<2> &, unsigned int,
-                                      const CellWorker<2> &, const CellCopier &);
-  template void run_on_owned_cells<3>(const DoFHandler<3> &, unsigned int,
-                                      const CellWorker<3> &, const CellCopier &);
+  template void run_on_owned_cells<2>(const DoFHandler<2> &, unsigned int, const CellWorker<2> &,
+                                      const CellCopier &);
+  template void run_on_owned_cells<3>(const DoFHandler<3> &, unsigned int, const CellWorker<3> &,
+                                      const CellCopier &);
 
   namespace
   {
@@ -159,15 +159,13 @@ namespace indentsim::fem
     cell->get_dof_values(solution, u_local);
   }
 
-  materials::UpdateStatus CellWorkspace::evaluate(const materials::MaterialModel &material,
-                                                  const bool                      use_f_bar,
-                                                  std::span<const double>         state_old,
-                                                  std::span<double>               state_new,
-                                                  Vector<double>                 &residual,
-                                                  FullMatrix<double>             *tangent,
-                                                  std::vector<Tensor<2, 3>>      *cauchy)
+  materials::UpdateStatus
+  CellWorkspace::evaluate(const materials::MaterialModel &material, const bool use_f_bar,
+                          std::span<const double> state_old, std::span<double> state_new,
+                          Vector<double> &residual, FullMatrix<double> *tangent,
+                          std::vector<Tensor<2, 3>> *cauchy)
   {
-    return element_residual_and_tangent(material, use_f_bar, u_local, state_old, state_new,
-                                        scratch, residual, tangent, cauchy);
+    return element_residual_and_tangent(material, use_f_bar, u_local, state_old, state_new, scratch,
+                                        residual, tangent, cauchy);
   }
 } // namespace indentsim::fem

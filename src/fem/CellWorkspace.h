@@ -56,9 +56,9 @@ namespace indentsim::fem
     // The element kernel (FiniteStrainElement.h) on the cell of the last reinit: residual, and
     // tangent when `tangent` is not null; Cauchy stresses at the points when asked.
     materials::UpdateStatus evaluate(const materials::MaterialModel &material, bool use_f_bar,
-                                     std::span<const double> state_old,
-                                     std::span<double> state_new, dealii::Vector<double> &residual,
-                                     dealii::FullMatrix<double>          *tangent,
+                                     std::span<const double> state_old, std::span<double> state_new,
+                                     dealii::Vector<double>            &residual,
+                                     dealii::FullMatrix<double>        *tangent,
                                      std::vector<dealii::Tensor<2, 3>> *cauchy = nullptr);
 
     const dealii::FiniteElement<3> &vector_fe;

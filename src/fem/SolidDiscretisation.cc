@@ -39,7 +39,7 @@ namespace indentsim::fem
 
   template <int dim>
   void SolidDiscretisation<dim>::reinit_matrix(const AffineConstraints<double>  &constraints,
-                                          PETScWrappers::MPI::SparseMatrix &matrix) const
+                                               PETScWrappers::MPI::SparseMatrix &matrix) const
   {
     // keep_constrained_dofs = false: constrained rows and columns hold only their diagonal,
     // which is all that distribute_local_to_global writes into them.

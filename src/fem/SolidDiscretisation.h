@@ -25,10 +25,9 @@ namespace indentsim::fem
   {
     // `mesh_smoothing` as parallel::distributed::Triangulation takes it (the indentation mesh
     // limits the level difference at vertices; the tensile cube needs none).
-    SolidDiscretisation(
-        MPI_Comm                                  communicator,
-        typename dealii::Triangulation<dim>::MeshSmoothing mesh_smoothing =
-            dealii::Triangulation<dim>::none);
+    SolidDiscretisation(MPI_Comm                                           communicator,
+                        typename dealii::Triangulation<dim>::MeshSmoothing mesh_smoothing =
+                            dealii::Triangulation<dim>::none);
     ~SolidDiscretisation();
 
     // After the mesh is built: numbers the DoFs and fills the index sets.
@@ -50,10 +49,10 @@ namespace indentsim::fem
     // owner.
     unsigned int n_constrained_dofs(const dealii::AffineConstraints<double> &constraints) const;
 
-    MPI_Comm                                        communicator;
+    MPI_Comm                                          communicator;
     dealii::parallel::distributed::Triangulation<dim> triangulation;
     const dealii::FESystem<dim>                       fe;
     dealii::DoFHandler<dim>                           dof_handler;
-    dealii::IndexSet                                locally_owned, locally_relevant;
+    dealii::IndexSet                                  locally_owned, locally_relevant;
   };
 } // namespace indentsim::fem

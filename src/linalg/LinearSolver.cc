@@ -80,8 +80,7 @@ namespace indentsim::linalg
   }
 
   LinearSolver::Kind LinearSolver::choose_kind(const io::Choice<io::LinearSolverChoice> &setting,
-                                               const unsigned long                       n_dofs,
-                                               const unsigned int                        dim)
+                                               const unsigned long n_dofs, const unsigned int dim)
   {
     if (setting == io::LinearSolverChoice::direct)
       return Kind::direct;

@@ -61,8 +61,8 @@ namespace indentsim::linalg
     static constexpr unsigned long iterative_threshold_dofs = 60000;
     // The kind `setting` (solver.linear_solver: auto | direct | iterative) selects for a system of n_dofs unknowns.
     // Axisymmetric (dim = 2) systems go to the direct solver: 2D fill grows only as n log n.
-    static Kind choose_kind(const io::Choice<io::LinearSolverChoice> &setting,
-                            unsigned long n_dofs, unsigned int dim = 3);
+    static Kind choose_kind(const io::Choice<io::LinearSolverChoice> &setting, unsigned long n_dofs,
+                            unsigned int dim = 3);
 
     // Sets the OpenMP threads of MUMPS and the threads of OpenBLAS to one, unless the user set
     // OMP_NUM_THREADS or OPENBLAS_NUM_THREADS. Our threads are TBB's (assembly) and MPI ranks;
@@ -109,8 +109,8 @@ namespace indentsim::linalg
   private:
     void destroy();
     void configure_amg(); // the AMG's PETSc options (prefix indentsim_)
-    void use_gmres(); // right-preconditioned, true-residual test
-    void use_cg();    // true-residual test
+    void use_gmres();     // right-preconditioned, true-residual test
+    void use_cg();        // true-residual test
     void dump_system(const dealii::PETScWrappers::MPI::SparseMatrix &matrix,
                      const dealii::PETScWrappers::MPI::Vector       &rhs);
 

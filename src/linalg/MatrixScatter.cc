@@ -222,8 +222,8 @@ namespace indentsim::linalg
   }
 
   template <class CellIterator>
-  bool MatrixScatter::plan_cell(const CellIterator                        &cell,
-                                const AffineConstraints<double>           &constraints,
+  bool MatrixScatter::plan_cell(const CellIterator              &cell,
+                                const AffineConstraints<double> &constraints,
                                 MatrixPattern &pattern, CellScratch &scratch)
   {
     const unsigned int n = n_cell_dofs_;

@@ -93,11 +93,10 @@ namespace indentsim::linalg
     // path); groups the send slots by destination rank (returns the (row, column) of each slot
     // in the new order); learns from the other ranks what they send and where it goes.
     struct CellScratch;
-    void                  reset(unsigned int n_active_cells, unsigned int n_cell_dofs);
+    void reset(unsigned int n_active_cells, unsigned int n_cell_dofs);
     template <class CellIterator>
-    bool                  plan_cell(const CellIterator &cell,
-                                    const dealii::AffineConstraints<double> &constraints, MatrixPattern &pattern,
-                                    CellScratch &scratch);
+    bool plan_cell(const CellIterator &cell, const dealii::AffineConstraints<double> &constraints,
+                   MatrixPattern &pattern, CellScratch &scratch);
     std::vector<PetscInt> group_send_slots(const MatrixPattern &pattern);
     void plan_receives(MatrixPattern &pattern, const std::vector<PetscInt> &send_entries);
     // Sends slots [send_offsets_[k], send_offsets_[k + 1]) of `send` (width values of `type`

@@ -129,7 +129,8 @@ namespace indentsim::mesh
             {
               const Point<dim> c = cell->center();
               const bool       lateral = dim == 2 || std::abs(c[1]) < info.refined_half_y - tol;
-              if (std::abs(c[0]) < info.refined_half_x - tol && lateral && c[dim - 1] > -depth + tol)
+              if (std::abs(c[0]) < info.refined_half_x - tol && lateral &&
+                  c[dim - 1] > -depth + tol)
                 cell->set_refine_flag();
             }
         triangulation.execute_coarsening_and_refinement();

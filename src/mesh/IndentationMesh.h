@@ -28,7 +28,7 @@ namespace indentsim::mesh
     // The axisymmetric section's edges: the axis r = 0 (x_min), the outer cylinder r = Lx/2
     // (x_max), the bottom and the top.
     constexpr dealii::types::boundary_id axis = x_min, outer = x_max;
-  }
+  } // namespace boundary
 
   struct MeshInfo
   {

@@ -40,7 +40,8 @@ namespace indentsim::mesh
     MeshSize axisymmetric_mesh(const AxisCount &x, const std::uint64_t z_inner,
                                const std::uint64_t z_outer, const unsigned int L)
     {
-      const std::uint64_t bx = x.inner, bz = z_inner, nx = x.inner + x.outer, nz = z_inner + z_outer;
+      const std::uint64_t bx = x.inner, bz = z_inner, nx = x.inner + x.outer,
+                          nz = z_inner + z_outer;
       const std::uint64_t open_x = x.outer > 0 ? 1 : 0, open_bottom = z_outer > 0 ? 1 : 0;
       const std::uint64_t edge = open_x * bz + open_bottom * bx, corner = open_x * open_bottom;
       std::uint64_t       refinements = 0;
@@ -49,8 +50,8 @@ namespace indentsim::mesh
       const std::uint64_t fine = std::uint64_t(1) << L;
       MeshSize            size;
       size.cells = nx * nz - bx * bz + bx * bz * power(4, L) + 3 * refinements;
-      size.vertices = (bx * fine + 1) * (bz * fine + 1) + (nx + 1) * (nz + 1) - (bx + 1) * (bz + 1) +
-                      4 * refinements;
+      size.vertices = (bx * fine + 1) * (bz * fine + 1) + (nx + 1) * (nz + 1) -
+                      (bx + 1) * (bz + 1) + 4 * refinements;
       size.dofs = 2 * size.vertices;
       return size;
     }

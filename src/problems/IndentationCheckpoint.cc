@@ -192,7 +192,7 @@ namespace indentsim::problems
 
   template <int dim>
   void IndentationProblem<dim>::write_checkpoint(const LoopState                    &loop,
-                                            const std::vector<SurfaceSnapshot> &snapshots)
+                                                 const std::vector<SurfaceSnapshot> &snapshots)
   {
     const unsigned int rank = Utilities::MPI::this_mpi_process(communicator_);
     const std::string  directory = checkpoint_directory();
@@ -257,7 +257,8 @@ namespace indentsim::problems
   }
 
   template <int dim>
-  void IndentationProblem<dim>::read_checkpoint(LoopState &loop, std::vector<SurfaceSnapshot> &snapshots)
+  void IndentationProblem<dim>::read_checkpoint(LoopState                    &loop,
+                                                std::vector<SurfaceSnapshot> &snapshots)
   {
     const unsigned int rank = Utilities::MPI::this_mpi_process(communicator_);
     const std::string  directory = checkpoint_directory();

@@ -25,8 +25,8 @@ namespace indentsim::problems
 
   template <int dim>
   void IndentationProblem<dim>::check_guards(output::RunRecorder      &recorder,
-                                        const nonlinear::Segment &segment, const StepRecord &record,
-                                        const bool at_max)
+                                             const nonlinear::Segment &segment,
+                                             const StepRecord &record, const bool at_max)
   {
     check_refined_region(recorder, segment, record);
     check_plastic_zone(recorder);
@@ -36,7 +36,7 @@ namespace indentsim::problems
 
   template <int dim>
   void IndentationProblem<dim>::warn(output::RunRecorder &recorder, const std::string &topic,
-                                const std::string &text)
+                                     const std::string &text)
   {
     if (std::find(warned_topics_.begin(), warned_topics_.end(), topic) != warned_topics_.end())
       return;
@@ -54,8 +54,8 @@ namespace indentsim::problems
   // (reference positions: a check independent of the deformation).
   template <int dim>
   void IndentationProblem<dim>::check_refined_region(output::RunRecorder      &recorder,
-                                                const nonlinear::Segment &segment,
-                                                const StepRecord         &record)
+                                                     const nonlinear::Segment &segment,
+                                                     const StepRecord         &record)
   {
     const contact::ContactPatch   patch = contact_patch();
     const mesh::PatchExtent       reached{patch.max_abs_x, patch.max_abs_y};
@@ -144,7 +144,7 @@ namespace indentsim::problems
         plastic = true;
         // The axisymmetric section's (r, z) stands for the zone's reach in every direction.
         const Point<dim> p = cell->center();
-        const Point<3>   c = dim == 3 ? Point<3>(p[0], p[1], p[dim - 1]) : Point<3>(p[0], p[0], p[1]);
+        const Point<3> c = dim == 3 ? Point<3>(p[0], p[1], p[dim - 1]) : Point<3>(p[0], p[0], p[1]);
         reach[0] = std::max(reach[0], c[0]);
         reach[1] = std::max(reach[1], -c[0]);
         reach[2] = std::max(reach[2], c[1]);
@@ -163,7 +163,8 @@ namespace indentsim::problems
     const char *faces[5] = {"x = +", "x = -", "y = +", "y = -", "z = -"};
     for (unsigned int f = 0; f < 5; ++f)
       {
-        if ((mesh_info_.quarter && (f == 1 || f == 3)) || (mesh_info_.axisymmetric && f < 4 && f != 0))
+        if ((mesh_info_.quarter && (f == 1 || f == 3)) ||
+            (mesh_info_.axisymmetric && f < 4 && f != 0))
           continue; // symmetry planes; the axisymmetric model has one lateral face r = R
         const double distance = face_distance[f] - reach[f];
         if (!(distance < reach[f]))
@@ -195,7 +196,7 @@ namespace indentsim::problems
   // At the maximum: the contact elements across the equivalent contact radius sqrt(A/pi).
   template <int dim>
   void IndentationProblem<dim>::check_contact_resolution(output::RunRecorder &recorder,
-                                                    const StepRecord    &record)
+                                                         const StepRecord    &record)
   {
     // The recorded contact counts the area of the active nodes only, which is nothing like the
     // contact while it spans less than an element (one active node at the apex). The contact

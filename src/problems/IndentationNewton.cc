@@ -91,8 +91,7 @@ namespace indentsim::problems
   };
 
   template <int dim>
-  enum class IndentationProblem<dim>::IterateOutcome
-  {
+  enum class IndentationProblem<dim>::IterateOutcome {
     next_iterate,      // a Newton update (or a line-search step) was taken
     converged,         // the pass converged
     augment_early,     // an inexact pass ends: augment now
@@ -110,9 +109,10 @@ namespace indentsim::problems
   } // namespace
 
   template <int dim>
-  IncrementStatus IndentationProblem<dim>::solve_increment(const double depth_start, StepRecord &record,
-                                                      const bool                  extrapolate,
-                                                      const std::optional<double> target_force)
+  IncrementStatus IndentationProblem<dim>::solve_increment(const double                depth_start,
+                                                           StepRecord                 &record,
+                                                           const bool                  extrapolate,
+                                                           const std::optional<double> target_force)
   {
     NewtonIncrement increment(solid_.locally_owned, communicator_, depth_start, target_force,
                               symmetry_factor(), converged_force_scale_);
@@ -183,7 +183,7 @@ namespace indentsim::problems
   template <int dim>
   typename IndentationProblem<dim>::IterateOutcome
   IndentationProblem<dim>::newton_iteration(NewtonIncrement &increment, NewtonPass &pass,
-                                       const unsigned int it, StepRecord &record)
+                                            const unsigned int it, StepRecord &record)
   {
     const bool   failed = evaluate_iterate(increment, pass, it);
     const double norm = failed ? std::numeric_limits<double>::infinity()
@@ -284,7 +284,7 @@ namespace indentsim::problems
   // iterate: the same numbers, bitwise, so the prediction only changes the cost).
   template <int dim>
   bool IndentationProblem<dim>::evaluate_iterate(NewtonIncrement &increment, NewtonPass &pass,
-                                            const unsigned int it)
+                                                 const unsigned int it)
   {
     pass.predictor = (increment.pass == 0 && it == 0);
     pass.matrix_assembled = true;
@@ -351,7 +351,7 @@ namespace indentsim::problems
   template <int dim>
   std::optional<typename IndentationProblem<dim>::IterateOutcome>
   IndentationProblem<dim>::check_convergence(NewtonIncrement &increment, NewtonPass &pass,
-                                        const unsigned int it, const double norm)
+                                             const unsigned int it, const double norm)
   {
     // Inexact augmentation: a pass that is not the last need not converge to the final
     // tolerance. Once Newton has cut this pass's residual by 1e-3 (its quadratic phase), or once
@@ -398,8 +398,8 @@ namespace indentsim::problems
   //   K du + R_h dh = -R,   F_u . du + F_h dh = -(F - F*),
   // solved with K a = -R and K b = -R_h as du = a + b dh, dh = -((F - F*) + F_u . a) / (F_h + F_u . b).
   template <int dim>
-  IncrementStatus IndentationProblem<dim>::newton_update(NewtonIncrement &increment, NewtonPass &pass,
-                                                    const double norm)
+  IncrementStatus IndentationProblem<dim>::newton_update(NewtonIncrement &increment,
+                                                         NewtonPass &pass, const double norm)
   {
     residual_ *= -1.0;
     // Under force control, where the same tolerance serves the bordered solve, no floor.

@@ -22,10 +22,10 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
-#include <numbers>
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <numbers>
 
 namespace indentsim::problems
 {
@@ -58,8 +58,8 @@ namespace indentsim::problems
 
   template <int dim>
   void IndentationProblem<dim>::compute_cell_fields(Vector<float>              &von_mises,
-                                               Vector<float>              &plastic_strain,
-                                               std::vector<Vector<float>> &cauchy)
+                                                    Vector<float>              &plastic_strain,
+                                                    std::vector<Vector<float>> &cauchy)
   {
     for_each_cell_stress([&](const auto &cell, const std::vector<Tensor<2, 3>> &sigma,
                              const std::span<const double> state) {
@@ -146,11 +146,11 @@ namespace indentsim::problems
     data_out.add_data_vector(scalar_dofs, pressure_readable, "contact_pressure_GPa");
     data_out.add_data_vector(scalar_dofs, status_readable, "contact_status");
     data_out.add_data_vector(scalar_dofs, traction_readable, "friction_traction_GPa");
-    const char *names_3d[6] = {"cauchy_xx_GPa", "cauchy_xy_GPa", "cauchy_xz_GPa",
-                               "cauchy_yy_GPa", "cauchy_yz_GPa", "cauchy_zz_GPa"};
-    const char *names_axisymmetric[6] = {"cauchy_rr_GPa",         "cauchy_rtheta_GPa",
-                                         "cauchy_rz_GPa",         "cauchy_thetatheta_GPa",
-                                         "cauchy_thetaz_GPa",     "cauchy_zz_GPa"};
+    const char        *names_3d[6] = {"cauchy_xx_GPa", "cauchy_xy_GPa", "cauchy_xz_GPa",
+                                      "cauchy_yy_GPa", "cauchy_yz_GPa", "cauchy_zz_GPa"};
+    const char        *names_axisymmetric[6] = {"cauchy_rr_GPa",     "cauchy_rtheta_GPa",
+                                                "cauchy_rz_GPa",     "cauchy_thetatheta_GPa",
+                                                "cauchy_thetaz_GPa", "cauchy_zz_GPa"};
     const char *const *names = dim == 3 ? names_3d : names_axisymmetric;
     for (unsigned int k = 0; k < 6; ++k)
       data_out.add_data_vector(cauchy[k], names[k]);
@@ -176,7 +176,7 @@ namespace indentsim::problems
     // 3D: per face, 4 corners in cyclic order x (X, Y, u_x, u_y, u_z). deal.II numbers a face's
     // vertices lexicographically, 0 (0,0), 1 (1,0), 2 (0,1), 3 (1,1): cyclic is 0, 1, 3, 2.
     // Axisymmetric: per top edge, its 2 vertices x (R, u_r, u_z).
-    constexpr unsigned int n_corners = dim == 3 ? 4 : 2, n_values = dim == 3 ? 5 : 3;
+    constexpr unsigned int                n_corners = dim == 3 ? 4 : 2, n_values = dim == 3 ? 5 : 3;
     constexpr std::array<unsigned int, 4> cyclic = {0, 1, 3, 2};
     std::vector<double>                   local;
     for (const auto &cell : solid_.dof_handler.active_cell_iterators())
@@ -196,8 +196,7 @@ namespace indentsim::problems
 
     std::vector<pileup::SurfaceQuad> surface;
     for (const std::vector<double> &values : gathered)
-      for (std::size_t i = 0; i + n_corners * n_values <= values.size();
-           i += n_corners * n_values)
+      for (std::size_t i = 0; i + n_corners * n_values <= values.size(); i += n_corners * n_values)
         {
           const double *c = &values[i];
           if constexpr (dim == 3)
@@ -215,7 +214,7 @@ namespace indentsim::problems
 
   template <int dim>
   void IndentationProblem<dim>::write_pileup(const std::vector<SurfaceSnapshot> &snapshots,
-                                        const double                        contact_radius)
+                                             const double                        contact_radius)
   {
     namespace files = io::output_files;
     pileup_results_.clear();

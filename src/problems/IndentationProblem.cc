@@ -44,9 +44,9 @@ namespace indentsim::problems
   using output::RunStatistics;
 
   template <int dim>
-  IndentationProblem<dim>::IndentationProblem(const io::Case &the_case, const MPI_Comm communicator,
-                                         const bool                                       verbose,
-                                         std::shared_ptr<const indenter::IndenterSurface> indenter)
+  IndentationProblem<dim>::IndentationProblem(
+      const io::Case &the_case, const MPI_Comm communicator, const bool verbose,
+      std::shared_ptr<const indenter::IndenterSurface> indenter)
     : case_(the_case)
     , communicator_(communicator)
     , pcout_(std::cout, verbose && Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -207,12 +207,13 @@ namespace indentsim::problems
     const double a_c =
         std::sqrt(indenter_->projected_area(case_.loading.max_depth) / std::numbers::pi);
     const double radius = 2.5 * a_c;
-    const auto   weight = [radius, extra_cost](
-                            const typename parallel::distributed::Triangulation<dim>::cell_iterator &cell,
-                            const typename parallel::distributed::Triangulation<dim>::CellStatus) {
-      return static_cast<unsigned int>(1000 *
-                                       (1.0 + (cell->center().norm() < radius ? extra_cost : 0.0)));
-    };
+    const auto   weight =
+        [radius,
+         extra_cost](const typename parallel::distributed::Triangulation<dim>::cell_iterator &cell,
+                     const typename parallel::distributed::Triangulation<dim>::CellStatus) {
+          return static_cast<unsigned int>(
+              1000 * (1.0 + (cell->center().norm() < radius ? extra_cost : 0.0)));
+        };
     auto connection = solid_.triangulation.signals.weight.connect(weight);
     solid_.triangulation.repartition();
     connection.disconnect();
@@ -221,7 +222,7 @@ namespace indentsim::problems
   template <int dim>
   typename IndentationProblem<dim>::AssemblyResult
   IndentationProblem<dim>::assemble(const bool                                          with_matrix,
-                               contact::NodeToSurfaceContact::DepthCoupling *const coupling)
+                                    contact::NodeToSurfaceContact::DepthCoupling *const coupling)
   {
     AssemblyResult result;
     ++statistics_.assemblies;
@@ -239,7 +240,7 @@ namespace indentsim::problems
                             Workspace &workspace, CellContribution &contribution) {
       workspace.reinit(cell, u);
       contribution.status = workspace.evaluate(*material_, use_f_bar_, history_.converged(cell),
-                                               history_.current(cell), contribution.vector,
+                                                         history_.current(cell), contribution.vector,
                                                with_matrix ? &contribution.matrix : nullptr);
       cell->get_dof_indices(contribution.dof_indices);
       contribution.cell_index = cell->active_cell_index();

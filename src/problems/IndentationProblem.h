@@ -140,13 +140,13 @@ namespace indentsim::problems
     // each also went to run.log and, when verbose, to stderr.
     const std::vector<std::string> &warnings() const { return warnings_; }
 
-    unsigned int                 n_cells() const;
-    unsigned int                 n_dofs() const;
-    unsigned int                 n_constrained_dofs() const;
-    unsigned int                 n_hanging_node_constraints() const;
-    const mesh::MeshInfo        &mesh_info() const { return mesh_info_; }
-    double                       symmetry_factor() const { return mesh_info_.quarter ? 4.0 : 1.0; }
-    const dealii::DoFHandler<dim> &dof_handler() const { return solid_.dof_handler; }
+    unsigned int          n_cells() const;
+    unsigned int          n_dofs() const;
+    unsigned int          n_constrained_dofs() const;
+    unsigned int          n_hanging_node_constraints() const;
+    const mesh::MeshInfo &mesh_info() const { return mesh_info_; }
+    double                symmetry_factor() const { return mesh_info_.quarter ? 4.0 : 1.0; }
+    const dealii::DoFHandler<dim>            &dof_handler() const { return solid_.dof_handler; }
     const dealii::PETScWrappers::MPI::Vector &solution() const { return solution_; }
 
   private:

@@ -52,8 +52,8 @@ namespace indentsim::problems
   };
 
   template <int dim>
-  typename IndentationProblem<dim>::RunOutcome IndentationProblem<dim>::run(const std::string &output_directory,
-                                                         const bool         resume)
+  typename IndentationProblem<dim>::RunOutcome
+  IndentationProblem<dim>::run(const std::string &output_directory, const bool resume)
   {
     output_directory_ = output_directory;
     if (resume && output_directory_.empty())
@@ -137,7 +137,7 @@ namespace indentsim::problems
   // A converged step becomes the next recorded step of the run (numbered, stamped, kept).
   template <int dim>
   void IndentationProblem<dim>::add_record(RunContext &context, const Segment &segment,
-                                      StepRecord &record)
+                                           StepRecord &record)
   {
     LoopState &loop = context.loop;
     ++loop.step;
@@ -223,8 +223,8 @@ namespace indentsim::problems
   // Records a converged step, writes its outputs, accepts it and moves the programme on.
   template <int dim>
   void IndentationProblem<dim>::complete_step(RunContext &context, const Segment &segment,
-                                         StepRecord &record, const double depth_before,
-                                         const double force_before)
+                                              StepRecord &record, const double depth_before,
+                                              const double force_before)
   {
     LoopState                         &loop = context.loop;
     const nonlinear::LoadingProgramme &programme = context.programme;

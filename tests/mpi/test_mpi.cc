@@ -14,9 +14,10 @@ using namespace indentsim;
 
 namespace
 {
+  template <int dim = 3>
   std::vector<nonlinear::StepRecord> run(const io::Case &c, const MPI_Comm communicator)
   {
-    problems::IndentationProblem<3> problem(c, communicator, false);
+    problems::IndentationProblem<dim> problem(c, communicator, false);
     problem.setup();
     problem.run("");
     return problem.records();
@@ -48,6 +49,30 @@ TEST(Mpi, OneVersusManyRanksGiveTheSameCurve)
       EXPECT_NEAR(p.contact_area, s.contact_area, 1e-8 * s.contact_area) << "step " << i;
       EXPECT_NEAR(p.contact_radius, s.contact_radius, 1e-8 * s.contact_radius) << "step " << i;
       EXPECT_EQ(p.n_active_nodes, s.n_active_nodes) << "step " << i;
+    }
+}
+
+// The axisymmetric model with Coulomb friction (mu = 0.2), loaded and unloaded: one rank and
+// several ranks give the same curve and contact states (tolerances as above).
+TEST(Mpi, AxisymmetricOneVersusManyRanksGiveTheSameCurve)
+{
+  io::Case c = test_cases::small_j2_case("axisymmetric");
+  c.contact.friction_coefficient = 0.2;
+  c.loading.unload = true;
+  c.contact.penetration_tolerance = 1e-8;
+  c.solver.residual_tolerance = 1e-8;
+  const auto parallel = run<2>(c, MPI_COMM_WORLD), serial = run<2>(c, MPI_COMM_SELF);
+  ASSERT_EQ(parallel.size(), serial.size());
+  for (std::size_t i = 1; i < serial.size(); ++i)
+    {
+      const auto &p = parallel[i], &s = serial[i];
+      EXPECT_NEAR(p.force, s.force, 1e-7 * std::max(s.force, 1.0)) << "step " << i;
+      EXPECT_NEAR(p.depth, s.depth, 1e-10) << "step " << i;
+      EXPECT_NEAR(p.force, p.bottom_reaction, 1e-6 * std::max(p.force, 1.0)) << "step " << i;
+      EXPECT_NEAR(p.contact_area, s.contact_area, 1e-7 * std::max(s.contact_area, 1.0))
+          << "step " << i;
+      EXPECT_EQ(p.n_active_nodes, s.n_active_nodes) << "step " << i;
+      EXPECT_EQ(p.n_stick_nodes, s.n_stick_nodes) << "step " << i;
     }
 }
 
@@ -88,48 +113,70 @@ TEST(Mpi, FrictionUnderForceControlMatchesOneRank)
 // tolerance only (1e-6 relative, Newton iterations within 1): two uninterrupted 2-rank runs are
 // not bit-identical (measured: up to 1.6e-8 relative in the force at step 3, before any stop);
 // one rank reproduces to round-off (Resume.* tests).
+namespace
+{
+  template <int dim>
+  void expect_resumed_run_equals_uninterrupted(io::Case c, const std::string &name)
+  {
+    c.output.checkpoint_interval_s = 0;
+    const bool  root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    std::string directory =
+        root ? test_files::scratch_directory("mpi_resume", name).string() : std::string();
+    directory = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, directory, 0);
+    const std::string reference_dir = directory + "/reference",
+                      resumed_dir = directory + "/resumed";
+    if (root)
+      {
+        std::filesystem::create_directories(reference_dir);
+        std::filesystem::create_directories(resumed_dir);
+      }
+    MPI_Barrier(MPI_COMM_WORLD);
+
+    using Outcome = typename problems::IndentationProblem<dim>::RunOutcome;
+    std::vector<nonlinear::StepRecord> reference, resumed;
+    {
+      problems::IndentationProblem<dim> problem(c, MPI_COMM_WORLD, false);
+      problem.setup();
+      ASSERT_EQ(problem.run(reference_dir), Outcome::finished);
+      reference = problem.records();
+    }
+    {
+      problems::IndentationProblem<dim> problem(c, MPI_COMM_WORLD, false);
+      problem.setup();
+      problem.stop_after_step(3);
+      ASSERT_EQ(problem.run(resumed_dir), Outcome::stopped);
+    }
+    {
+      problems::IndentationProblem<dim> problem(c, MPI_COMM_WORLD, false);
+      problem.setup();
+      ASSERT_EQ(problem.run(resumed_dir, true), Outcome::finished);
+      resumed = problem.records();
+    }
+    ASSERT_EQ(resumed.size(), reference.size());
+    for (std::size_t i = 1; i < reference.size(); ++i)
+      {
+        EXPECT_NEAR(resumed[i].depth, reference[i].depth, 1e-10 * std::max(reference[i].depth, 1.0))
+            << "step " << i;
+        EXPECT_NEAR(resumed[i].force, reference[i].force, 1e-6 * std::max(reference[i].force, 1.0))
+            << "step " << i;
+        EXPECT_NEAR(resumed[i].newton_iterations, reference[i].newton_iterations, 1)
+            << "step " << i;
+      }
+  }
+} // namespace
+
 TEST(Mpi, StoppedAndResumedRunEqualsUninterruptedRun)
 {
   io::Case c = test_cases::small_j2_case();
   c.loading.steps = 6;
-  c.output.checkpoint_interval_s = 0;
-  const bool  root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-  std::string directory =
-      root ? test_files::scratch_directory("mpi_resume", "run").string() : std::string();
-  directory = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, directory, 0);
-  const std::string reference_dir = directory + "/reference", resumed_dir = directory + "/resumed";
-  if (root)
-    {
-      std::filesystem::create_directories(reference_dir);
-      std::filesystem::create_directories(resumed_dir);
-    }
-  MPI_Barrier(MPI_COMM_WORLD);
+  expect_resumed_run_equals_uninterrupted<3>(c, "quarter");
+}
 
-  using Outcome = problems::IndentationProblem<3>::RunOutcome;
-  std::vector<nonlinear::StepRecord> reference, resumed;
-  {
-    problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
-    problem.setup();
-    ASSERT_EQ(problem.run(reference_dir), Outcome::finished);
-    reference = problem.records();
-  }
-  {
-    problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
-    problem.setup();
-    problem.stop_after_step(3);
-    ASSERT_EQ(problem.run(resumed_dir), Outcome::stopped);
-  }
-  {
-    problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
-    problem.setup();
-    ASSERT_EQ(problem.run(resumed_dir, true), Outcome::finished);
-    resumed = problem.records();
-  }
-  ASSERT_EQ(resumed.size(), reference.size());
-  for (std::size_t i = 1; i < reference.size(); ++i)
-    {
-      EXPECT_NEAR(resumed[i].depth, reference[i].depth, 1e-10 * reference[i].depth) << "step " << i;
-      EXPECT_NEAR(resumed[i].force, reference[i].force, 1e-6 * reference[i].force) << "step " << i;
-      EXPECT_NEAR(resumed[i].newton_iterations, reference[i].newton_iterations, 1) << "step " << i;
-    }
+// The same for the axisymmetric model, loaded and unloaded.
+TEST(Mpi, AxisymmetricStoppedAndResumedRunEqualsUninterruptedRun)
+{
+  io::Case c = test_cases::small_j2_case("axisymmetric");
+  c.loading.steps = 6;
+  c.loading.unload = true;
+  expect_resumed_run_equals_uninterrupted<2>(c, "axisymmetric");
 }

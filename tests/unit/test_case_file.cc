@@ -582,6 +582,24 @@ TEST(CaseFile, QuarterSymmetryNeedsAMirrorSymmetricIndenter)
   expect_rejected_case(c, {"specimen.symmetry = quarter", "berkovich"});
 }
 
+// The axisymmetric model is exact only for isotropic materials under axisymmetric tips.
+TEST(CaseFile, AxisymmetricModelNeedsIsotropyAndAnAxisymmetricTip)
+{
+  const std::string axisymmetric = with("specimen:\n  symmetry: axisymmetric\n");
+  expect_rejected(
+      axisymmetric + "indenter:\n  shape: berkovich\n",
+      {"specimen.symmetry = axisymmetric", "axisymmetric indenters", "berkovich", "70.3 deg"});
+  expect_rejected(axisymmetric + "indenter:\n  shape: vickers\n",
+                  {"specimen.symmetry = axisymmetric", "vickers"});
+  expect_rejected(axisymmetric + "material:\n  model: crystal\n",
+                  {"specimen.symmetry = axisymmetric", "isotropic", "crystal"});
+  expect_rejected("test: tensile\nspecimen:\n  symmetry: axisymmetric\n",
+                  {"specimen.symmetry = axisymmetric", "tensile", "symmetry: full"});
+  for (const std::string ok : {"sphere\n", "cone\n", "flat_punch\n", "rounded_cone\n"})
+    EXPECT_EQ(error_of(axisymmetric + "indenter:\n  shape: " + ok), "") << ok;
+  EXPECT_EQ(error_of(axisymmetric + "material:\n  model: neo_hookean\n"), "");
+}
+
 // The Vickers and Berkovich examples are valid cases with the advertised indenters and meshes.
 TEST(CaseFile, PyramidExamplesAreValid)
 {

@@ -59,9 +59,9 @@ TEST(Axisymmetric, SphereMatchesHertz)
       c.loading.max_depth = 0.2;
       c.loading.steps = 2;
       problems::IndentationProblem<2> problem(c, MPI_COMM_WORLD, false);
-      const auto  &r = run(problem);
-      const double hertz = 4. / 3. * reduced_modulus(c) * std::sqrt(c.indenter.radius) *
-                           std::pow(r.depth, 1.5);
+      const auto                     &r = run(problem);
+      const double                    hertz =
+          4. / 3. * reduced_modulus(c) * std::sqrt(c.indenter.radius) * std::pow(r.depth, 1.5);
       errors.push_back(r.force / hertz - 1);
       std::cout << "[ hertz ] refined radius " << refined_radius << " um, " << problem.n_dofs()
                 << " DOFs: P = " << r.force << " mN, Hertz " << hertz << " mN, error "
@@ -84,7 +84,7 @@ TEST(Axisymmetric, RoundedConeMatchesSneddon)
   io::Case c = elastic_axisymmetric_case(8., 256); // 0.0625 um elements
   c.loading.max_depth = 0.1;
   c.loading.steps = 1;
-  problems::IndentationProblem<2> problem(c, MPI_COMM_WORLD, false);
+  problems::IndentationProblem<2>  problem(c, MPI_COMM_WORLD, false);
   const auto                      &r = run(problem);
   const indenter::SneddonReference reference(reduced_modulus(c), c.indenter.a, c.indenter.delta);
   const double                     closed_form = reference.force_at_depth(r.depth);

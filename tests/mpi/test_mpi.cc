@@ -52,8 +52,9 @@ TEST(Mpi, OneVersusManyRanksGiveTheSameCurve)
     }
 }
 
-// The axisymmetric model with Coulomb friction (mu = 0.2), loaded and unloaded: one rank and
-// several ranks give the same curve and contact states (tolerances as above).
+// The axisymmetric model with Coulomb friction (mu = 0.2), loaded and unloaded under force-paced
+// unloading: one rank and several ranks give the same curve and contact states, to 1e-6 of the
+// largest force and area (the Newton tolerance of the differently ordered sums).
 TEST(Mpi, AxisymmetricOneVersusManyRanksGiveTheSameCurve)
 {
   io::Case c = test_cases::small_j2_case("axisymmetric");
@@ -63,13 +64,19 @@ TEST(Mpi, AxisymmetricOneVersusManyRanksGiveTheSameCurve)
   c.solver.residual_tolerance = 1e-8;
   const auto parallel = run<2>(c, MPI_COMM_WORLD), serial = run<2>(c, MPI_COMM_SELF);
   ASSERT_EQ(parallel.size(), serial.size());
+  double max_force = 0, max_area = 0;
+  for (const auto &s : serial)
+    {
+      max_force = std::max(max_force, s.force);
+      max_area = std::max(max_area, s.contact_area);
+    }
   for (std::size_t i = 1; i < serial.size(); ++i)
     {
       const auto &p = parallel[i], &s = serial[i];
-      EXPECT_NEAR(p.force, s.force, 1e-7 * std::max(s.force, 1.0)) << "step " << i;
-      EXPECT_NEAR(p.depth, s.depth, 1e-10) << "step " << i;
+      EXPECT_NEAR(p.force, s.force, 1e-6 * max_force) << "step " << i;
+      EXPECT_NEAR(p.depth, s.depth, 1e-8) << "step " << i; // force-paced unloading
       EXPECT_NEAR(p.force, p.bottom_reaction, 1e-6 * std::max(p.force, 1.0)) << "step " << i;
-      EXPECT_NEAR(p.contact_area, s.contact_area, 1e-7 * std::max(s.contact_area, 1.0))
+      EXPECT_NEAR(p.contact_area, s.contact_area, 1e-6 * max_area)
           << "step " << i;
       EXPECT_EQ(p.n_active_nodes, s.n_active_nodes) << "step " << i;
       EXPECT_EQ(p.n_stick_nodes, s.n_stick_nodes) << "step " << i;

@@ -80,6 +80,10 @@ CASES = {"j2_12_quarter": ("smoke test: J2 indentation, 12x12 contact elements, 
 for n in (12, 24, 48, 72):
     CASES[f"j2_{n}"] = (f"J2 indentation (Table 1), {n}x{n} contact elements, full model",
                         indentation(J2, n))
+for n in (24, 48):
+    CASES[f"j2_{n}_quarter"] = (
+        f"J2 indentation (Table 1), {n}x{n} contact elements, quarter model",
+        indentation(J2, n, "quarter"))
 for n in (12, 24, 48, 72):
     CASES[f"crystal_{n}"] = (
         f"crystal indentation of (001) (Table 2), {n}x{n} contact elements, full model",

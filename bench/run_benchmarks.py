@@ -80,10 +80,19 @@ CASES = {"j2_12_quarter": ("smoke test: J2 indentation, 12x12 contact elements, 
 for n in (12, 24, 48, 72):
     CASES[f"j2_{n}"] = (f"J2 indentation (Table 1), {n}x{n} contact elements, full model",
                         indentation(J2, n))
+for n in (24, 48):
+    CASES[f"j2_{n}_quarter"] = (
+        f"J2 indentation (Table 1), {n}x{n} contact elements, quarter model",
+        indentation(J2, n, "quarter"))
 for n in (12, 24, 48, 72):
     CASES[f"crystal_{n}"] = (
         f"crystal indentation of (001) (Table 2), {n}x{n} contact elements, full model",
         indentation({**CRYSTAL, "orientation": {"euler_bunge_deg": [0, 0, 0]}}, n))
+CASES["berkovich_j2_24"] = (
+    "J2 indentation (Table 1) by a Berkovich pyramid (tip radius 0.05 um), 24x24, full model: "
+    "the case that once stalled at 3.47 um with AMG-GMRES",
+    {**indentation(J2, 24),
+     "indenter": {"shape": "berkovich", "tip_radius": 0.05, "rotation_deg": 0}})
 CASES["tensile_27"] = (
     "tensile test of 27 random grains (crystal, 3x3x3 elements, 100 steps), no J2 comparison",
     {"test": "tensile", "material": {**J2, **CRYSTAL},

@@ -139,8 +139,8 @@ namespace indentsim::io
         1e-7; // relative to the first residual of the increment (indentation: or the last indenter force, if larger)
     double       absolute_tolerance = 1e-10; // [mN]
     unsigned int max_newton_iterations = 25;
-    // Linear solver of the Newton iterations (linalg/LinearSolver.h): auto (direct below
-    // LinearSolver::iterative_threshold_dofs unknowns, else iterative) | direct (MUMPS LU) |
+    // Linear solver of the Newton iterations (linalg/LinearSolver.h): auto (the kind of lower
+    // predicted cost, LinearSolver::choose_kind) | direct (MUMPS LU) |
     // iterative (CG/GMRES with ML smoothed-aggregation AMG, rigid-body modes).
     Choice<LinearSolverChoice> linear_solver = LinearSolverChoice::automatic;
     unsigned int threads = 0; // assembly threads per MPI rank; 0: the cores divided by the ranks

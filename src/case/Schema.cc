@@ -578,7 +578,8 @@ namespace indentsim::io
           D::at<&C::solver, &SP::linear_solver>("solver.linear_solver")
               .expect("a linear solver")
               .comment("auto | direct (MUMPS) | iterative (AMG-preconditioned CG/GMRES)")
-              .describe("`auto`: direct below 60 000 DOFs, else iterative; `direct`: MUMPS LU; "
+              .describe("`auto`: the kind of lower predicted cost (3D: iterative from about "
+                        "300 DOFs; 2D: direct), see docs/performance.md; `direct`: MUMPS LU; "
                         "`iterative`: AMG-preconditioned CG for symmetric tangents, GMRES "
                         "otherwise"),
           D::at<&C::solver, &SP::threads>("solver.threads")

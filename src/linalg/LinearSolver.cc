@@ -79,9 +79,26 @@ namespace indentsim::linalg
     call("OPENBLAS_NUM_THREADS", "openblas_set_num_threads");
   }
 
-  LinearSolver::Kind LinearSolver::choose_kind(const io::Choice<io::LinearSolverChoice> &setting,
-                                               const unsigned long n_dofs, const unsigned int dim)
+  double LinearSolver::predicted_direct_seconds(const unsigned int dim, const unsigned long n_dofs)
   {
+    const double n = static_cast<double>(n_dofs);
+    return dim == 2 ? direct_coefficient_2d * std::pow(n, 1.5) : direct_coefficient_3d * n * n;
+  }
+
+  double LinearSolver::predicted_iterative_seconds(const unsigned int  dim,
+                                                   const unsigned long n_dofs)
+  {
+    const double n = static_cast<double>(n_dofs);
+    return (dim == 2 ? iterative_coefficient_2d : iterative_coefficient_3d) * n *
+           std::pow(n / iterative_reference_dofs, iterative_cost_exponent);
+  }
+
+  LinearSolver::Kind LinearSolver::choose_kind(const io::Choice<io::LinearSolverChoice> &setting,
+                                               const unsigned int dim, const unsigned long n_dofs)
+  {
+    if (dim != 2 && dim != 3)
+      throw std::invalid_argument("LinearSolver::choose_kind: dimension " + std::to_string(dim) +
+                                  " (allowed: 2, 3)");
     if (setting == io::LinearSolverChoice::direct)
       return Kind::direct;
     if (setting == io::LinearSolverChoice::iterative)
@@ -89,7 +106,9 @@ namespace indentsim::linalg
     if (setting != io::LinearSolverChoice::automatic)
       throw std::invalid_argument("solver.linear_solver: unknown value '" + to_string(setting) +
                                   "' (allowed: auto, direct, iterative)");
-    return dim == 3 && n_dofs >= iterative_threshold_dofs ? Kind::iterative : Kind::direct;
+    return predicted_iterative_seconds(dim, n_dofs) < predicted_direct_seconds(dim, n_dofs)
+               ? Kind::iterative
+               : Kind::direct;
   }
 
   LinearSolver::LinearSolver(const MPI_Comm communicator)
@@ -119,73 +138,70 @@ namespace indentsim::linalg
            " + ML smoothed-aggregation AMG with rigid-body modes)";
   }
 
-  template <>
-  void LinearSolver::setup(const DoFHandler<2> &dof_handler, const Kind kind, const bool symmetric)
+  namespace
+  {
+    // The AMG's near-null space at a node at x, component c, mode m: 3D, the three translations
+    // and the three rotations omega x X about x, y, z (components (0,-z,y), (z,0,-x), (-y,x,0));
+    // 2D axisymmetric (r, z), the translation along z alone.
+    template <int dim>
+    unsigned int n_near_null_modes()
+    {
+      return dim == 3 ? 6 : 1;
+    }
+    template <int dim>
+    double near_null_mode(const unsigned int mode, const unsigned int c, const Point<dim> &x)
+    {
+      if constexpr (dim == 2)
+        return c == 1 ? 1.0 : 0.0;
+      else
+        {
+          if (mode < 3)
+            return mode == c ? 1.0 : 0.0;
+          const double rotations[3][3] = {{0., -x[2], x[1]}, {x[2], 0., -x[0]}, {-x[1], x[0], 0.}};
+          return rotations[mode - 3][c];
+        }
+    }
+  } // namespace
+
+  template <int dim>
+  void LinearSolver::setup(const DoFHandler<dim> &dof_handler, const Kind kind,
+                           const bool symmetric)
   {
     destroy();
     kind_ = kind;
     symmetric_ = symmetric;
-    rebuild_preconditioner_ = true;
-    rigid_body_modes_.clear();
-    nodal_blocks_ = false;
-    if (kind_ == Kind::direct)
-      return;
-    // The z translation: u_z = 1 at every node.
-    const IndexSet &owned = dof_handler.locally_owned_dofs();
-    rigid_body_modes_.resize(1);
-    rigid_body_modes_[0].reinit(owned, communicator_);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int v : cell->vertex_indices())
-          if (const auto dof = cell->vertex_dof_index(v, 1); owned.is_element(dof))
-            rigid_body_modes_[0](dof) = 1.0;
-    rigid_body_modes_[0].compress(VectorOperation::insert);
-    rigid_body_modes_[0] /= rigid_body_modes_[0].l2_norm();
-    configure_amg();
-  }
-
-  template <>
-  void LinearSolver::setup(const DoFHandler<3> &dof_handler, const Kind kind, const bool symmetric)
-  {
-    destroy();
-    kind_ = kind;
-    symmetric_ = symmetric;
+    block_size_ = dim;
     rebuild_preconditioner_ = true;
     rigid_body_modes_.clear();
     if (kind_ == Kind::direct)
       return;
 
-    // Rigid-body modes at the nodes: three translations and three rotations about the centre
-    // of the owned nodes' bounding box (any centre spans the same space), orthonormalized.
+    // The near-null space at the nodes, orthonormalized (any centre of the rotations spans the
+    // same space).
     const IndexSet &owned = dof_handler.locally_owned_dofs();
-    // The three unknowns of a node are consecutive and start at a multiple of three (deal.II
-    // numbers a vertex's DoFs together; nothing here renumbers them), so the matrix has 3 x 3
-    // nodal blocks, which the smoother inverts (point-block Jacobi). Checked, not assumed.
-    nodal_blocks_ = owned.n_elements() % 3 == 0;
-    rigid_body_modes_.resize(6);
+    // The dim unknowns of a node are consecutive and start at a multiple of dim (deal.II
+    // numbers a vertex's DoFs together; nothing here renumbers them), so the matrix has
+    // dim x dim nodal blocks, which the smoother inverts (point-block Jacobi). Checked, not
+    // assumed.
+    nodal_blocks_ = owned.n_elements() % dim == 0;
+    rigid_body_modes_.resize(n_near_null_modes<dim>());
     for (auto &mode : rigid_body_modes_)
       mode.reinit(owned, communicator_);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const unsigned int v : cell->vertex_indices())
           {
-            const Point<3> x = cell->vertex(v);
-            for (unsigned int c = 0; c < 3; ++c)
+            const Point<dim> x = cell->vertex(v);
+            for (unsigned int c = 0; c < dim; ++c)
               {
                 const types::global_dof_index dof = cell->vertex_dof_index(v, c);
                 const types::global_dof_index first = cell->vertex_dof_index(v, 0);
-                if (dof != first + c || first % 3 != 0)
+                if (dof != first + c || first % dim != 0)
                   nodal_blocks_ = false;
                 if (!owned.is_element(dof))
                   continue;
-                rigid_body_modes_[c](dof) = 1.0;
-                // Rotations about x, y, z: omega x X, components (0,-z,y), (z,0,-x), (-y,x,0).
-                const double rot_x[3] = {0., -x[2], x[1]};
-                const double rot_y[3] = {x[2], 0., -x[0]};
-                const double rot_z[3] = {-x[1], x[0], 0.};
-                rigid_body_modes_[3](dof) = rot_x[c];
-                rigid_body_modes_[4](dof) = rot_y[c];
-                rigid_body_modes_[5](dof) = rot_z[c];
+                for (unsigned int m = 0; m < rigid_body_modes_.size(); ++m)
+                  rigid_body_modes_[m](dof) = near_null_mode<dim>(m, c, x);
               }
           }
     nodal_blocks_ = Utilities::MPI::min(nodal_blocks_ ? 1 : 0, communicator_) == 1;
@@ -199,11 +215,7 @@ namespace indentsim::linalg
                                    rigid_body_modes_[j]);
         rigid_body_modes_[i] /= rigid_body_modes_[i].l2_norm();
       }
-    configure_amg();
-  }
 
-  void LinearSolver::configure_amg()
-  {
     // ML (Trilinos' smoothed aggregation, through PETSc) with the rigid-body modes: its setup
     // is an order of magnitude cheaper than PETSc's GAMG on our systems (bench_linear_solver,
     // docs/performance.md). GAMG stays available: -indentsim_pc_type gamg.
@@ -212,11 +224,14 @@ namespace indentsim::linalg
     set_default_option("-indentsim_pc_gamg_threshold", "0.01");
     set_default_option("-indentsim_pc_gamg_square_graph", "1");
     set_default_option("-indentsim_mg_levels_ksp_type", "chebyshev");
-    // Point-block Jacobi (the 3 x 3 nodal blocks inverted) in the Chebyshev smoother: about a
+    // Point-block Jacobi (the nodal blocks inverted) in the Chebyshev smoother: about a
     // third fewer Krylov iterations than point Jacobi on the paper's systems.
-    set_default_option("-indentsim_mg_levels_pc_type", nodal_blocks_ ? "pbjacobi" : "jacobi");
+    set_default_option("-indentsim_mg_levels_pc_type", "pbjacobi");
     set_default_option("-indentsim_mg_levels_ksp_max_it", "2");
   }
+
+  template void LinearSolver::setup<2>(const DoFHandler<2> &, Kind, bool);
+  template void LinearSolver::setup<3>(const DoFHandler<3> &, Kind, bool);
 
   // The Krylov solvers test convergence on the true residual ||b - A x||, so that the
   // inexact-Newton forcing term means what it says. Left-preconditioned GMRES would test the
@@ -255,7 +270,8 @@ namespace indentsim::linalg
       {
         destroy();
         if (kind_ == Kind::iterative && nodal_blocks_)
-          check(MatSetBlockSize(petsc_matrix, 3), "MatSetBlockSize");
+          check(MatSetBlockSize(petsc_matrix, static_cast<PetscInt>(block_size_)),
+                "MatSetBlockSize");
         check(KSPCreate(communicator_, &ksp_), "KSPCreate");
         check(KSPSetOptionsPrefix(ksp_, "indentsim_"), "KSPSetOptionsPrefix");
         PC pc;
@@ -289,10 +305,10 @@ namespace indentsim::linalg
     // The same Mat with new values: the direct solver refactors numerically (the symbolic
     // analysis is kept); the iterative one keeps its preconditioner unless it must be rebuilt
     // (ML rebuilds its hierarchy; GAMG recomputes the coarse operators on the kept interpolation).
-    // With nodal blocks, the Krylov method and the smoothers apply a BAIJ copy of the matrix
-    // (BlockMatrixCopy.h: 38 % less time per solve on j2_48); ML builds its hierarchy from the
-    // AIJ matrix itself.
-    const Mat applied = (kind_ == Kind::iterative && nodal_blocks_)
+    // With 3 x 3 nodal blocks, the Krylov method and the smoothers apply a BAIJ copy of the
+    // matrix (BlockMatrixCopy.h: 38 % less time per solve on j2_48); ML builds its hierarchy
+    // from the AIJ matrix itself. 2D systems apply the AIJ matrix.
+    const Mat applied = (kind_ == Kind::iterative && nodal_blocks_ && block_size_ == 3)
                             ? block_copy_.update(petsc_matrix)
                             : petsc_matrix;
     check(KSPSetOperators(ksp_, applied, petsc_matrix), "KSPSetOperators");

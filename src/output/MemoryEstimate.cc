@@ -2,6 +2,7 @@
 
 #include "case/CaseFile.h"
 #include "case/Schema.h"
+#include "linalg/LinearSolver.h"
 #include "mesh/IndentationMesh.h"
 
 #include <deal.II/base/mpi.h>
@@ -22,9 +23,8 @@ namespace indentsim::output
     constexpr double j2_kib_per_dof = 8.0;    // neo-Hookean and J2
     constexpr double crystal_kib_per_dof = 8.7;
     // MUMPS factors: coefficient * DOFs^exponent [KiB], summed over the ranks.
-    constexpr double        direct_coefficient_kib = 0.038;
-    constexpr double        direct_exponent = 1.5;
-    constexpr unsigned long iterative_threshold_dofs = 60000; // linalg/LinearSolver.h
+    constexpr double direct_coefficient_kib = 0.038;
+    constexpr double direct_exponent = 1.5;
 
     std::string mib_text(const double mib)
     {
@@ -38,11 +38,9 @@ namespace indentsim::output
 
     bool uses_direct_solver(const io::Case &the_case, const std::uint64_t dofs)
     {
-      if (the_case.solver.linear_solver == io::LinearSolverChoice::direct)
-        return true;
-      if (the_case.solver.linear_solver == io::LinearSolverChoice::iterative)
-        return false;
-      return dofs < iterative_threshold_dofs;
+      const unsigned int dim = the_case.specimen.symmetry == io::Symmetry::axisymmetric ? 2 : 3;
+      return linalg::LinearSolver::choose_kind(the_case.solver.linear_solver, dim, dofs) ==
+             linalg::LinearSolver::Kind::direct;
     }
 
     // The key that sizes the mesh and the largest value of it whose estimate fits in

@@ -6,7 +6,7 @@
 // The estimate: every rank's base (program, libraries, MPI, PETSc) plus a per-DOF amount for the
 // model (matrix, vectors, quadrature-point histories, the iterative solver's AMG hierarchy and
 // block copy), plus the direct solver's factors when MUMPS is used (solver.linear_solver:
-// direct, or auto below 60 000 DOFs), which grow faster than the DOFs. The coefficients are
+// direct, or auto where linalg::LinearSolver::choose_kind predicts it cheaper), which grow faster than the DOFs. The coefficients are
 // calibrated against the peak resident memory of real runs (docs/performance.md, "Memory
 // estimate").
 #pragma once

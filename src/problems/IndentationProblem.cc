@@ -177,7 +177,7 @@ namespace indentsim::problems
                       mesh_info_.refined_half_x, communicator_);
 
     linear_solver_.setup(solid_.dof_handler,
-                         LinearSolver::choose_kind(case_.solver.linear_solver, n_dofs(), dim),
+                         LinearSolver::choose_kind(case_.solver.linear_solver, dim, n_dofs()),
                          material_->symmetric_tangent() && contact_->symmetric_tangent());
 
     pcout_ << "Mesh: " << n_cells() << " cells, " << n_dofs() << " DOFs, " << n_constrained_dofs()

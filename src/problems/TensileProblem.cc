@@ -112,7 +112,7 @@ namespace indentsim::problems
     solid_.reinit_matrix(constraints_homogeneous_, matrix_);
     linear_solver_.setup(
         solid_.dof_handler,
-        LinearSolver::choose_kind(case_.solver.linear_solver, solid_.dof_handler.n_dofs()),
+        LinearSolver::choose_kind(case_.solver.linear_solver, 3, solid_.dof_handler.n_dofs()),
         material_->symmetric_tangent());
     solid_.reinit_ghosted(solution_);
     solid_.reinit_ghosted(solution_converged_);

@@ -99,6 +99,9 @@ TEST(Mpi, FrictionUnderForceControlMatchesOneRank)
   c.loading.max_depth = 1.5;
   c.loading.steps = 4;
   c.loading.unload = true;
+  // The direct solver: with AMG the aggregates depend on the partition, and the two curves
+  // agree to the solver tolerance only (measured: 1.3e-8 um of 0.014 um in the depth).
+  c.solver.linear_solver = "direct";
   const auto parallel = run(c, MPI_COMM_WORLD), serial = run(c, MPI_COMM_SELF);
   ASSERT_EQ(parallel.size(), serial.size());
   unsigned int sticking = 0;
@@ -175,6 +178,9 @@ namespace
 TEST(Mpi, StoppedAndResumedRunEqualsUninterruptedRun)
 {
   io::Case c = test_cases::small_j2_case();
+  // The direct solver: resumed runs reproduce to round-off with it; the iterative one rebuilds
+  // its AMG hierarchy on resume and agrees to the solver tolerance (user guide, "Stop and resume").
+  c.solver.linear_solver = "direct";
   c.loading.steps = 6;
   expect_resumed_run_equals_uninterrupted<3>(c, "quarter");
 }

@@ -6,6 +6,7 @@
 #include "io/CommandLine.h"
 #include "io/Version.h"
 
+#include "../case_file_errors.h"
 #include "../test_files.h"
 
 #include <gtest/gtest.h>
@@ -49,30 +50,8 @@ namespace
 
   const std::string minimal_case = "test: indentation\nmaterial:\n  model: j2\n";
 
-  // Parses `yaml` (as file "bad.yaml") and returns the error message, or "" if none was thrown.
-  std::string error_of(const std::string &yaml)
-  {
-    try
-      {
-        parse_case_yaml(yaml, "bad.yaml");
-      }
-    catch (const CaseFileError &error)
-      {
-        return error.what();
-      }
-    return "";
-  }
-
-  // Asserts that `yaml` is rejected with a message naming the file and containing every part.
-  void expect_rejected(const std::string &yaml, std::initializer_list<std::string> parts)
-  {
-    const std::string message = error_of(yaml);
-    SCOPED_TRACE("case file:\n" + yaml + "\nmessage: " + message);
-    ASSERT_FALSE(message.empty()) << "no CaseFileError thrown";
-    EXPECT_EQ(message.rfind("bad.yaml", 0), 0u) << "message does not start with the file name";
-    for (const auto &part : parts)
-      EXPECT_NE(message.find(part), std::string::npos) << "missing '" << part << "'";
-  }
+  using indentsim::test_case_files::error_of;
+  using indentsim::test_case_files::expect_rejected;
 
   // Asserts that validate_case rejects `c` with a message containing every part.
   void expect_rejected_case(const Case &c, std::initializer_list<std::string> parts)

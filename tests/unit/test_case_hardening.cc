@@ -7,6 +7,7 @@
 #include "materials/MaterialFactory.h"
 #include "study/StudyFile.h"
 
+#include "../case_file_errors.h"
 #include "../test_files.h"
 
 #include <gtest/gtest.h>
@@ -43,29 +44,8 @@ namespace
     return "test: indentation\nmaterial: {model: j2, " + material + "}\n";
   }
 
-  std::string error_of(const std::string &yaml)
-  {
-    try
-      {
-        parse_case_yaml(yaml, "bad.yaml");
-      }
-    catch (const CaseFileError &error)
-      {
-        return error.what();
-      }
-    return "";
-  }
-
-  // `yaml` must be rejected with a message that starts with the file name and holds every part.
-  void expect_rejected(const std::string &yaml, std::initializer_list<std::string> parts)
-  {
-    const std::string message = error_of(yaml);
-    SCOPED_TRACE("case file:\n" + yaml + "\nmessage: " + message);
-    ASSERT_FALSE(message.empty()) << "no CaseFileError thrown";
-    EXPECT_EQ(message.rfind("bad.yaml", 0), 0u) << "message does not start with the file name";
-    for (const auto &part : parts)
-      EXPECT_NE(message.find(part), std::string::npos) << "missing '" << part << "'";
-  }
+  using indentsim::test_case_files::error_of;
+  using indentsim::test_case_files::expect_rejected;
 
   const materials::IsotropicHardening &law_of(const Case                                &c,
                                               std::unique_ptr<materials::MaterialModel> &model)

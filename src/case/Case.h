@@ -84,18 +84,39 @@ namespace indentsim::io
          {LinearSolverChoice::iterative, "iterative"}}};
   };
 
+  // The graded mesh of specimen.contact_elements: auto, designed from the indenter and the
+  // loading (mesh/MeshDesign.h); derived from the other keys, never read from a case file.
+  // Target element edge at the distance rho from the tip: max(min_element, rho / n) with
+  // n = elements_per_radius up to graded_radius and far_elements_per_radius beyond. Units: um.
+  struct MeshGrading
+  {
+    double contact_radius = 0;          // a_d: the predicted contact radius at the maximum
+    double min_element = 0;             // h_min: resolves the contact from max_depth / 8
+    double elements_per_radius = 0;     // n: elements per distance from the tip, near field
+    double graded_radius = 0;           // rho_p: the near field (contact and plastic zone)
+    double far_elements_per_radius = 0; // beyond rho_p
+
+    bool operator==(const MeshGrading &) const = default;
+  };
+
+  // specimen.contact_elements: auto is stored as 0.
+  inline constexpr unsigned int automatic_contact_elements = 0;
+
   struct SpecimenParameters
   {
     std::array<double, 3> size = {{360., 360., 180.}};          // block edge lengths [um]
     std::array<double, 3> refined_region = {{120., 120., 30.}}; // refined block under the tip [um]
-    unsigned int          contact_elements = 12; // N: N x N faces across the refined top face
-    Choice<Symmetry>      symmetry = Symmetry::full;
-    bool                  f_bar = true; // F-bar element (default on for plasticity)
+    unsigned int          contact_elements = 12; // N: N x N faces across the refined top face;
+                                                 // 0: auto (the graded mesh of `grading`)
+    Choice<Symmetry> symmetry = Symmetry::full;
+    bool             f_bar = true; // F-bar element (default on for plasticity)
     // Tensile test (test: tensile): a cube of elements_per_side^3 elements of 1 um edge.
     unsigned int   elements_per_side = 3;
     Choice<Grains> grains = Grains::single; // per_element: random orientation each
     unsigned int   seed = 1;                // seed of the random orientations (per_element)
+    MeshGrading    grading;                 // contact_elements: auto only (designed)
 
+    bool automatic_mesh() const { return contact_elements == automatic_contact_elements; }
     bool operator==(const SpecimenParameters &) const = default;
   };
 

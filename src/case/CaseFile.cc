@@ -222,8 +222,8 @@ namespace indentsim::io
 
   Case parse_case_yaml(const std::string &yaml_text, const std::string &source_name)
   {
-    OriginMap  origins;
-    const Case result = parse_case_text(yaml_text, source_name, origins);
+    OriginMap origins;
+    Case      result = parse_case_text(yaml_text, source_name, origins);
     validate_values(result, &origins);
     return result;
   }
@@ -266,7 +266,8 @@ namespace indentsim::io
 
   void validate_case(const Case &resolved_case)
   {
-    validate_values(resolved_case, nullptr);
+    Case checked = resolved_case;
+    validate_values(checked, nullptr);
   }
 
   void write_resolved_case(const Case &resolved_case, const std::string &path)

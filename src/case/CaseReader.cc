@@ -9,6 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -196,7 +197,7 @@ namespace indentsim::io
             key.number(result) = parse_double(node, key.path, key.expected);
             break;
           case ValueType::whole_number:
-            key.whole_number(result) = parse_unsigned(node, key.path);
+            key.whole_number(result) = parse_whole_number_or_word(node, key);
             break;
           case ValueType::boolean:
             key.boolean(result) = parse_bool(node, key.path);
@@ -413,6 +414,26 @@ namespace indentsim::io
         if (!value)
           fail(line_of(node), path + " = \"" + node.Scalar() + "\": " + expected);
         return *value;
+      }
+
+      // A whole number, or the key's word for 0 (specimen.contact_elements: auto); a literal 0
+      // is then refused, since it would read as the word.
+      unsigned int parse_whole_number_or_word(const YAML::Node &node, const Key &key) const
+      {
+        if (key.zero_word == nullptr)
+          return parse_unsigned(node, key.path);
+        if (node.IsScalar() && node.Scalar() == key.zero_word)
+          return 0;
+        const std::string either = std::string("; allowed: ") + key.zero_word + ", or " +
+                                   (key.has_range ? key.range_message : "a whole number > 0");
+        if (node.IsScalar() && !node.Scalar().empty() &&
+            !std::isdigit(static_cast<unsigned char>(node.Scalar()[0])) &&
+            node.Scalar()[0] != '+' && node.Scalar()[0] != '-')
+          fail(line_of(node), key.path + " = " + node.Scalar() + ": unknown word" + either);
+        const unsigned int value = parse_unsigned(node, key.path);
+        if (value == 0)
+          fail(line_of(node), key.path + " = 0: not allowed" + either);
+        return value;
       }
 
       unsigned int parse_unsigned(const YAML::Node &node, const std::string &path) const

@@ -29,8 +29,10 @@ namespace indentsim::io
   Case read_case_tree(const YAML::Node &root, const std::string &source, OriginMap &origins);
 
   // The value checks of the schema and the checks that involve several keys; `origins` is null
-  // for a case that was not read from a file. Returns the indenter the checks built.
-  std::unique_ptr<indenter::IndenterSurface> validate_values(const Case      &checked,
+  // for a case that was not read from a file. Designs the automatic mesh of
+  // specimen.contact_elements: auto into `checked` (mesh/MeshDesign.h). Returns the indenter the
+  // checks built.
+  std::unique_ptr<indenter::IndenterSurface> validate_values(Case            &checked,
                                                              const OriginMap *origins);
 
   // Parses YAML text into a Case with the origins of its values, without the value checks.

@@ -89,6 +89,8 @@ namespace indentsim::io
             return "3 numbers " + key.range.text();
           if (key.type == ValueType::list)
             return "numbers " + key.range.text();
+          if (key.zero_word != nullptr)
+            return key.range.text() + ", or `" + key.zero_word + "`";
           return key.range.text();
         }
       if (key.type == ValueType::whole_number)

@@ -10,6 +10,7 @@
 #include "materials/MaterialFactory.h"
 #include "materials/crystal/Orientation.h"
 #include "mesh/MeshAdequacy.h"
+#include "mesh/MeshDesign.h"
 
 #include <cmath>
 #include <initializer_list>
@@ -25,8 +26,10 @@ namespace indentsim::io
     class CaseValidator
     {
     public:
-      CaseValidator(const Case &checked_case, const OriginMap *origins)
+      // `checked_case` receives the automatic mesh's design (specimen.contact_elements: auto).
+      CaseValidator(Case &checked_case, const OriginMap *origins)
         : checked(checked_case)
+        , designed(checked_case)
         , value_origins(origins)
       {
       }
@@ -42,6 +45,8 @@ namespace indentsim::io
         check_section("indenter");
         std::unique_ptr<indenter::IndenterSurface> surface = check_indenter();
         check_section("specimen");
+        if (!tensile() && checked.specimen.automatic_mesh())
+          design_automatic_mesh(*surface);
         check_specimen(*surface);
         check_section("loading");
         check_loading();
@@ -56,7 +61,22 @@ namespace indentsim::io
 
     private:
       const Case      &checked;
+      Case            &designed; // the same case, for the design of the automatic mesh
       const OriginMap *value_origins;
+
+      // specimen.contact_elements: auto designs refined_region (and size, unless the case file
+      // gives it); the checks below then apply to the designed values. Without origins (a case
+      // assembled in code) `size` counts as given.
+      void design_automatic_mesh(const indenter::IndenterSurface &surface) const
+      {
+        const bool given = value_origins == nullptr;
+        if (!given && value_origins->count("specimen.refined_region") != 0)
+          reject("specimen.refined_region", format_triple(checked.specimen.refined_region),
+                 "specimen.contact_elements: auto designs the refined region (it lists the "
+                 "design in resolved_case.yaml); remove refined_region, or give "
+                 "contact_elements a number to mesh this region");
+        mesh::design_mesh(designed, surface, given || value_origins->count("specimen.size") != 0);
+      }
 
       bool tensile() const { return checked.test == TestKind::tensile; }
 
@@ -94,6 +114,8 @@ namespace indentsim::io
               reject(given_path(key), format_number(key.number(c)), key.range_message);
             break;
           case ValueType::whole_number:
+            if (key.zero_word != nullptr && key.whole_number(c) == 0)
+              break;
             if (key.has_range && !key.range.contains(key.whole_number(c)))
               reject(key.path, std::to_string(key.whole_number(c)), key.range_message);
             break;
@@ -531,7 +553,7 @@ namespace indentsim::io
     };
   } // namespace
 
-  std::unique_ptr<indenter::IndenterSurface> validate_values(const Case      &checked,
+  std::unique_ptr<indenter::IndenterSurface> validate_values(Case            &checked,
                                                              const OriginMap *origins)
   {
     return CaseValidator(checked, origins).validate();

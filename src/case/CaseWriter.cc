@@ -7,6 +7,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <iomanip>
 #include <sstream>
 
 namespace indentsim::io
@@ -49,6 +50,22 @@ namespace indentsim::io
           return &group;
       return nullptr;
     }
+
+    // The automatic mesh's design as comments (it is derived, never read back): the refined
+    // region is written only for explicit meshes, since contact_elements: auto designs it.
+    void write_mesh_design(std::ostream &out, const SpecimenParameters &s)
+    {
+      const MeshGrading &g = s.grading;
+      std::ostringstream text;
+      text << std::setprecision(4)
+           << "  # designed (user guide, \"Automatic meshes\"): contact radius a_d = "
+           << g.contact_radius << " um; element edge max(h_min, rho/n), h_min = " << g.min_element
+           << " um, n = " << g.elements_per_radius << " for rho <= " << g.graded_radius
+           << " um, rho/" << g.far_elements_per_radius << " beyond;\n"
+           << "  # contact nodes and guards on refined_region = [" << s.refined_region[0] << ", "
+           << s.refined_region[1] << ", " << s.refined_region[2] << "] um\n";
+      out << text.str();
+    }
   } // namespace
 
   std::string resolved_case_yaml(const Case &resolved_case)
@@ -82,6 +99,8 @@ namespace indentsim::io
         const std::string value =
             key.type == ValueType::text ? quoted(key.value_text(c)) : key.value_text(c);
         write_line(out, indentation(key.path) + key.name() + ": " + value, key.comment);
+        if (key.path == "specimen.contact_elements" && c.specimen.automatic_mesh())
+          write_mesh_design(out, c.specimen);
       }
     return out.str();
   }

@@ -46,6 +46,11 @@ namespace indentsim::io
     using SP = SolverParameters;
     using OU = OutputParameters;
 
+    // specimen.contact_elements: auto designs the refined region (mesh/MeshDesign.h).
+    bool explicit_mesh(const Case &c)
+    {
+      return !c.specimen.automatic_mesh();
+    }
     bool linear_hardening(const Case &c)
     {
       return c.material.hardening_law == HardeningLaw::linear;
@@ -383,13 +388,19 @@ namespace indentsim::io
               .unit("um")
               .range(above(0), "every edge length must be > 0 um")
               .comment("full block edge lengths [um]")
+              .default_is("[360, 360, 180]; with `contact_elements: auto` designed: half-width "
+                          "and depth 40 a_d (a_d the predicted contact radius)")
               .describe("edge lengths of the full block"),
           D::at<&C::specimen, &S::refined_region>("specimen.refined_region")
               .unit("um")
+              .written_if(&explicit_mesh)
               .range(above(0), "every edge length must be > 0 um")
               .allowed_is("3 numbers > 0, ≤ `size`")
               .comment("refined block under the tip [um]")
-              .describe("the refined block under the tip"),
+              .describe("the refined block under the tip (the paper's mesh: uniform elements "
+                        "of edge refined_region_x / contact_elements; contact nodes exist on "
+                        "its top face only); not given with `contact_elements: auto`, which "
+                        "designs it"),
           D::at<&C::specimen, &S::contact_elements>("specimen.contact_elements")
               .range({4, true, double(max_contact_elements), true, 4},
                      "N must be a multiple of 4 with 4 <= N <= " +
@@ -399,8 +410,17 @@ namespace indentsim::io
                          "symmetry: quarter the modelled N/2 x N/2 faces must be even as well; a "
                          "multiple of 4 satisfies both (the upper bound keeps a typo from "
                          "exhausting memory: 48 resolves the paper's indent)")
-              .comment("N: N x N faces across the refined top face")
-              .describe("N: N×N faces across the refined top face"),
+              .or_word("auto")
+              .comment("N: N x N faces across the refined top face; auto: graded mesh")
+              .describe("N: N×N faces across the refined top face, on the paper's mesh (a "
+                        "uniform refined block, graded outside). `auto`: a mesh graded toward "
+                        "the tip, designed from the indenter's area function at the maximum "
+                        "depth (force control: from `max_force` with the hardness 3σ_y, at "
+                        "most `max_depth`): elements of edge ρ/n at the distance ρ from the "
+                        "tip, so the contact radius spans about n elements from max_depth/8 to "
+                        "max_depth; `size` (if not given) and `refined_region` (never given) "
+                        "are designed, and the resolved case lists them (user guide, "
+                        "\"Automatic meshes\")"),
           D::at<&C::specimen, &S::symmetry>("specimen.symmetry")
               .expect("a symmetry")
               .comment("full | quarter (x >= 0, y >= 0) | axisymmetric (r, z)")
@@ -713,6 +733,8 @@ namespace indentsim::io
       case ValueType::number:
         return format_number(number(readable));
       case ValueType::whole_number:
+        if (zero_word != nullptr && whole_number(readable) == 0)
+          return zero_word;
         return std::to_string(whole_number(readable));
       case ValueType::boolean:
         return format_bool(boolean(readable));

@@ -74,6 +74,7 @@ namespace indentsim::io
     bool        non_empty = false;       // text: "" is not admissible (range_message says why)
     bool        relative_to_case_file = false; // text: a path relative to the case file's directory
     bool        determines_results = true;     // false: left out of the fingerprint (Fingerprint.h)
+    const char *zero_word = nullptr; // whole numbers: the word stored as 0 ("auto"), or none
     bool (*written)(const Case &) =
         nullptr; // resolved case: written only if true (nullptr: always)
 

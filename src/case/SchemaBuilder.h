@@ -157,6 +157,8 @@ namespace indentsim::io::schema_builder
       key.range_message = message;
       return *this;
     }
+    // A whole number that may be the word `word` instead, stored as 0.
+    Declare &or_word(const char *word) { return key.zero_word = word, *this; }
     Declare &relative_to_case_file() { return key.relative_to_case_file = true, *this; }
     Declare &not_a_result() { return key.determines_results = false, *this; }
     Declare &written_if(bool (*condition)(const Case &)) { return key.written = condition, *this; }

@@ -25,6 +25,23 @@ namespace indentsim::contact
   {
   }
 
+  void NodeToSurfaceContact::set_local_penalty(const double stiffness)
+  {
+    local_penalty_stiffness_ = stiffness;
+  }
+
+  std::pair<double, double> NodeToSurfaceContact::penalty_range() const
+  {
+    double smallest = std::numeric_limits<double>::max(), largest = 0;
+    for (const ContactNode &node : nodes_)
+      {
+        smallest = std::min(smallest, node.penalty);
+        largest = std::max(largest, node.penalty);
+      }
+    return {Utilities::MPI::min(smallest, communicator_),
+            Utilities::MPI::max(largest, communicator_)};
+  }
+
   void NodeToSurfaceContact::set_lateral_offset(const Tensor<1, 3> &offset)
   {
     offset_ = Tensor<1, 3>({offset[0], offset[1], 0.});
@@ -42,7 +59,8 @@ namespace indentsim::contact
     // Tributary areas by nodal (Lobatto) quadrature of the top faces: each vertex of a
     // rectangular face receives a quarter of its area. Faces owned by other ranks contribute to
     // our nodes through the compress(add).
-    PETScWrappers::MPI::Vector                     area(owned, communicator);
+    PETScWrappers::MPI::Vector area(owned, communicator), edge_sum(owned, communicator),
+        faces(owned, communicator);
     std::map<types::global_dof_index, ContactNode> found;
     const double                                   tol = 1e-8 * (half_x + half_y);
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -62,6 +80,8 @@ namespace indentsim::contact
               {
                 const types::global_dof_index dof_x = face->vertex_dof_index(v, 0);
                 area(face->vertex_dof_index(v, 2)) += quarter_area;
+                edge_sum(face->vertex_dof_index(v, 2)) += std::sqrt(face->measure());
+                faces(face->vertex_dof_index(v, 2)) += 1;
                 if (!owned.is_element(dof_x) || hanging_node_constraints.is_constrained(dof_x))
                   continue;
                 ContactNode node;
@@ -73,7 +93,7 @@ namespace indentsim::contact
               }
           }
       }
-    store_nodes(found, area);
+    store_nodes(found, area, edge_sum, faces);
   }
 
   void NodeToSurfaceContact::setup(const DoFHandler<2>             &dof_handler,
@@ -88,7 +108,8 @@ namespace indentsim::contact
     // Ring areas: integral of N_i 2 pi r ds over the edge from r_i to r_j of length L is
     // 2 pi L (2 r_i + r_j) / 6 (the row sum of the consistent weighted mass): the node on the
     // axis keeps the area of its half edge's ring.
-    PETScWrappers::MPI::Vector                     area(owned, communicator);
+    PETScWrappers::MPI::Vector area(owned, communicator), edge_sum(owned, communicator),
+        faces(owned, communicator);
     std::map<types::global_dof_index, ContactNode> found;
     const double                                   tol = 1e-8 * half_x;
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -106,6 +127,8 @@ namespace indentsim::contact
                 const double r_i = face->vertex(v)[0], r_j = face->vertex(1 - v)[0];
                 area(face->vertex_dof_index(v, 1)) +=
                     2 * std::numbers::pi * length * (2 * r_i + r_j) / 6;
+                edge_sum(face->vertex_dof_index(v, 1)) += length;
+                faces(face->vertex_dof_index(v, 1)) += 1;
                 const types::global_dof_index dof_r = face->vertex_dof_index(v, 0);
                 if (!owned.is_element(dof_r) || hanging_node_constraints.is_constrained(dof_r))
                   continue;
@@ -117,18 +140,25 @@ namespace indentsim::contact
               }
           }
       }
-    store_nodes(found, area);
+    store_nodes(found, area, edge_sum, faces);
   }
 
   void NodeToSurfaceContact::store_nodes(std::map<types::global_dof_index, ContactNode> &found,
-                                         PETScWrappers::MPI::Vector                     &area)
+                                         PETScWrappers::MPI::Vector                     &area,
+                                         PETScWrappers::MPI::Vector                     &edge_sum,
+                                         PETScWrappers::MPI::Vector                     &faces)
   {
     area.compress(VectorOperation::add);
-    // The area sits on the dof of the last (z) component.
+    edge_sum.compress(VectorOperation::add);
+    faces.compress(VectorOperation::add);
+    // The sums sit on the dof of the last (z) component.
     const unsigned int z = axes_.size() - 1;
     for (auto &[first_dof, node] : found)
       {
         node.area = area(node.dofs[z]);
+        const double mean_edge = edge_sum(node.dofs[z]) / faces(node.dofs[z]);
+        node.penalty =
+            local_penalty_stiffness_ > 0 ? local_penalty_stiffness_ / mean_edge : penalty_;
         nodes_.push_back(node);
       }
   }
@@ -153,7 +183,7 @@ namespace indentsim::contact
     if (!response.projection.converged || !std::isfinite(response.projection.gap))
       return response;
     const Tensor<1, 3> &n = response.projection.normal;
-    const double        augmented = node.lambda - penalty_ * response.projection.gap;
+    const double        augmented = node.lambda - node.penalty * response.projection.gap;
     const bool          active = normal_active >= 0 ? normal_active == 1 : augmented > 0;
     if (!active)
       return response;
@@ -169,7 +199,7 @@ namespace indentsim::contact
     s[2] += depth - depth_converged_;
     response.slip = s - (s * n) * n;
     const Tensor<1, 3> multiplier = node.traction_multiplier - (node.traction_multiplier * n) * n;
-    const Tensor<1, 3> trial = multiplier - penalty_ * response.slip;
+    const Tensor<1, 3> trial = multiplier - node.penalty * response.slip;
     const double       limit = mu_ * std::max(response.pressure, 0.0);
     const double       trial_norm = trial.norm();
     // A slipping node whose trial traction turns against its last traction has passed through
@@ -277,7 +307,7 @@ namespace indentsim::contact
                 for (unsigned int i = 0; i < n; ++i)
                   for (unsigned int j = 0; j < n; ++j)
                     local_matrix(i, j) =
-                        penalty_ * node.area * node.normal[axes_[i]] * node.normal[axes_[j]];
+                        node.penalty * node.area * node.normal[axes_[i]] * node.normal[axes_[j]];
                 for (unsigned int j = 0; j < n; ++j)
                   {
                     Point<3> xp = node.x, xm = node.x;

@@ -43,6 +43,7 @@
 
 #include <array>
 #include <map>
+#include <utility>
 #include <vector>
 
 namespace indentsim::contact
@@ -64,8 +65,9 @@ namespace indentsim::contact
     // third unused); component k moves the 3D coordinate axis(k) (NodeToSurfaceContact::axes).
     std::array<dealii::types::global_dof_index, 3> dofs;
     Point<3>                                       X; // reference position [um]
-    double       area = 0;   // tributary reference area [um^2] (axisymmetric: of the whole ring)
-    double       lambda = 0; // normal multiplier (nominal pressure) [GPa]
+    double       area = 0;    // tributary reference area [um^2] (axisymmetric: of the whole ring)
+    double       penalty = 0; // augmentation parameter eps_i [GPa/um]
+    double       lambda = 0;  // normal multiplier (nominal pressure) [GPa]
     double       lambda_converged = 0;          // normal multiplier of the last converged increment
     double       lambda_previous = 0;           // ... and of the one before
     Tensor<1, 3> traction_multiplier;           // tangential multiplier t_i [GPa]
@@ -112,6 +114,12 @@ namespace indentsim::contact
     // friction_coefficient: Coulomb mu >= 0 (0: frictionless).
     NodeToSurfaceContact(const indenter::IndenterSurface &surface, double penalty,
                          double friction_coefficient = 0.0);
+
+    // eps_i = stiffness / L_i, L_i the mean edge of the top faces at node i, instead of the
+    // constructor's uniform penalty (call before setup). On a graded mesh a uniform eps is stiff
+    // against the large elements and soft against the small ones, where the augmentation passes
+    // then converge slowly; stiffness = c E keeps eps_i L_i / E = c on every node.
+    void set_local_penalty(double stiffness);
 
     // Collects the locally owned top-face nodes inside the footprint |x| <= half_x,
     // |y| <= half_y and their tributary areas. Hanging nodes (constrained x dof) are excluded.
@@ -214,8 +222,9 @@ namespace indentsim::contact
 
     ContactSummary                  summary() const; // global (MPI-summed) values
     const std::vector<ContactNode> &nodes() const { return nodes_; }
-    double                          penalty() const { return penalty_; }
-    double                          friction_coefficient() const { return mu_; }
+    // The smallest and largest eps_i over all nodes [GPa/um].
+    std::pair<double, double> penalty_range() const;
+    double                    friction_coefficient() const { return mu_; }
     // The contact tangent is symmetric only without friction (the Coulomb return is not).
     bool   symmetric_tangent() const { return mu_ == 0.0; }
     double total_area() const; // global tributary area of all contact nodes [um^2]
@@ -234,13 +243,17 @@ namespace indentsim::contact
     NodeResponse respond(const ContactNode &node, const Point<3> &x, int normal_active,
                          const ContactStatus *fixed_status, double depth) const;
 
-    // Keeps the found nodes, in the order of their first dof, with their areas from `area`.
+    // Keeps the found nodes, in the order of their first dof, with their areas from `area` and
+    // their penalties from the sums of their faces' edges and the number of faces.
     void store_nodes(std::map<dealii::types::global_dof_index, ContactNode> &found,
-                     dealii::PETScWrappers::MPI::Vector                     &area);
+                     dealii::PETScWrappers::MPI::Vector                     &area,
+                     dealii::PETScWrappers::MPI::Vector                     &edge_sum,
+                     dealii::PETScWrappers::MPI::Vector                     &faces);
 
     const indenter::IndenterSurface &surface_;
     std::vector<unsigned int>        axes_ = {0, 1, 2};
     double                           penalty_;
+    double                           local_penalty_stiffness_ = 0; // 0: the uniform penalty_
     double                           mu_;
     double                           predictor_activation_depth_ = 0; // [um]
     std::vector<ContactNode>         nodes_;

@@ -1,5 +1,8 @@
 #include "mesh/IndentationMesh.h"
 
+#include "mesh/MeshDesign.h"
+
+#include <deal.II/base/mpi.h>
 #include <deal.II/grid/grid_generator.h>
 
 #include <algorithm>
@@ -40,10 +43,108 @@ namespace indentsim::mesh
     return sizes;
   }
 
+  double MeshInfo::element_size_at(const double radius) const
+  {
+    return graded ? target_element_size(grading, radius) : contact_element_size;
+  }
+
+  namespace
+  {
+    // The block (dim = 3) or the (r, z) section (dim = 2) as a coarse grid of about cubic
+    // cells of edge min(half-width, depth) / 2, with the boundary ids of IndentationMesh.h.
+    template <int dim>
+    void coarse_block(parallel::distributed::Triangulation<dim> &triangulation,
+                      const io::SpecimenParameters &specimen, const bool half_line)
+    {
+      const double half_x = specimen.size[0] / 2, half_y = specimen.size[1] / 2,
+                   depth = specimen.size[2];
+      const double edge = 0.5 * std::min({half_x, dim == 3 ? half_y : half_x, depth});
+      const auto   cells = [&](const double length) {
+        return static_cast<unsigned int>(std::max(1L, std::lround(length / edge)));
+      };
+      const unsigned int sides = half_line ? 1 : 2;
+      if constexpr (dim == 3)
+        GridGenerator::subdivided_hyper_rectangle(
+            triangulation, {sides * cells(half_x), sides * cells(half_y), cells(depth)},
+            Point<3>(half_line ? 0. : -half_x, half_line ? 0. : -half_y, -depth),
+            Point<3>(half_x, half_y, 0.), /*colorize=*/true);
+      else
+        {
+          GridGenerator::subdivided_hyper_rectangle(triangulation, {cells(half_x), cells(depth)},
+                                                    Point<2>(0., -depth), Point<2>(half_x, 0.),
+                                                    /*colorize=*/true);
+          for (const auto &cell : triangulation.active_cell_iterators())
+            for (const auto &face : cell->face_iterators())
+              if (face->at_boundary() && face->boundary_id() >= 2)
+                face->set_boundary_id(face->boundary_id() == 2 ? boundary::bottom : boundary::top);
+        }
+    }
+
+    // The distance from the tip (the origin) to the cell's nearest point, and the cell's
+    // largest edge (the cells are axis-aligned boxes).
+    template <int dim>
+    std::pair<double, double> distance_and_edge(const CellAccessor<dim, dim> &cell)
+    {
+      const BoundingBox<dim> box = cell.bounding_box();
+      double                 distance2 = 0, edge = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double lower = box.lower_bound(d), upper = box.upper_bound(d);
+          const double nearest = std::clamp(0., lower, upper);
+          distance2 += nearest * nearest;
+          edge = std::max(edge, upper - lower);
+        }
+      return {std::sqrt(distance2), edge};
+    }
+
+    // specimen.contact_elements: auto: halve every cell larger than s(rho) until none is.
+    template <int dim>
+    MeshInfo build_graded_mesh(parallel::distributed::Triangulation<dim> &triangulation,
+                               const io::SpecimenParameters              &specimen)
+    {
+      MeshInfo info;
+      info.axisymmetric = (dim == 2);
+      info.quarter = (specimen.symmetry == io::Symmetry::quarter);
+      info.graded = true;
+      info.grading = specimen.grading;
+      info.refined_half_x = specimen.refined_region[0] / 2;
+      info.refined_half_y = dim == 2 ? info.refined_half_x : specimen.refined_region[1] / 2;
+      info.refined_depth = specimen.refined_region[2];
+      info.contact_element_size =
+          target_element_size(specimen.grading, specimen.grading.contact_radius);
+      info.fine_layer_thickness = specimen.grading.min_element;
+      coarse_block(triangulation, specimen, info.quarter || info.axisymmetric);
+
+      for (unsigned int pass = 0;; ++pass)
+        {
+          bool refined = false;
+          for (const auto &cell : triangulation.active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                const auto [rho, edge] = distance_and_edge<dim>(*cell);
+                if (edge > target_element_size(specimen.grading, rho) * (1 + 1e-9))
+                  {
+                    cell->set_refine_flag();
+                    refined = true;
+                  }
+              }
+          if (!Utilities::MPI::logical_or(refined, triangulation.get_communicator()))
+            {
+              info.refinement_levels = pass;
+              break;
+            }
+          triangulation.execute_coarsening_and_refinement();
+        }
+      return info;
+    }
+  } // namespace
+
   template <int dim>
   MeshInfo build_indentation_mesh(parallel::distributed::Triangulation<dim> &triangulation,
                                   const io::SpecimenParameters              &specimen)
   {
+    if (specimen.automatic_mesh())
+      return build_graded_mesh(triangulation, specimen);
     const unsigned int n = specimen.contact_elements;
     const int          levels = refinement_levels_for(n);
     if (levels < 0)

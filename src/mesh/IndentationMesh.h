@@ -7,7 +7,11 @@
 // (r, z) section [0, Lx/2] x [-Lz, 0] (point coordinates x = r, y = z) by the same rule along r
 // and z: its refined region is r <= refined_region_x / 2, z >= -refined_region_z.
 //
-// Construction: a tensor-product coarse grid whose cells inside the refined region have edge
+// The automatic mesh (specimen.contact_elements: auto, mesh/MeshDesign.h) is an octree on a
+// coarse grid of about cubic cells, each halved until its edge is at most the design's target
+// s(rho) at its point nearest to the tip.
+//
+// Construction of the paper's mesh: a tensor-product coarse grid whose cells inside the refined region have edge
 // length s = 2^L h (h = refined_region_x / N is the contact-element size) and grow geometrically
 // outside it; the coarse cells of the refined region are then refined L times. p4est's 2:1
 // balance produces the coarsening by 2:1 steps with depth and distance; the resulting hanging
@@ -39,6 +43,13 @@ namespace indentsim::mesh
     bool         axisymmetric = false; // the (r, z) section of the cylinder (dim = 2)
     // The refined region's footprint on the top face: |x| <= half_x, |y| <= half_y.
     double refined_half_x = 0, refined_half_y = 0, refined_depth = 0;
+    // specimen.contact_elements: auto: the octree graded toward the tip (mesh/MeshDesign.h);
+    // contact_element_size is then the target edge at the design contact radius.
+    bool            graded = false;
+    io::MeshGrading grading;
+
+    // The edge of the contact elements at the distance `radius` from the axis [um].
+    double element_size_at(double radius) const;
   };
 
   // Number of refinement levels L used for N contact elements: the largest L with 2^(L+1) | N

@@ -121,6 +121,17 @@ namespace indentsim::mesh
                : at_depth;
   }
 
+  double predicted_contact_height(const io::Case                  &the_case,
+                                  const indenter::IndenterSurface &surface)
+  {
+    const io::LoadingParameters &loading = the_case.loading;
+    const double                 at_depth = contact_depth_ratio(the_case) * loading.max_depth;
+    const double                 hardness = estimated_hardness(the_case.material);
+    if (loading.control != io::Control::force || !(hardness > 0))
+      return at_depth;
+    return std::min(at_depth, height_of_area(surface, loading.max_force / hardness));
+  }
+
   double contact_depth_ratio(const io::Case &the_case)
   {
     return the_case.material.model == io::ModelKind::neo_hookean

@@ -75,6 +75,13 @@ namespace indentsim::mesh
   std::optional<ContactPrediction> predict_contact(const io::Case                  &the_case,
                                                    const indenter::IndenterSurface &surface);
 
+  // The height h_c of the contact's edge above the indenter's apex at the maximum of the
+  // loading, independent of the mesh: contact_depth_ratio * max_depth, or under force control
+  // the smaller of that and the height whose cross-section is max_force / H (where the model
+  // has a hardness) [um].
+  double predicted_contact_height(const io::Case                  &the_case,
+                                  const indenter::IndenterSurface &surface);
+
   // The largest loading.max_depth whose predicted contact the refined region holds [um].
   double largest_depth_held(const io::Case &the_case, const indenter::IndenterSurface &surface);
 

@@ -57,6 +57,10 @@ namespace indentsim::output
           return "lower specimen.elements_per_side" +
                  (n > 1 ? " (" + std::to_string(n) + " fits)" : std::string());
         }
+      if (the_case.specimen.automatic_mesh())
+        return "give specimen.size (the automatic mesh's specimen is large but costs few "
+               "cells), use specimen.symmetry: quarter or axisymmetric where the case allows it, "
+               "or give contact_elements a number with a smaller refined_region";
       unsigned int &n = smaller.specimen.contact_elements;
       while (n > 4 && estimate_memory(smaller, n_ranks).per_rank_mib > per_rank_limit_mib)
         n -= 4;
@@ -166,7 +170,9 @@ namespace indentsim::output
             << (tensile ? "specimen.elements_per_side = " +
                               std::to_string(the_case.specimen.elements_per_side)
                         : "specimen.contact_elements = " +
-                              std::to_string(the_case.specimen.contact_elements))
+                              (the_case.specimen.automatic_mesh()
+                                   ? std::string("auto")
+                                   : std::to_string(the_case.specimen.contact_elements)))
             << ": the case needs about " << mib_text(estimate.total_mib) << " of memory ("
             << estimate.mesh.cells << " cells, " << estimate.mesh.dofs << " DOFs on " << n_ranks
             << " MPI rank" << (n_ranks > 1 ? "s" : "") << ", " << mib_text(estimate.per_rank_mib)

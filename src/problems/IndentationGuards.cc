@@ -105,15 +105,28 @@ namespace indentsim::problems
     message << " at the depth " << short_number(record.depth) << " um (force "
             << short_number(record.force) << " mN, step " << record.step << ")"
             << ": contact nodes exist only on the refined region (specimen.refined_region = "
-            << io::format_triple(s.refined_region)
-            << ", specimen.contact_elements = " << s.contact_elements
+            << io::format_triple(s.refined_region) << ", specimen.contact_elements = "
+            << (mesh_info_.graded ? std::string("auto") : std::to_string(s.contact_elements))
             << "), so beyond this step the specimen's surface would pass through the indenter "
-               "and the force would mean nothing. The outputs up to this step are kept. For "
-            << (force_control
-                    ? "loading.max_force = " + short_number(case_.loading.max_force) + " mN"
-                    : "loading.max_depth = " + short_number(case_.loading.max_depth) + " um")
-            << " use " << mesh::enlargement_advice(s, needed) << ", or a smaller "
-            << (force_control ? "loading.max_force" : "loading.max_depth");
+               "and the force would mean nothing. The outputs up to this step are kept. ";
+    if (mesh_info_.graded)
+      message << "The automatic mesh was designed for a contact radius of "
+              << short_number(s.grading.contact_radius) << " um (from "
+              << (force_control ? "loading.max_force with the hardness 3 sigma_y, at most "
+                                  "loading.max_depth"
+                                : "loading.max_depth with the pile-up allowance")
+              << "); the contact grew larger: "
+              << (force_control ? "give loading.max_depth the depth the force reaches, or a "
+                                  "smaller loading.max_force"
+                                : "the material piles up more than the design allows; give "
+                                  "contact_elements a number and a larger refined_region");
+    else
+      message << "For "
+              << (force_control
+                      ? "loading.max_force = " + short_number(case_.loading.max_force) + " mN"
+                      : "loading.max_depth = " + short_number(case_.loading.max_depth) + " um")
+              << " use " << mesh::enlargement_advice(s, needed) << ", or a smaller "
+              << (force_control ? "loading.max_force" : "loading.max_depth");
     recorder.log_note("stopped: " + message.str());
     throw mesh::MeshOutgrownError(message.str());
   }
@@ -206,11 +219,24 @@ namespace indentsim::problems
         std::sqrt(indenter_->projected_area(0.5 * record.depth) / std::numbers::pi);
     const double radius =
         std::max(std::sqrt(record.contact_area / std::numbers::pi), geometric_radius);
-    const double element = mesh_info_.contact_element_size;
+    const double element = mesh_info_.element_size_at(radius);
     if (!(radius > 0) || radius / element >= guard::min_elements_across_contact)
       return;
     const io::SpecimenParameters &s = case_.specimen;
-    const unsigned int            needed =
+    if (mesh_info_.graded)
+      {
+        // The automatic mesh resolves contacts from max_depth / 8 (mesh/MeshDesign.h).
+        std::ostringstream text;
+        text << short_number(radius / element)
+             << " elements across the contact radius at the maximum (a = " << short_number(radius)
+             << " um at the depth " << short_number(record.depth)
+             << " um): the automatic mesh was designed for a contact radius of "
+             << short_number(s.grading.contact_radius)
+             << " um; set loading.max_depth to the depth actually reached";
+        warn(recorder, "contact resolution", text.str());
+        return;
+      }
+    const unsigned int needed =
         mesh::contact_elements_for(s, radius, guard::min_elements_across_contact);
     std::ostringstream text;
     text << short_number(radius / element)

@@ -163,11 +163,13 @@ namespace indentsim::problems
       material_->oriented_initial_state(history_.converged_point(i), orientation);
     history_.converged_changed();
 
-    const double penalty = case_.contact.penalty > 0 ? case_.contact.penalty
-                                                     : 30. * material_->reference_modulus() /
-                                                           mesh_info_.contact_element_size;
-    contact_ = std::make_unique<contact::NodeToSurfaceContact>(*indenter_, penalty,
+    // contact.penalty: 0 (automatic) gives eps_i = 30 E / L_i on each node (L_i its faces' mean
+    // edge): eps_i L_i / E sets the rate of the augmentation passes, alike on every node of a
+    // graded mesh.
+    contact_ = std::make_unique<contact::NodeToSurfaceContact>(*indenter_, case_.contact.penalty,
                                                                case_.contact.friction_coefficient);
+    if (!(case_.contact.penalty > 0))
+      contact_->set_local_penalty(30. * material_->reference_modulus());
     contact_->set_predictor_activation_depth(case_.contact.penetration_tolerance);
     if constexpr (dim == 3)
       contact_->setup(solid_.dof_handler, constraints_hanging_, mesh::boundary::top,
@@ -184,7 +186,8 @@ namespace indentsim::problems
            << " constrained DOFs (hanging nodes and supports), "
            << "contact element size " << mesh_info_.contact_element_size << " um, "
            << Utilities::MPI::n_mpi_processes(communicator_) << " MPI rank(s)\n"
-           << "Contact: penalty " << penalty << " GPa/um, contact-surface area "
+           << "Contact: penalty " << contact_->penalty_range().first << " to "
+           << contact_->penalty_range().second << " GPa/um, contact-surface area "
            << contact_->total_area() << " um^2 (model)\n"
            << "Linear solver: " << linear_solver_.description() << "\n"
            << "Matrix assembly: " << std::fixed << std::setprecision(1)
@@ -356,7 +359,7 @@ namespace indentsim::problems
     for (const contact::ContactNode &node : contact_->nodes())
       {
         indicator(node.dofs[0]) =
-            node.active ? node.pressure : node.lambda - contact_->penalty() * node.gap;
+            node.active ? node.pressure : node.lambda - node.penalty * node.gap;
         indicator(node.dofs[1]) = 1;
       }
     indicator.compress(VectorOperation::insert);

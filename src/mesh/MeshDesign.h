@@ -1,0 +1,55 @@
+// The automatic mesh (specimen.contact_elements: auto): an octree graded toward the tip, designed
+// from the indenter's area function and the loading. Units: um.
+//
+// The rule. a_d is the predicted contact radius at the maximum (mesh/MeshAdequacy.h: the
+// indenter's cross-section at h_c = 1.2 h_max for plastic models, the pile-up allowance; 2/pi
+// h_max for neo-Hookean; under force control the area F/H with H = 3 sigma_y if smaller). An
+// element at the distance rho from the tip (the apex's point on the undeformed surface) gets the
+// edge
+//     s(rho) = max(h_min, rho / n)       for rho <= rho_p = 3 a_d   (contact and plastic zone)
+//     s(rho) = rho / n_far               beyond                     (elastic far field)
+// so the contact radius a(h) spans about n elements at every depth h: for a self-similar tip
+// a ~ h, and s(a) = a / n. h_min = a(h_max / 8) / n keeps the rule down to an eighth of the
+// maximum depth (below it the contact spans fewer elements). The octree halves cells until
+// each is no larger than s(rho) at its point nearest to the tip, so edges lie within
+// (s/2, s]; p4est's 2:1 balance grades the steps. The specimen is a block (a cylinder in
+// axisymmetric mode) of half-width and depth 160 a_d unless specimen.size is given: its fixed
+// bottom then stiffens an elastic contact by about 0.4 % (Hertz: +2.6 % at 40 a_d, +1.6 % at
+// 80 a_d, +1.25 % at 160 a_d, of which about 0.9 % is the finite-strain excess at h/R = 0.01).
+// Contact nodes are the top face's nodes within 1.5 a_d of the axis (the refined region the
+// guards watch).
+#pragma once
+
+#include "case/Case.h"
+#include "indenter/IndenterSurface.h"
+
+namespace indentsim::mesh
+{
+  namespace design
+  {
+    // n: elements per distance from the tip in the near field, by the model's dimension (the
+    // 3D quarter model costs about n^3 cells per octave of rho, the axisymmetric section n^2):
+    // the paper's J2 case then has 9 600 DOFs in 2D and 23 000 in the 3D quarter model (the
+    // paper's 48 x 48 quarter mesh: 36 000).
+    inline constexpr double elements_per_radius_2d = 16;
+    inline constexpr double elements_per_radius_3d = 6;
+    // h_min resolves the contact from this fraction of the maximum depth.
+    inline constexpr double smallest_resolved_depth = 1. / 8;
+    // rho_p / a_d: the near field, holding the plastic zone (about 2.5 a for E/sigma_y ~ 200).
+    inline constexpr double near_field_radii = 3;
+    // n_far / n beyond rho_p.
+    inline constexpr double far_field_ratio = 0.5;
+    // Half-width and depth of the specimen / a_d when specimen.size is not given.
+    inline constexpr double specimen_radii = 160;
+    // The contact nodes' region (its half-width) / a_d; the guards stop a run whose contact
+    // passes 90 % of it.
+    inline constexpr double contact_region_radii = 1.5;
+  } // namespace design
+
+  // Designs the mesh of a case with specimen.contact_elements: auto: fills specimen.grading and
+  // specimen.refined_region, and specimen.size unless `size_given`.
+  void design_mesh(io::Case &the_case, const indenter::IndenterSurface &surface, bool size_given);
+
+  // s(rho): the target element edge at the distance rho from the tip [um].
+  double target_element_size(const io::MeshGrading &grading, double rho);
+} // namespace indentsim::mesh

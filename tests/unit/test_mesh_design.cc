@@ -1,0 +1,190 @@
+// The automatic mesh (specimen.contact_elements: auto, mesh/MeshDesign.h): the built octree
+// obeys the design's rule s(rho) = max(h_min, rho / n) cell by cell, the contact radius spans n
+// to 2n elements from an eighth of the maximum depth on, the size estimate matches the built
+// mesh, and the case file reads, refuses and writes the key as documented. Units: um, mN, GPa.
+#include "../test_cases.h"
+#include "case/CaseFile.h"
+#include "indenter/IndenterFactory.h"
+#include "mesh/IndentationMesh.h"
+#include "mesh/MeshDesign.h"
+#include "mesh/MeshEstimate.h"
+
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+using namespace indentsim;
+
+namespace
+{
+  // The paper's J2 case to 6.0 um (frictionless rounded cone a = 2.48, delta = 0.005 um) with
+  // the automatic mesh designed for `symmetry`.
+  io::Case designed_paper_case(const std::string &symmetry)
+  {
+    io::Case c;
+    c.material.model = "j2";
+    c.specimen.symmetry = symmetry;
+    c.specimen.contact_elements = io::automatic_contact_elements;
+    c.loading.max_depth = 6.0;
+    mesh::design_mesh(c, *indenter::create_indenter(c.indenter), /*size_given=*/false);
+    return c;
+  }
+
+  // The largest edge of the top-face cell containing the surface point at the distance r from
+  // the axis (along x) [um].
+  template <int dim>
+  double surface_edge_at(const dealii::Triangulation<dim> &triangulation, const double r)
+  {
+    double edge = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        const dealii::BoundingBox<dim> box = cell->bounding_box();
+        if (box.upper_bound(dim - 1) > -1e-9 && box.lower_bound(0) <= r && box.upper_bound(0) > r &&
+            (dim == 2 || box.lower_bound(1) < 1e-9))
+          edge = std::max(edge, box.upper_bound(0) - box.lower_bound(0));
+      }
+    return edge;
+  }
+
+  template <int dim>
+  void check_rule(const io::Case &c)
+  {
+    dealii::parallel::distributed::Triangulation<dim> triangulation(MPI_COMM_WORLD);
+    const mesh::MeshInfo   info = mesh::build_indentation_mesh(triangulation, c.specimen);
+    const io::MeshGrading &g = c.specimen.grading;
+    EXPECT_TRUE(info.graded);
+
+    // Every cell is no larger than s(rho) at its point nearest to the tip.
+    double smallest = 1e300;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        const dealii::BoundingBox<dim> box = cell->bounding_box();
+        double                         rho2 = 0, edge = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double nearest = std::clamp(0., box.lower_bound(d), box.upper_bound(d));
+            rho2 += nearest * nearest;
+            edge = std::max(edge, box.upper_bound(d) - box.lower_bound(d));
+          }
+        ASSERT_LE(edge, mesh::target_element_size(g, std::sqrt(rho2)) * (1 + 1e-9));
+        smallest = std::min(smallest, edge);
+      }
+    EXPECT_GT(smallest, g.min_element / 2);
+    EXPECT_LE(smallest, g.min_element);
+
+    // The contact radius at h (the cross-section at 1.2 h) spans n to 2n elements from h_max/8.
+    const auto indenter = indenter::create_indenter(c.indenter);
+    for (const double h : {0.75, 1.5, 3.0, 6.0})
+      {
+        const double a = std::sqrt(indenter->projected_area(1.2 * h) / M_PI);
+        const double elements = a / surface_edge_at(triangulation, a);
+        EXPECT_GE(elements, g.elements_per_radius * (1 - 1e-9)) << "h = " << h;
+        EXPECT_LE(elements, 2 * g.elements_per_radius) << "h = " << h;
+      }
+
+    // The estimate counts the unbalanced octree: the balance adds a few per cent.
+    dealii::DoFHandler<dim>     dofs(triangulation);
+    const dealii::FESystem<dim> fe(dealii::FE_Q<dim>(1), dim);
+    dofs.distribute_dofs(fe);
+    const mesh::MeshSize estimate = mesh::estimate_indentation_mesh(c.specimen);
+    EXPECT_NEAR(double(estimate.cells), double(triangulation.n_global_active_cells()),
+                0.03 * triangulation.n_global_active_cells());
+    EXPECT_NEAR(double(estimate.dofs), double(dofs.n_dofs()), 0.10 * dofs.n_dofs());
+  }
+} // namespace
+
+TEST(MeshDesign, AxisymmetricMeshFollowsTheRule)
+{
+  const io::Case c = designed_paper_case("axisymmetric");
+  const auto    &g = c.specimen.grading;
+  // a_d: the rounded cone's cross-section at h_c = 1.2 x 6.0 um, a (h_c + delta) (eq. 16).
+  EXPECT_NEAR(g.contact_radius, 2.48 * (7.2 + 0.005), 1e-4);
+  EXPECT_EQ(g.elements_per_radius, mesh::design::elements_per_radius_2d);
+  EXPECT_NEAR(g.min_element, 2.48 * (0.9 + 0.005) / g.elements_per_radius, 1e-5);
+  EXPECT_GE(c.specimen.size[0] / 2, mesh::design::specimen_radii * g.contact_radius);
+  EXPECT_EQ(c.specimen.size[2], c.specimen.size[0] / 2);
+  check_rule<2>(c);
+}
+
+TEST(MeshDesign, QuarterMeshFollowsTheRule)
+{
+  const io::Case c = designed_paper_case("quarter");
+  EXPECT_EQ(c.specimen.grading.elements_per_radius, mesh::design::elements_per_radius_3d);
+  check_rule<3>(c);
+}
+
+namespace
+{
+  const std::string auto_case = "test: indentation\n"
+                                "material: {model: j2}\n"
+                                "specimen: {contact_elements: auto, symmetry: axisymmetric}\n"
+                                "loading: {max_depth: 6.0}\n";
+
+  std::string error_of(const std::string &yaml)
+  {
+    try
+      {
+        io::parse_case_yaml(yaml, "auto.yaml");
+      }
+    catch (const io::CaseFileError &error)
+      {
+        return error.what();
+      }
+    return "";
+  }
+} // namespace
+
+// `auto` designs size and refined_region; the resolved case reads back to the identical case.
+TEST(MeshDesign, CaseFileDesignsAndWritesTheMesh)
+{
+  const io::Case c = io::parse_case_yaml(auto_case, "auto.yaml");
+  EXPECT_TRUE(c.specimen.automatic_mesh());
+  const double a_d = c.specimen.grading.contact_radius;
+  EXPECT_NEAR(a_d, 2.48 * (7.2 + 0.005), 1e-4);
+  EXPECT_GE(c.specimen.size[0], 2 * mesh::design::specimen_radii * a_d);
+  EXPECT_LE(c.specimen.size[0], 2 * 1.1 * mesh::design::specimen_radii * a_d);
+  EXPECT_GE(c.specimen.refined_region[0], 2 * mesh::design::contact_region_radii * a_d);
+
+  const std::string resolved = io::resolved_case_yaml(c);
+  EXPECT_NE(resolved.find("contact_elements: auto"), std::string::npos) << resolved;
+  EXPECT_EQ(resolved.find("refined_region:"), std::string::npos) << resolved;
+  EXPECT_NE(resolved.find("# designed"), std::string::npos) << resolved;
+  io::Case again = io::parse_case_yaml(resolved, "resolved.yaml");
+  again.source_file = c.source_file;
+  EXPECT_TRUE(again == c) << resolved;
+
+  // A given size is kept.
+  const io::Case given = io::parse_case_yaml(
+      "test: indentation\nmaterial: {model: j2}\n"
+      "specimen: {contact_elements: auto, symmetry: axisymmetric, size: [400, 400, 200]}\n",
+      "auto.yaml");
+  EXPECT_EQ(given.specimen.size[0], 400.);
+  EXPECT_EQ(given.specimen.size[2], 200.);
+}
+
+TEST(MeshDesign, CaseFileRefusals)
+{
+  const std::string refined =
+      error_of("test: indentation\nmaterial: {model: j2}\n"
+               "specimen: {contact_elements: auto, refined_region: [60, 60, 30]}\n");
+  EXPECT_NE(refined.find("auto.yaml:3"), std::string::npos) << refined;
+  EXPECT_NE(refined.find("specimen.refined_region = [60, 60, 30]"), std::string::npos) << refined;
+  EXPECT_NE(refined.find("designs the refined region"), std::string::npos) << refined;
+
+  const std::string zero =
+      error_of("test: indentation\nmaterial: {model: j2}\nspecimen: {contact_elements: 0}\n");
+  EXPECT_NE(zero.find("specimen.contact_elements = 0"), std::string::npos) << zero;
+  EXPECT_NE(zero.find("allowed: auto, or N must be a multiple of 4"), std::string::npos) << zero;
+
+  const std::string word = error_of(
+      "test: indentation\nmaterial: {model: j2}\nspecimen: {contact_elements: automatic}\n");
+  EXPECT_NE(word.find("specimen.contact_elements = automatic: unknown word"), std::string::npos)
+      << word;
+}

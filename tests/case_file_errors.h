@@ -1,5 +1,6 @@
 // The case-file tests' view of an error: a YAML text parsed as the file "bad.yaml" and the message
-// it is rejected with. Shared by tests/unit/test_case_file.cc and test_case_hardening.cc.
+// it is rejected with. Shared by tests/unit/test_case_file.cc, test_case_hardening.cc and
+// test_mesh_design.cc.
 #pragma once
 
 #include "case/CaseFile.h"

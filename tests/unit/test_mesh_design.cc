@@ -2,6 +2,7 @@
 // obeys the design's rule s(rho) = max(h_min, rho / n) cell by cell, the contact radius spans n
 // to 2n elements from an eighth of the maximum depth on, the size estimate matches the built
 // mesh, and the case file reads, refuses and writes the key as documented. Units: um, mN, GPa.
+#include "../case_file_errors.h"
 #include "../test_cases.h"
 #include "case/CaseFile.h"
 #include "indenter/IndenterFactory.h"
@@ -127,18 +128,6 @@ namespace
                                 "specimen: {contact_elements: auto, symmetry: axisymmetric}\n"
                                 "loading: {max_depth: 6.0}\n";
 
-  std::string error_of(const std::string &yaml)
-  {
-    try
-      {
-        io::parse_case_yaml(yaml, "auto.yaml");
-      }
-    catch (const io::CaseFileError &error)
-      {
-        return error.what();
-      }
-    return "";
-  }
 } // namespace
 
 // `auto` designs size and refined_region; the resolved case reads back to the identical case.
@@ -171,20 +160,14 @@ TEST(MeshDesign, CaseFileDesignsAndWritesTheMesh)
 
 TEST(MeshDesign, CaseFileRefusals)
 {
-  const std::string refined =
-      error_of("test: indentation\nmaterial: {model: j2}\n"
-               "specimen: {contact_elements: auto, refined_region: [60, 60, 30]}\n");
-  EXPECT_NE(refined.find("auto.yaml:3"), std::string::npos) << refined;
-  EXPECT_NE(refined.find("specimen.refined_region = [60, 60, 30]"), std::string::npos) << refined;
-  EXPECT_NE(refined.find("designs the refined region"), std::string::npos) << refined;
-
-  const std::string zero =
-      error_of("test: indentation\nmaterial: {model: j2}\nspecimen: {contact_elements: 0}\n");
-  EXPECT_NE(zero.find("specimen.contact_elements = 0"), std::string::npos) << zero;
-  EXPECT_NE(zero.find("allowed: auto, or N must be a multiple of 4"), std::string::npos) << zero;
-
-  const std::string word = error_of(
-      "test: indentation\nmaterial: {model: j2}\nspecimen: {contact_elements: automatic}\n");
-  EXPECT_NE(word.find("specimen.contact_elements = automatic: unknown word"), std::string::npos)
-      << word;
+  using test_case_files::expect_rejected;
+  expect_rejected(
+      "test: indentation\nmaterial: {model: j2}\n"
+      "specimen: {contact_elements: auto, refined_region: [60, 60, 30]}\n",
+      {"bad.yaml:3", "specimen.refined_region = [60, 60, 30]", "designs the refined region"});
+  expect_rejected("test: indentation\nmaterial: {model: j2}\nspecimen: {contact_elements: 0}\n",
+                  {"specimen.contact_elements = 0", "allowed: auto, or N must be a multiple of 4"});
+  expect_rejected(
+      "test: indentation\nmaterial: {model: j2}\nspecimen: {contact_elements: automatic}\n",
+      {"specimen.contact_elements = automatic: unknown word"});
 }

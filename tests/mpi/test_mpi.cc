@@ -4,6 +4,9 @@
 #include "../test_cases.h"
 #include "../test_files.h"
 #include "case/Case.h"
+#include "indenter/IndenterFactory.h"
+#include "mesh/IndentationMesh.h"
+#include "mesh/MeshDesign.h"
 #include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>
@@ -76,10 +79,58 @@ TEST(Mpi, AxisymmetricOneVersusManyRanksGiveTheSameCurve)
       EXPECT_NEAR(p.force, s.force, 1e-6 * max_force) << "step " << i;
       EXPECT_NEAR(p.depth, s.depth, 1e-8) << "step " << i; // force-paced unloading
       EXPECT_NEAR(p.force, p.bottom_reaction, 1e-6 * std::max(p.force, 1.0)) << "step " << i;
-      EXPECT_NEAR(p.contact_area, s.contact_area, 1e-6 * max_area)
-          << "step " << i;
+      EXPECT_NEAR(p.contact_area, s.contact_area, 1e-6 * max_area) << "step " << i;
       EXPECT_EQ(p.n_active_nodes, s.n_active_nodes) << "step " << i;
       EXPECT_EQ(p.n_stick_nodes, s.n_stick_nodes) << "step " << i;
+    }
+}
+
+// The automatic mesh (specimen.contact_elements: auto) is refined by a global decision on every
+// rank: 2 ranks build the same octree as one (the same cells, the same smallest and largest
+// cells and volume), axisymmetric and 3D quarter, for the paper's J2 case to 6.0 um.
+TEST(Mpi, AutomaticMeshIsTheSameOnEveryRankCount)
+{
+  for (const char *symmetry : {"axisymmetric", "quarter"})
+    {
+      io::Case c;
+      c.material.model = "j2";
+      c.specimen.symmetry = symmetry;
+      c.specimen.contact_elements = io::automatic_contact_elements;
+      mesh::design_mesh(c, *indenter::create_indenter(c.indenter), /*size_given=*/false);
+      const auto summary = [&](auto &&triangulation, const MPI_Comm communicator) {
+        mesh::build_indentation_mesh(triangulation, c.specimen);
+        double smallest = 1e300, largest = 0, volume = 0;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              smallest = std::min(smallest, cell->diameter());
+              largest = std::max(largest, cell->diameter());
+              volume += cell->measure();
+            }
+        return std::array<double, 4>{{double(triangulation.n_global_active_cells()),
+                                      dealii::Utilities::MPI::min(smallest, communicator),
+                                      dealii::Utilities::MPI::max(largest, communicator),
+                                      dealii::Utilities::MPI::sum(volume, communicator)}};
+      };
+      std::array<double, 4> parallel, serial;
+      if (std::string(symmetry) == "quarter")
+        {
+          dealii::parallel::distributed::Triangulation<3> world(MPI_COMM_WORLD),
+              self(MPI_COMM_SELF);
+          parallel = summary(world, MPI_COMM_WORLD);
+          serial = summary(self, MPI_COMM_SELF);
+        }
+      else
+        {
+          dealii::parallel::distributed::Triangulation<2> world(MPI_COMM_WORLD),
+              self(MPI_COMM_SELF);
+          parallel = summary(world, MPI_COMM_WORLD);
+          serial = summary(self, MPI_COMM_SELF);
+        }
+      EXPECT_EQ(parallel[0], serial[0]) << symmetry;
+      EXPECT_DOUBLE_EQ(parallel[1], serial[1]) << symmetry;
+      EXPECT_DOUBLE_EQ(parallel[2], serial[2]) << symmetry;
+      EXPECT_NEAR(parallel[3], serial[3], 1e-12 * serial[3]) << symmetry;
     }
 }
 

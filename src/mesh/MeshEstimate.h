@@ -12,6 +12,10 @@
 // neighbours are refined as well, more beside unrefined cells). The count of cells is exact for the block refined this way (a test builds
 // meshes and compares); the vertices are exact without balance cells, within 2 % with them
 // above 20 000 DOFs and within 5 % on tiny meshes.
+//
+// The automatic mesh (specimen.contact_elements: auto) is counted as the leaves of its octree
+// without the balance (cells within 3 %), its vertices as 1.06 (2D) or 1.42 (3D) per cell
+// (DOFs within 10 %, tests/unit/test_mesh_design.cc).
 #pragma once
 
 #include "case/Case.h"
@@ -27,7 +31,8 @@ namespace indentsim::mesh
     std::uint64_t dofs = 0; // 3 per vertex (hanging and constrained ones included)
   };
 
-  // Indentation block of `specimen` (its contact_elements, refined_region, size and symmetry).
+  // Indentation block of `specimen` (its contact_elements, refined_region, size and symmetry, or
+  // its grading).
   // Cases whose contact_elements cannot be meshed (refinement_levels_for < 0) give zeros.
   MeshSize estimate_indentation_mesh(const io::SpecimenParameters &specimen);
 

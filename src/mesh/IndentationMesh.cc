@@ -50,51 +50,49 @@ namespace indentsim::mesh
 
   namespace
   {
-    // The block (dim = 3) or the (r, z) section (dim = 2) as a coarse grid of about cubic
-    // cells of edge min(half-width, depth) / 2, with the boundary ids of IndentationMesh.h.
-    template <int dim>
-    void coarse_block(parallel::distributed::Triangulation<dim> &triangulation,
-                      const io::SpecimenParameters &specimen, const bool half_line)
+    // The (r, z) section's edges as colorize numbers them (r = 0, r = R, z = -Lz, z = 0: 0, 1,
+    // 2, 3) renamed to the block's ids (axis, outer, bottom, top).
+    void name_section_edges(parallel::distributed::Triangulation<2> &triangulation)
     {
-      const double half_x = specimen.size[0] / 2, half_y = specimen.size[1] / 2,
-                   depth = specimen.size[2];
-      const double edge = 0.5 * std::min({half_x, dim == 3 ? half_y : half_x, depth});
-      const auto   cells = [&](const double length) {
-        return static_cast<unsigned int>(std::max(1L, std::lround(length / edge)));
-      };
-      const unsigned int sides = half_line ? 1 : 2;
-      if constexpr (dim == 3)
-        GridGenerator::subdivided_hyper_rectangle(
-            triangulation, {sides * cells(half_x), sides * cells(half_y), cells(depth)},
-            Point<3>(half_line ? 0. : -half_x, half_line ? 0. : -half_y, -depth),
-            Point<3>(half_x, half_y, 0.), /*colorize=*/true);
-      else
-        {
-          GridGenerator::subdivided_hyper_rectangle(triangulation, {cells(half_x), cells(depth)},
-                                                    Point<2>(0., -depth), Point<2>(half_x, 0.),
-                                                    /*colorize=*/true);
-          for (const auto &cell : triangulation.active_cell_iterators())
-            for (const auto &face : cell->face_iterators())
-              if (face->at_boundary() && face->boundary_id() >= 2)
-                face->set_boundary_id(face->boundary_id() == 2 ? boundary::bottom : boundary::top);
-        }
+      for (const auto &cell : triangulation.active_cell_iterators())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary() && face->boundary_id() >= 2)
+            face->set_boundary_id(face->boundary_id() == 2 ? boundary::bottom : boundary::top);
     }
 
-    // The distance from the tip (the origin) to the cell's nearest point, and the cell's
-    // largest edge (the cells are axis-aligned boxes).
+    // The automatic mesh's coarse grid (mesh/MeshDesign.h), with the boundary ids of
+    // IndentationMesh.h.
     template <int dim>
-    std::pair<double, double> distance_and_edge(const CellAccessor<dim, dim> &cell)
+    void coarse_block(parallel::distributed::Triangulation<dim> &triangulation,
+                      const io::SpecimenParameters              &specimen)
     {
-      const BoundingBox<dim> box = cell.bounding_box();
-      double                 distance2 = 0, edge = 0;
+      const CoarseGrid          grid = coarse_grid(specimen);
+      std::vector<unsigned int> repetitions(dim);
+      Point<dim>                p1, p2;
       for (unsigned int d = 0; d < dim; ++d)
         {
-          const double lower = box.lower_bound(d), upper = box.upper_bound(d);
-          const double nearest = std::clamp(0., lower, upper);
-          distance2 += nearest * nearest;
-          edge = std::max(edge, upper - lower);
+          repetitions[d] = static_cast<unsigned int>(grid.cells[d]);
+          p1[d] = grid.lower[d];
+          p2[d] = grid.upper[d];
         }
-      return {std::sqrt(distance2), edge};
+      GridGenerator::subdivided_hyper_rectangle(triangulation, repetitions, p1, p2,
+                                                /*colorize=*/true);
+      if constexpr (dim == 2)
+        name_section_edges(triangulation);
+    }
+
+    // Whether the octree halves `cell` (an axis-aligned box).
+    template <int dim>
+    bool needs_halving(const io::MeshGrading &grading, const CellAccessor<dim, dim> &cell)
+    {
+      const BoundingBox<dim> box = cell.bounding_box();
+      std::array<double, 3>  lower{}, upper{};
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          lower[d] = box.lower_bound(d);
+          upper[d] = box.upper_bound(d);
+        }
+      return mesh::needs_halving(grading, lower, upper, dim);
     }
 
     // specimen.contact_elements: auto: halve every cell larger than s(rho) until none is.
@@ -113,7 +111,7 @@ namespace indentsim::mesh
       info.contact_element_size =
           target_element_size(specimen.grading, specimen.grading.contact_radius);
       info.fine_layer_thickness = specimen.grading.min_element;
-      coarse_block(triangulation, specimen, info.quarter || info.axisymmetric);
+      coarse_block(triangulation, specimen);
 
       for (unsigned int pass = 0;; ++pass)
         {
@@ -121,8 +119,7 @@ namespace indentsim::mesh
           for (const auto &cell : triangulation.active_cell_iterators())
             if (cell->is_locally_owned())
               {
-                const auto [rho, edge] = distance_and_edge<dim>(*cell);
-                if (edge > target_element_size(specimen.grading, rho) * (1 + 1e-9))
+                if (needs_halving(specimen.grading, *cell))
                   {
                     cell->set_refine_flag();
                     refined = true;
@@ -214,11 +211,7 @@ namespace indentsim::mesh
                                                   Point<2>(0., -specimen.size[2]),
                                                   Point<2>(specimen.size[0] / 2, 0.),
                                                   /*colorize=*/true);
-        // colorize numbers the edges r = 0, r = R, z = -Lz, z = 0 as 0, 1, 2, 3.
-        for (const auto &cell : triangulation.active_cell_iterators())
-          for (const auto &face : cell->face_iterators())
-            if (face->at_boundary() && face->boundary_id() >= 2)
-              face->set_boundary_id(face->boundary_id() == 2 ? boundary::bottom : boundary::top);
+        name_section_edges(triangulation);
       }
 
     // Refine the cells inside the refined region L times; p4est balances the rest 2:1.

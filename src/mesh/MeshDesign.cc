@@ -63,4 +63,43 @@ namespace indentsim::mesh
       return std::max(g.min_element, rho / g.elements_per_radius);
     return rho / g.far_elements_per_radius;
   }
+
+  CoarseGrid coarse_grid(const io::SpecimenParameters &specimen)
+  {
+    CoarseGrid   grid;
+    const bool   axisymmetric = specimen.symmetry == io::Symmetry::axisymmetric;
+    const bool   half_line = specimen.symmetry != io::Symmetry::full;
+    const double half_x = specimen.size[0] / 2, half_y = specimen.size[1] / 2,
+                 depth = specimen.size[2];
+    const double edge = 0.5 * std::min({half_x, axisymmetric ? half_x : half_y, depth});
+    const auto   cells = [&](const double length) {
+      return std::max(1L, std::lround(length / edge));
+    };
+    const long sides = half_line ? 1 : 2;
+    if (axisymmetric)
+      {
+        grid.dim = 2;
+        grid.cells = {{cells(half_x), cells(depth), 1}};
+        grid.lower = {{0., -depth, 0.}};
+        grid.upper = {{half_x, 0., 0.}};
+        return grid;
+      }
+    grid.cells = {{sides * cells(half_x), sides * cells(half_y), cells(depth)}};
+    grid.lower = {{half_line ? 0. : -half_x, half_line ? 0. : -half_y, -depth}};
+    grid.upper = {{half_x, half_y, 0.}};
+    return grid;
+  }
+
+  bool needs_halving(const io::MeshGrading &grading, const std::array<double, 3> &lower,
+                     const std::array<double, 3> &upper, const unsigned int dim)
+  {
+    double distance2 = 0, edge = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double nearest = std::clamp(0., lower[d], upper[d]);
+        distance2 += nearest * nearest;
+        edge = std::max(edge, upper[d] - lower[d]);
+      }
+    return edge > target_element_size(grading, std::sqrt(distance2)) * (1 + 1e-9);
+  }
 } // namespace indentsim::mesh

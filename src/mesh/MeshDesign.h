@@ -23,6 +23,8 @@
 #include "case/Case.h"
 #include "indenter/IndenterSurface.h"
 
+#include <array>
+
 namespace indentsim::mesh
 {
   namespace design
@@ -52,4 +54,20 @@ namespace indentsim::mesh
 
   // s(rho): the target element edge at the distance rho from the tip [um].
   double target_element_size(const io::MeshGrading &grading, double rho);
+
+  // The octree's coarse grid: about cubic cells of edge min(half-width, depth) / 2 over the
+  // modelled part of the block (3D: x, y, z) or of the (r, z) section (axisymmetric: the first
+  // two entries), from `lower` to `upper` [um].
+  struct CoarseGrid
+  {
+    unsigned int          dim = 3;
+    std::array<long, 3>   cells = {{1, 1, 1}};
+    std::array<double, 3> lower = {{0., 0., 0.}}, upper = {{0., 0., 0.}};
+  };
+  CoarseGrid coarse_grid(const io::SpecimenParameters &specimen);
+
+  // Whether the box [lower, upper] (its first `dim` coordinates) is larger than s(rho) at its
+  // point nearest to the tip (the origin): the octree halves it.
+  bool needs_halving(const io::MeshGrading &grading, const std::array<double, 3> &lower,
+                     const std::array<double, 3> &upper, unsigned int dim);
 } // namespace indentsim::mesh

@@ -58,38 +58,33 @@ namespace indentsim::mesh
       return size;
     }
 
-    // The automatic mesh: the leaves of the octree build_graded_mesh refines (a box is halved
-    // while its edge exceeds s(rho) at its point nearest to the tip), without p4est's 2:1
-    // balance. Counting stops beyond `limit` leaves (the memory estimate refuses such meshes).
+    // The automatic mesh: the leaves of the octree build_graded_mesh refines (needs_halving,
+    // mesh/MeshDesign.h), without p4est's 2:1 balance. Counting stops beyond `limit` leaves
+    // (the memory estimate refuses such meshes).
     struct LeafCounter
     {
       const io::MeshGrading &grading;
       unsigned int           dim;
       std::uint64_t          leaves = 0, limit = 200'000'000;
 
-      void count(const std::array<double, 3> &lower, const std::array<double, 3> &edge)
+      void count(const std::array<double, 3> &lower, const std::array<double, 3> &upper)
       {
         if (leaves > limit)
           return;
-        double distance2 = 0, largest = 0;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            const double nearest = std::clamp(0., lower[d], lower[d] + edge[d]);
-            distance2 += nearest * nearest;
-            largest = std::max(largest, edge[d]);
-          }
-        if (largest <= target_element_size(grading, std::sqrt(distance2)) * (1 + 1e-9))
+        if (!needs_halving(grading, lower, upper, dim))
           {
             ++leaves;
             return;
           }
-        const std::array<double, 3> half = {{edge[0] / 2, edge[1] / 2, edge[2] / 2}};
         for (unsigned int child = 0; child < (1u << dim); ++child)
           {
-            std::array<double, 3> corner = lower;
+            std::array<double, 3> child_lower = lower, child_upper = upper;
             for (unsigned int d = 0; d < dim; ++d)
-              corner[d] += (child >> d & 1u) ? half[d] : 0.;
-            count(corner, half);
+              {
+                const double middle = 0.5 * (lower[d] + upper[d]);
+                ((child >> d & 1u) ? child_lower[d] : child_upper[d]) = middle;
+              }
+            count(child_lower, child_upper);
           }
       }
     };
@@ -98,36 +93,29 @@ namespace indentsim::mesh
     // paper's case: 2D 1.06, 3D 1.42, hanging nodes included; tests/unit compares).
     MeshSize graded_mesh(const io::SpecimenParameters &specimen)
     {
-      const unsigned int dim = specimen.symmetry == io::Symmetry::axisymmetric ? 2 : 3;
-      const bool         half_line = specimen.symmetry != io::Symmetry::full;
-      const double       half_x = specimen.size[0] / 2, half_y = specimen.size[1] / 2,
-                   depth = specimen.size[2];
-      const double edge = 0.5 * std::min({half_x, dim == 3 ? half_y : half_x, depth});
-      const auto   cells = [&](const double length) {
-        return std::max(1L, std::lround(length / edge));
-      };
-      const long nx = (half_line ? 1 : 2) * cells(half_x), ny = (half_line ? 1 : 2) * cells(half_y),
-                 nz = cells(depth);
-      const double                x0 = half_line ? 0. : -half_x, y0 = half_line ? 0. : -half_y;
-      const std::array<double, 3> cell_edge = {
-          {(half_x - x0) / nx, (half_y - y0) / ny, depth / nz}};
-      LeafCounter counter{specimen.grading, dim};
-      for (long i = 0; i < nx; ++i)
-        for (long j = 0; j < (dim == 3 ? ny : 1); ++j)
-          for (long k = 0; k < nz; ++k)
+      const CoarseGrid      grid = coarse_grid(specimen);
+      LeafCounter           counter{specimen.grading, grid.dim};
+      std::array<double, 3> edge{};
+      for (unsigned int d = 0; d < grid.dim; ++d)
+        edge[d] = (grid.upper[d] - grid.lower[d]) / grid.cells[d];
+      for (long i = 0; i < grid.cells[0]; ++i)
+        for (long j = 0; j < grid.cells[1]; ++j)
+          for (long k = 0; k < grid.cells[2]; ++k)
             {
-              if (dim == 3)
-                counter.count(
-                    {{x0 + i * cell_edge[0], y0 + j * cell_edge[1], -depth + k * cell_edge[2]}},
-                    cell_edge);
-              else
-                counter.count({{i * cell_edge[0], -depth + k * cell_edge[2], 0.}},
-                              {{cell_edge[0], cell_edge[2], 0.}});
+              const std::array<long, 3> index = {{i, j, k}};
+              std::array<double, 3>     lower{}, upper{};
+              for (unsigned int d = 0; d < grid.dim; ++d)
+                {
+                  lower[d] = grid.lower[d] + index[d] * edge[d];
+                  upper[d] = lower[d] + edge[d];
+                }
+              counter.count(lower, upper);
             }
       MeshSize size;
       size.cells = counter.leaves;
-      size.vertices = static_cast<std::uint64_t>(double(size.cells) * (dim == 2 ? 1.06 : 1.42));
-      size.dofs = dim * size.vertices;
+      size.vertices =
+          static_cast<std::uint64_t>(double(size.cells) * (grid.dim == 2 ? 1.06 : 1.42));
+      size.dofs = grid.dim * size.vertices;
       return size;
     }
   } // namespace

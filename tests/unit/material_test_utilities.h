@@ -140,4 +140,25 @@ namespace indentsim::testing
       }
     return rows;
   }
+
+  // The root of g(x) = 0 by the secant method from x_0 and x_0 (1 + 1e-4), to |g| <= 1e-13 (the
+  // uniaxial tests' vanishing lateral stress as a function of the lateral stretch); more than
+  // 100 iterations fail the test.
+  template <typename Function>
+  double secant_root(const Function &g, const double x_start)
+  {
+    double       x_0 = x_start, x_1 = x_start * (1.0 + 1e-4);
+    double       g_0 = g(x_0), g_1 = g(x_1);
+    unsigned int iteration = 0;
+    for (; iteration < 100 && std::abs(g_1) > 1e-13; ++iteration)
+      {
+        const double x_2 = x_1 - g_1 * (x_1 - x_0) / (g_1 - g_0);
+        x_0 = x_1;
+        g_0 = g_1;
+        x_1 = x_2;
+        g_1 = g(x_1);
+      }
+    EXPECT_LT(iteration, 100u) << "secant search did not converge";
+    return x_1;
+  }
 } // namespace indentsim::testing

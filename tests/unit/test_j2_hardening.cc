@@ -350,20 +350,9 @@ namespace
                          UpdateStatus::success);
           return response.P[1][1];
         };
-        double       x_0 = lateral_stretch * std::exp(-0.5 * (log_strain - previous_log_strain));
-        double       x_1 = x_0 * (1.0 + 1e-4);
-        double       g_0 = lateral_stress(x_0), g_1 = lateral_stress(x_1);
-        unsigned int iteration = 0;
-        for (; iteration < 100 && std::abs(g_1) > 1e-13; ++iteration)
-          {
-            const double x_2 = x_1 - g_1 * (x_1 - x_0) / (g_1 - g_0);
-            x_0 = x_1;
-            g_0 = g_1;
-            x_1 = x_2;
-            g_1 = lateral_stress(x_1);
-          }
-        EXPECT_LT(iteration, 100u) << "lateral-stress secant did not converge";
-        lateral_stretch = x_1;
+        // The lateral stretch of vanishing lateral stress, from the isochoric guess.
+        lateral_stretch = secant_root(
+            lateral_stress, lateral_stretch * std::exp(-0.5 * (log_strain - previous_log_strain)));
         lateral_stress(lateral_stretch);
         const UniaxialState reference = uniaxial_reference(log_strain, sigma_y, cauchy);
         const double sigma = response.tau[0][0] / (lambda * lateral_stretch * lateral_stretch);

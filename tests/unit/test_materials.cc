@@ -635,21 +635,10 @@ namespace
                                  UpdateStatus::success);
           return response.P[1][1];
         };
-        // Secant from the isochoric guess.
-        double x_0 = lateral_stretch * std::exp(-0.5 * (row.log_strain - previous_log_strain));
-        double x_1 = x_0 * (1.0 + 1e-4);
-        double g_0 = lateral_stress(x_0), g_1 = lateral_stress(x_1);
-        unsigned int iteration = 0;
-        for (; iteration < 100 && std::abs(g_1) > 1e-13; ++iteration)
-          {
-            const double x_2 = x_1 - g_1 * (x_1 - x_0) / (g_1 - g_0);
-            x_0 = x_1;
-            g_0 = g_1;
-            x_1 = x_2;
-            g_1 = lateral_stress(x_1);
-          }
-        EXPECT_LT(iteration, 100u) << "lateral-stress secant did not converge";
-        lateral_stretch = x_1;
+        // The lateral stretch of vanishing lateral stress, from the isochoric guess.
+        lateral_stretch =
+            secant_root(lateral_stress,
+                        lateral_stretch * std::exp(-0.5 * (row.log_strain - previous_log_strain)));
         lateral_stress(lateral_stretch); // response and state_new at the root
         const double J = lambda * lateral_stretch * lateral_stretch;
         const double sigma = response.tau[0][0] / J;

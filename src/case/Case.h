@@ -68,6 +68,19 @@ namespace indentsim::io
         {{Control::depth, "depth"}, {Control::force, "force"}}};
   };
 
+  // loading.spacing: equal increments of the control value, or increments proportional to it.
+  enum class Spacing
+  {
+    uniform,
+    geometric
+  };
+  template <>
+  struct ChoiceWords<Spacing>
+  {
+    static constexpr std::array<ChoiceWord<Spacing>, 2> words = {
+        {{Spacing::uniform, "uniform"}, {Spacing::geometric, "geometric"}}};
+  };
+
   // solver.linear_solver (solver/LinearSolver.h).
   enum class LinearSolverChoice
   {
@@ -140,6 +153,10 @@ namespace indentsim::io
     unsigned int cycles = 1;         // load-hold-unload cycles to the same maximum
     unsigned int max_cutbacks = 8;   // successive halvings of an increment before giving up
     double       max_strain = 0.2;   // tensile test: final logarithmic strain along z [-]
+    // uniform: equal increments; geometric: the first increment to first_fraction of the
+    // maximum, then each a constant ratio larger (increments proportional to depth or force).
+    Choice<Spacing> spacing = Spacing::uniform;
+    double          first_fraction = 1.0 / 64; // geometric: the first target / the maximum [-]
 
     bool operator==(const LoadingParameters &) const = default;
   };

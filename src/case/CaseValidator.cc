@@ -381,6 +381,20 @@ namespace indentsim::io
           reject("loading.max_force", format_number(l.max_force),
                  "is the target of force control; with loading.control: depth the maximum is "
                  "loading.max_depth (remove max_force or set control: force)");
+        if (l.spacing == Spacing::geometric && tensile())
+          reject("loading.spacing", to_string(l.spacing),
+                 "geometric increments are for the indentation test; the tensile test takes "
+                 "`steps` equal increments of strain");
+        if (l.spacing != Spacing::geometric &&
+            l.first_fraction != LoadingParameters{}.first_fraction)
+          reject("loading.first_fraction", format_number(l.first_fraction),
+                 "sets the first increment of geometric spacing; with loading.spacing: uniform "
+                 "every increment is max_depth (max_force) / steps (remove first_fraction or set "
+                 "spacing: geometric)");
+        if (l.spacing == Spacing::geometric && l.steps < 2)
+          reject("loading.steps", std::to_string(l.steps),
+                 "geometric spacing needs at least 2 steps (the first to first_fraction of the "
+                 "maximum, then the geometric ones)");
         if (l.cycles > 1 && !l.unload)
           reject("loading.cycles", std::to_string(l.cycles),
                  "several load-unload cycles need loading.unload: true");

@@ -63,6 +63,10 @@ namespace indentsim::io
     {
       return c.material.hardening_law == HardeningLaw::power;
     }
+    bool geometric_spacing(const Case &c)
+    {
+      return c.loading.spacing == Spacing::geometric;
+    }
     bool voce_hardening(const Case &c)
     {
       return c.material.hardening_law == HardeningLaw::voce;
@@ -486,6 +490,21 @@ namespace indentsim::io
               .comment("increments to the maximum (tensile: max_strain)")
               .describe("increments to the maximum (tensile: equal increments of log strain to "
                         "`max_strain`)"),
+          D::at<&C::loading, &L::spacing>("loading.spacing")
+              .expect("an increment spacing")
+              .comment("uniform | geometric: increments equal, or proportional to depth (force)")
+              .describe("`uniform`: `steps` equal increments to the maximum; `geometric`: the "
+                        "first increment goes to `first_fraction` of the maximum, each further "
+                        "one is a constant ratio larger, `steps` in all (depth or force "
+                        "increments proportional to the value reached: the same relative step at "
+                        "every depth, where a self-similar tip's step-size error is the same)"),
+          D::at<&C::loading, &L::first_fraction>("loading.first_fraction")
+              .expect("a fraction of the maximum")
+              .range(between(0, false, 0.5, true), "must satisfy 0 < first_fraction <= 0.5")
+              .written_if(&geometric_spacing)
+              .comment("geometric: first target / maximum [-]")
+              .describe("`geometric` spacing: the first target as a fraction of the maximum "
+                        "depth (force)"),
           D::at<&C::loading, &L::unload>("loading.unload")
               .comment("then back until the force vanishes (force control: to 1 % of max_force)")
               .describe("then back until the force vanishes (force control: to 1 % of "

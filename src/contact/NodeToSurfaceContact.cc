@@ -438,7 +438,7 @@ namespace indentsim::contact
     return Utilities::MPI::sum(n_changes_, communicator_);
   }
 
-  double NodeToSurfaceContact::augment()
+  double NodeToSurfaceContact::augment(const bool damp_oscillations)
   {
     double largest_change = 0;
     for (ContactNode &node : nodes_)
@@ -446,8 +446,10 @@ namespace indentsim::contact
         largest_change =
             std::max({largest_change, std::abs(node.pressure - node.lambda) * node.area,
                       (node.traction - node.traction_multiplier).norm() * node.area});
-        node.lambda = node.pressure;
+        const bool oscillating = damp_oscillations && node.gap * node.gap_at_augmentation < 0;
+        node.lambda = oscillating ? 0.5 * (node.lambda + node.pressure) : node.pressure;
         node.traction_multiplier = node.traction;
+        node.gap_at_augmentation = node.gap;
       }
     return Utilities::MPI::max(largest_change, communicator_);
   }
@@ -476,6 +478,7 @@ namespace indentsim::contact
         node.lambda_converged = node.lambda;
         node.traction_multiplier_converged = node.traction_multiplier;
         node.x_converged = node.x;
+        node.gap_at_augmentation = 0;
       }
     depth_converged_ = depth_;
     offset_converged_ = offset_;
@@ -495,6 +498,7 @@ namespace indentsim::contact
       {
         node.lambda = node.lambda_converged;
         node.traction_multiplier = node.traction_multiplier_converged;
+        node.gap_at_augmentation = 0;
       }
   }
 

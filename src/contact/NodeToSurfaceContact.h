@@ -79,9 +79,10 @@ namespace indentsim::contact
     bool          active = false;
     ContactStatus status = ContactStatus::open;
     Tensor<1, 3>  normal;
-    Tensor<1, 3>  traction; // tangential traction t on the node [GPa]
-    Tensor<1, 3>  slip;     // tangential slip s_T over the increment [um]
-    Point<3>      x;        // current position [um]
+    Tensor<1, 3>  traction;                // tangential traction t on the node [GPa]
+    Tensor<1, 3>  slip;                    // tangential slip s_T over the increment [um]
+    double        gap_at_augmentation = 0; // gap at the last Uzawa update of the increment [um]
+    Point<3>      x;                       // current position [um]
   };
 
   struct ContactSummary
@@ -197,8 +198,11 @@ namespace indentsim::contact
     double min_gap() const;
 
     // Uzawa update lambda <- p, t_i <- t; returns the largest change of the nodal force [mN]
-    // (global).
-    double augment();
+    // (global). With `damp_oscillations`, a node whose gap changed sign since the last update
+    // (penetrating, then standing off under its multiplier, or the reverse) takes the mean
+    // lambda <- (lambda + p)/2: a node at the edge of the contact can otherwise alternate between
+    // the two states forever (the fixed point, and so the converged answer, is the same).
+    double augment(bool damp_oscillations = false);
 
     // The residual change the next augment() would make: the l2 norm over the nodes of the
     // nodal force change A_i |(p_i - lambda_i) n_i + t_i - t^lambda_i| (global) [mN].

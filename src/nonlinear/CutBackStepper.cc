@@ -19,12 +19,16 @@ namespace indentsim::nonlinear
     return std::min(increment, paced_increment);
   }
 
-  void IncrementControl::after_step(const bool easy, const bool paced, const double depth_before,
+  void IncrementControl::after_step(const bool easy, const bool paced, const double nominal_before,
+                                    const double nominal_after, const double depth_before,
                                     const double depth_after, const double force_before,
                                     const double force_after, const double pacing_force)
   {
     if (paced && depth_before - depth_after > 0 && force_before - force_after > 0)
       paced_increment = pacing_force * (depth_before - depth_after) / (force_before - force_after);
+    // The increment keeps its fraction of the nominal one (2^-k after k outstanding cut-backs).
+    if (nominal_before > 0)
+      increment *= nominal_after / nominal_before;
     easy_steps = easy ? easy_steps + 1 : 0;
     if (easy_steps >= 3)
       {

@@ -6,7 +6,10 @@
 // into the indenter or far beyond yield), then halved, up to loading.max_cutbacks times in a
 // row; a hold cannot be cut back. After a cut-back the increment grows again (doubled) only once
 // three steps in a row have converged easily (no cut-back, at most 6 Newton iterations), so
-// that a difficult stretch is not retried at every step. Depth-controlled unloading is paced by
+// that a difficult stretch is not retried at every step; it never exceeds the programme's
+// nominal increment. Geometric spacing raises the nominal increment step by step, and the
+// increment keeps its fraction of it: the nominal one, or 2^-k of it after k cut-backs not yet
+// grown back. Depth-controlled unloading is paced by
 // force: each step lowers the force by about max_force / unload_points, with the depth
 // increment from the last step's secant unloading stiffness (the first step takes a quarter of
 // the nominal increment); the elastic recovery spans a small part of the depth, so uniform
@@ -33,10 +36,12 @@ namespace indentsim::nonlinear
     void start_segment(double nominal, bool paced);
     // The increment the next attempt takes.
     double step_size() const;
-    // After a converged step: grows the increment after easy steps, and paces unloading from
-    // the step's secant (depth and force before and after, the largest force so far).
-    void after_step(bool easy, bool paced, double depth_before, double depth_after,
-                    double force_before, double force_after, double pacing_force);
+    // After a converged step: scales the increment with the nominal one (before and after the
+    // step), doubles it after easy steps, and paces unloading from the step's secant (depth and
+    // force before and after, the largest force so far).
+    void after_step(bool easy, bool paced, double nominal_before, double nominal_after,
+                    double depth_before, double depth_after, double force_before,
+                    double force_after, double pacing_force);
   };
 
   // What the stepper reports while it retries (for the console and run.log).

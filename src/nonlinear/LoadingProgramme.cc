@@ -1,5 +1,7 @@
 #include "nonlinear/LoadingProgramme.h"
 
+#include <cmath>
+
 namespace indentsim::nonlinear
 {
   namespace
@@ -45,6 +47,9 @@ namespace indentsim::nonlinear
     , maximum(force_control ? loading.max_force : loading.max_depth)
     , expected_steps(nonlinear::expected_steps(loading))
     , unload_points_(loading.unload_points)
+    , geometric_(loading.spacing == io::Spacing::geometric && loading.steps > 1)
+    , first_fraction_(loading.first_fraction)
+    , ratio_(geometric_ ? std::pow(1 / loading.first_fraction, 1.0 / (loading.steps - 1)) : 1.0)
   {
     // Under force control, unloading stops at 1 % of the maximum force: towards zero force the
     // contact stiffness vanishes and the depth is no longer determined by the force.
@@ -58,6 +63,17 @@ namespace indentsim::nonlinear
           segments.push_back(
               {SegmentKind::unload, unload_target, uniform_unload_steps(loading), cycle});
       }
+  }
+
+  double LoadingProgramme::nominal_increment(const Segment &segment, const double value) const
+  {
+    if (!geometric_ || segment.kind != SegmentKind::load)
+      return maximum / segment.steps;
+    const double first = first_fraction_ * maximum;
+    // Below the first target (to 1e-9 of it), the rest of the way there.
+    if (value < first * (1 - 1e-9))
+      return first - value;
+    return (ratio_ - 1) * value;
   }
 
   bool LoadingProgramme::paced(const Segment &segment) const

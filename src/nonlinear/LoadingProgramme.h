@@ -38,11 +38,20 @@ namespace indentsim::nonlinear
     unsigned int expected_steps;
     // Depth-controlled unloading is paced by force (unload_points > 0): see paced_increment.
     bool paced(const Segment &segment) const;
+    // The increment of the control value a step of `segment` takes from `value` without
+    // cut-backs: maximum / steps (uniform spacing, holds, unloading), or under geometric
+    // spacing of the loading the way to the first target (first_fraction of the maximum), then
+    // (ratio - 1) value, with ratio = (1 / first_fraction)^(1 / (steps - 1)) so that `steps`
+    // increments reach the maximum.
+    double nominal_increment(const Segment &segment, double value) const;
     // " um" or " mN": the unit of the control value in messages.
     const char *unit() const { return force_control ? " mN" : " um"; }
 
   private:
     unsigned int unload_points_;
+    bool         geometric_;
+    double       first_fraction_;
+    double       ratio_; // geometric: h_(k+1) / h_k
   };
 
   // The number of steps a loading programme is expected to take without cut-backs (for the

@@ -147,7 +147,9 @@ namespace indentsim::problems
             fill_converged_record(increment.depth, record);
             return IncrementStatus::converged;
           }
-        const double multiplier_change = contact_->augment();
+        // From the fourth pass on, nodes that alternate between penetrating and standing off are
+        // damped (NodeToSurfaceContact::augment); earlier passes are the plain Uzawa update.
+        const double multiplier_change = contact_->augment(increment.pass >= 3);
         pcout_ << "      pass " << increment.pass << "  augmented: penetration " << std::scientific
                << std::setprecision(2) << summary.max_penetration << " um, active gap "
                << summary.max_active_gap << " um, largest multiplier change " << multiplier_change
@@ -225,7 +227,7 @@ namespace indentsim::problems
     if (it > 0 && pass.alpha == 1 && pass.norm_one_back > 0)
       newton_reduction_.at(increment.pass, it) = norm / pass.norm_one_back;
     if (increment.pass == 0)
-      increment.reference = std::max({increment.reference, norm, case_.solver.absolute_tolerance});
+      increment.reference = std::max({increment.reference, norm, absolute_tolerance_});
     pcout_ << "      pass " << increment.pass << " it " << std::setw(2) << it
            << "  |R| = " << std::scientific << std::setprecision(3) << norm << " mN"
            << std::defaultfloat;
@@ -267,11 +269,11 @@ namespace indentsim::problems
   // and ready for an inexact augmentation [mN].
   namespace
   {
-    double pass_end_threshold(const io::Case &the_case, const double reference,
-                              const unsigned int pass, const double pass_start_norm)
+    double pass_end_threshold(const io::Case &the_case, const double absolute_tolerance,
+                              const double reference, const unsigned int pass,
+                              const double pass_start_norm)
     {
-      return std::max({the_case.solver.residual_tolerance * reference,
-                       the_case.solver.absolute_tolerance,
+      return std::max({the_case.solver.residual_tolerance * reference, absolute_tolerance,
                        pass < the_case.contact.max_augmentations ? 1e-3 * pass_start_norm : 0.0});
     }
   } // namespace
@@ -291,8 +293,8 @@ namespace indentsim::problems
     if (!pass.predictor && !increment.force_control && !pass.frozen && pass.alpha == 1 &&
         pass.norm_one_back > 0)
       {
-        const double end_threshold =
-            pass_end_threshold(case_, increment.reference, increment.pass, pass.pass_start_norm);
+        const double end_threshold = pass_end_threshold(
+            case_, absolute_tolerance_, increment.reference, increment.pass, pass.pass_start_norm);
         const double predicted = nonlinear::predicted_residual(
             pass.norm_one_back, pass.norm_two_back, newton_reduction_.at(increment.pass, it));
         pass.matrix_assembled = !(predicted <= 0.5 * end_threshold);
@@ -378,7 +380,7 @@ namespace indentsim::problems
     // the multipliers changed little) would augment again on the same displacement until
     // max_augmentations.
     if (!(it > 0 && norm <= std::max(case_.solver.residual_tolerance * increment.reference,
-                                     case_.solver.absolute_tolerance)))
+                                     absolute_tolerance_)))
       return std::nullopt;
     if (!pass.frozen)
       return IterateOutcome::converged;
@@ -404,11 +406,12 @@ namespace indentsim::problems
     residual_ *= -1.0;
     // Under force control, where the same tolerance serves the bordered solve, no floor.
     const double oversolving_floor =
-        increment.force_control ? 0.0
-                                : 1e-2 *
-                                      pass_end_threshold(case_, increment.reference, increment.pass,
-                                                         pass.pass_start_norm) /
-                                      norm;
+        increment.force_control
+            ? 0.0
+            : 1e-2 *
+                  pass_end_threshold(case_, absolute_tolerance_, increment.reference,
+                                     increment.pass, pass.pass_start_norm) /
+                  norm;
     const double tolerance =
         nonlinear::linear_tolerance(norm, increment.reference, oversolving_floor);
     const auto solve = [&](PETScWrappers::MPI::Vector &x, const PETScWrappers::MPI::Vector &b) {

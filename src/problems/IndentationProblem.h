@@ -146,6 +146,8 @@ namespace indentsim::problems
     unsigned int          n_hanging_node_constraints() const;
     const mesh::MeshInfo &mesh_info() const { return mesh_info_; }
     double                symmetry_factor() const { return mesh_info_.quarter ? 4.0 : 1.0; }
+    // The round-off level of the residual (IndentationProblem.cc) [mN].
+    double                                    residual_round_off() const;
     const dealii::DoFHandler<dim>            &dof_handler() const { return solid_.dof_handler; }
     const dealii::PETScWrappers::MPI::Vector &solution() const { return solution_; }
 
@@ -241,7 +243,7 @@ namespace indentsim::problems
     void first_contact_step(RunContext &context, const nonlinear::Segment &segment);
     void converged_step(RunContext &context, const nonlinear::Segment &segment);
     void complete_step(RunContext &context, const nonlinear::Segment &segment, StepRecord &record,
-                       double depth_before, double force_before);
+                       double nominal_before, double depth_before, double force_before);
     bool checkpoint_or_stop(RunContext &context);
     void check_records(RunContext &context);
     // The physics guards after an accepted step (IndentationGuards.cc, mesh/MeshAdequacy.h):
@@ -294,7 +296,10 @@ namespace indentsim::problems
     // Indenter force (whole indent) of the last two converged increments [mN].
     double force_converged_ = 0, force_previous_ = 0, force_trial_ = 0;
     // |indenter force| of the model [mN] at the last converged and at the trial state.
-    double                             converged_force_scale_ = 0, trial_force_scale_ = 0;
+    double converged_force_scale_ = 0, trial_force_scale_ = 0;
+    // The absolute residual tolerance of Newton's method: solver.absolute_tolerance, or the
+    // round-off level of the residual if larger (residual_round_off) [mN].
+    double                             absolute_tolerance_ = 0;
     bool                               has_previous_ = false;
     dealii::PETScWrappers::MPI::Vector residual_; // owned
 

@@ -74,7 +74,7 @@ namespace indentsim::problems
         if (!loop.in_segment)
           {
             loop.in_segment = true;
-            loop.control.start_segment(context.programme.maximum / segment.steps,
+            loop.control.start_segment(context.programme.nominal_increment(segment, loop.value),
                                        context.programme.paced(segment));
           }
         // Force control from a state that carries no load has no contact stiffness to steer
@@ -180,7 +180,8 @@ namespace indentsim::problems
   {
     LoopState                         &loop = context.loop;
     const nonlinear::LoadingProgramme &programme = context.programme;
-    loop.control.increment = std::min(loop.control.increment, programme.maximum / segment.steps);
+    const double nominal_before = programme.nominal_increment(segment, loop.value);
+    loop.control.increment = std::min(loop.control.increment, nominal_before);
     const double depth_before = loop.depth, force_before = records_.back().force;
     StepRecord   record;
     const auto   solve = [&](const double target, const bool extrapolate) {
@@ -217,14 +218,14 @@ namespace indentsim::problems
           " um, the depth the mesh is designed for; lower loading.max_force or raise "
           "loading.max_depth with specimen.refined_region");
     record.cutbacks = cutbacks;
-    complete_step(context, segment, record, depth_before, force_before);
+    complete_step(context, segment, record, nominal_before, depth_before, force_before);
   }
 
   // Records a converged step, writes its outputs, accepts it and moves the programme on.
   template <int dim>
   void IndentationProblem<dim>::complete_step(RunContext &context, const Segment &segment,
-                                              StepRecord &record, const double depth_before,
-                                              const double force_before)
+                                              StepRecord &record, const double nominal_before,
+                                              const double depth_before, const double force_before)
   {
     LoopState                         &loop = context.loop;
     const nonlinear::LoadingProgramme &programme = context.programme;
@@ -286,9 +287,10 @@ namespace indentsim::problems
         loop.in_segment = false;
         return;
       }
-    loop.control.after_step(record.cutbacks == 0 && record.newton_iterations <= 6,
-                            programme.paced(segment), depth_before, loop.depth, force_before,
-                            record.force, loop.max_force / case_.loading.unload_points);
+    loop.control.after_step(
+        record.cutbacks == 0 && record.newton_iterations <= 6, programme.paced(segment),
+        nominal_before, programme.nominal_increment(segment, loop.value), depth_before, loop.depth,
+        force_before, record.force, loop.max_force / case_.loading.unload_points);
   }
 
   // Collective: a failed write of load_penetration.csv or run.log on rank 0 (kept by the

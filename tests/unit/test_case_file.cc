@@ -628,6 +628,8 @@ TEST(CaseFile, TensileRangesAreChecked)
   expect_rejected(tensile + "specimen:\n  grains: random\n",
                   {"specimen.grains = 'random'", "single | per_element"});
   expect_rejected(tensile + "specimen:\n  seed: -1\n", {"specimen.seed", "-1", "negative"});
+  expect_rejected(tensile + "loading:\n  spacing: geometric\n",
+                  {"loading.spacing = geometric", "tensile test takes"});
   expect_rejected(tensile + "loading:\n  max_strain: 0\n",
                   {"loading.max_strain = 0", "0 < strain <= 1"});
   expect_rejected(tensile + "loading:\n  max_strain: 1.5\n",
@@ -831,6 +833,15 @@ TEST(CaseFile, LoadingContactSolverRangesAreChecked)
   expect_rejected(with("loading:\n  cycles: 2\n  unload: false\n"),
                   {"loading.cycles = 2", "need loading.unload: true"});
   EXPECT_EQ(error_of(with("loading:\n  cycles: 3\n  hold_steps: 4\n")), "");
+  expect_rejected(with("loading:\n  spacing: logarithmic\n"),
+                  {"loading.spacing", "logarithmic", "uniform", "geometric"});
+  expect_rejected(with("loading:\n  spacing: geometric\n  steps: 1\n"),
+                  {"loading.steps = 1", "at least 2 steps"});
+  expect_rejected(with("loading:\n  spacing: geometric\n  first_fraction: 0\n"),
+                  {"loading.first_fraction = 0", "0 < first_fraction <= 0.5"});
+  expect_rejected(with("loading:\n  first_fraction: 0.01\n"),
+                  {"loading.first_fraction = 0.01", "spacing: uniform"});
+  EXPECT_EQ(error_of(with("loading:\n  spacing: geometric\n  first_fraction: 0.01\n")), "");
   expect_rejected(with("contact:\n  penalty: -1\n"), {"contact.penalty = -1"});
   expect_rejected(with("contact:\n  penetration_tolerance: 0\n"),
                   {"contact.penetration_tolerance = 0"});
@@ -1164,6 +1175,9 @@ TEST(CaseFile, EveryKeyIsDocumentedAndWritten)
       c.material.hardening_file = "curve.csv";
       written += resolved_case_yaml(c);
     }
+  Case geometric; // writes loading.first_fraction
+  geometric.loading.spacing = Spacing::geometric;
+  written += resolved_case_yaml(geometric);
   for (const auto &key : case_keys())
     {
       EXPECT_NE(reference.find("| `" + key.path + "` |"), std::string::npos) << key.path;

@@ -146,15 +146,62 @@ TEST(CutBackStepper, GrowsAfterEasyStepsAndPacesUnloading)
   control.start_segment(0.4, true);
   EXPECT_EQ(control.step_size(), 0.1);
   control.increment = 0.05;
-  control.after_step(true, false, 0, 0, 0, 0, 0);
-  control.after_step(true, false, 0, 0, 0, 0, 0);
+  control.after_step(true, false, 0.1, 0.1, 0, 0, 0, 0, 0);
+  control.after_step(true, false, 0.1, 0.1, 0, 0, 0, 0, 0);
   EXPECT_EQ(control.increment, 0.05);
-  control.after_step(true, false, 0, 0, 0, 0, 0);
+  control.after_step(true, false, 0.1, 0.1, 0, 0, 0, 0, 0);
   EXPECT_EQ(control.increment, 0.1);
   EXPECT_EQ(control.easy_steps, 0u);
-  control.after_step(false, true, 6.0, 5.9, 800.0, 600.0, 40.0);
+  control.after_step(false, true, 0.1, 0.1, 6.0, 5.9, 800.0, 600.0, 40.0);
   EXPECT_EQ(control.easy_steps, 0u);
   EXPECT_NEAR(control.paced_increment, 40.0 * 0.1 / 200.0, 1e-15);
+}
+
+// Geometric spacing: the first increment to first_fraction of the maximum, then increments in
+// the ratio rho = (1/first_fraction)^(1/(steps-1)) to the value reached, so that exactly `steps`
+// increments reach the maximum (h_k = h_max rho^(k - steps)); unloading keeps the uniform nominal
+// increment.
+TEST(LoadingProgramme, GeometricSpacingReachesTheMaximumInItsSteps)
+{
+  io::LoadingParameters loading;
+  loading.max_depth = 6.0;
+  loading.steps = 40;
+  loading.spacing = io::Spacing::geometric;
+  loading.first_fraction = 1.0 / 64;
+  const LoadingProgramme programme(loading);
+  const Segment         &load = programme.segments.at(0);
+  const double           rho = std::pow(64.0, 1.0 / 39);
+  double                 h = 0;
+  for (unsigned int k = 1; k <= loading.steps; ++k)
+    {
+      const double increment = programme.nominal_increment(load, h);
+      if (k == 1)
+        EXPECT_DOUBLE_EQ(increment, 6.0 / 64);
+      else
+        EXPECT_NEAR(increment / h, rho - 1, 1e-13) << "step " << k;
+      h = std::min(load.target, h + increment);
+      EXPECT_NEAR(h, 6.0 * std::pow(rho, double(k) - 40), 1e-12) << "step " << k;
+    }
+  EXPECT_NEAR(h, 6.0, 1e-12);
+  EXPECT_DOUBLE_EQ(programme.nominal_increment(programme.segments.at(1), 6.0), 6.0 / 40);
+
+  loading.spacing = io::Spacing::uniform;
+  const LoadingProgramme uniform(loading);
+  EXPECT_DOUBLE_EQ(uniform.nominal_increment(uniform.segments.at(0), 3.0), 6.0 / 40);
+}
+
+// Under geometric spacing a cut-back increment keeps its fraction of the nominal one as the
+// nominal one grows, and doubles back towards it after three easy steps.
+TEST(CutBackStepper, CutBackIncrementFollowsTheGrowingNominalOne)
+{
+  IncrementControl control;
+  control.start_segment(0.1, false);
+  control.increment = 0.025; // two cut-backs
+  control.after_step(true, false, 0.1, 0.11, 0, 0, 0, 0, 0);
+  EXPECT_NEAR(control.increment, 0.0275, 1e-15);
+  control.after_step(true, false, 0.11, 0.121, 0, 0, 0, 0, 0);
+  control.after_step(true, false, 0.121, 0.1331, 0, 0, 0, 0, 0);
+  EXPECT_NEAR(control.increment, 2 * 0.1331 / 4, 1e-15);
 }
 
 // The line search minimises the quadratic model of |R|^2 within its bounds; a failed

@@ -59,8 +59,8 @@ namespace indentsim::materials
 
     // The eigenvector-rotation part of the derivative of the isotropic function b_e(b_e^tr):
     // in the eigenbasis, d b_e,ab = theta_ab d b_e,ab^tr for a != b with the divided difference
-    // theta_ab = (b_a - b_b) / (lambda_a - lambda_b) (Daleckii-Krein; Carlson & Hoger 1986;
-    // Miehe 1998, CMAME 155, 193). Differencing b_a - b_b would lose all accuracy as the
+    // theta_ab = (b_a - b_b) / (lambda_a - lambda_b) (Daleckii-Krein; Carlson & Hoger 1986, Quart.
+    // Appl. Math. 44, 409; de Souza Neto, Peric & Owen 2008, appendix A). Differencing b_a - b_b would lose all accuracy as the
     // eigenvalues meet, which is the normal case here (virgin material, the axis of symmetry,
     // uniaxial states), so the quotient is factored into parts that have none to lose: with
     // delta = e_a - e_b, the difference of the return equations R_a - R_b = 0 reads

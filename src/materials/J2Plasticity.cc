@@ -1,15 +1,10 @@
 #include "materials/J2Plasticity.h"
-#include "materials/ImplicitLocalProblem.h"
+#include "materials/J2PrincipalReturn.h"
 #include "materials/TensorFunctions.h"
 
-#include <Sacado.hpp>
-
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <optional>
-#include <stdexcept>
-#include <string>
-#include <type_traits>
 
 namespace indentsim::materials
 {
@@ -17,321 +12,216 @@ namespace indentsim::materials
   {
     const double sqrt_3_2 = std::sqrt(1.5);
 
-    // Unknowns of the return mapping: eps_e (6, unrolled) and Delta gamma; parameters:
-    // eps_e^tr (6, unrolled) and J.
-    constexpr int n_unknowns = 7;
-    constexpr int n_parameters = 7;
-    constexpr int delta_gamma_index = 6;
-    constexpr int J_index = 6;
-    using ReturnMapping = ImplicitLocalProblem<n_unknowns, n_parameters>;
+    using PrincipalMatrix = std::array<std::array<double, 3>, 3>;
 
-    // Forward-AD number over the nine components F_kL (index 3 k + L) for the tangent.
-    using ADNumberF = Sacado::Fad::SFad<double, 9>;
-
-    // Residual of the backward-Euler exponential-map return (see J2Plasticity.h), scaled to
-    // strain units (the yield condition is divided by mu) so one tolerance fits both parts:
-    //   R_eps = eps_e - eps_e^tr + Delta gamma N(eps_e),   N = sqrt(3/2) dev b_e / |dev b_e|,
-    //   R_f   = (sqrt(3/2) |dev tau| / J^m - sigma_y(gamma_p,n + Delta gamma)) / mu,
-    // using dev tau = mu dev b_e (eq. 3 with eq. 2) and b_e = exp(2 eps_e) (eq. 9). The flow
-    // stress is the line sigma_y,n + H Delta gamma (a linear law, or one segment of a table),
-    // or, when `smooth_law` is set, that law (power, Voce) with its value and slope: the
-    // Jacobian and the sensitivity need first derivatives only.
-    struct ReturnMappingResidual
+    // The eigen-decomposition of the trial state, b_e^tr = sum_a lambda_a n_a (x) n_a: the
+    // eigenvectors as the columns of Q (Q[i][a] = n_a,i), lambda_a - 1 (kept apart from the 1 so
+    // that the small strains keep their relative accuracy) and t_a = 1/2 log lambda_a. deal.II's
+    // Jacobi method: accurate to round-off of |b_e^tr - I| also for repeated eigenvalues (its
+    // QL and hybrid methods are faster, the hybrid one is not accurate enough).
+    struct TrialSpectrum
     {
-      double mu;
-      double yield_stress_n;    // the line's sigma_y at gamma_p,n; the law's sigma_y(gamma_p,n)
-      double hardening_modulus; // the line's slope H; the law's slope at gamma_p,n (initial guess)
-      bool   cauchy;
-      double gamma_p_n = 0.0;
-      const IsotropicHardening *smooth_law = nullptr;
+      Tensor<2, 3>          Q;
+      std::array<double, 3> lambda_minus_one;
+      std::array<double, 3> log_strain;
+    };
 
-      template <typename Number>
-      Number flow_stress(const Number &delta_gamma) const
-      {
-        if (smooth_law == nullptr)
-          return yield_stress_n + hardening_modulus * delta_gamma;
-        if constexpr (std::is_same_v<Number, double>)
-          return smooth_law->flow_stress(gamma_p_n + delta_gamma);
-        else
+    TrialSpectrum trial_spectrum(const dealii::SymmetricTensor<2, 3> &b_e_trial)
+    {
+      dealii::SymmetricTensor<2, 3> b_minus_identity = b_e_trial;
+      for (unsigned int k = 0; k < 3; ++k)
+        b_minus_identity.access_raw_entry(k) -= 1.0;
+      const auto eigensystem =
+          dealii::eigenvectors(b_minus_identity, dealii::SymmetricTensorEigenvectorMethod::jacobi);
+      TrialSpectrum spectrum;
+      for (unsigned int a = 0; a < 3; ++a)
+        {
+          spectrum.lambda_minus_one[a] = eigensystem[a].first;
+          spectrum.log_strain[a] = 0.5 * std::log1p(eigensystem[a].first);
+          for (unsigned int i = 0; i < 3; ++i)
+            spectrum.Q[i][a] = eigensystem[a].second[i];
+        }
+      return spectrum;
+    }
+
+    // (exp(2 delta) - 1) / delta and log(1 + x) / x, with their limits 2 and 1 at 0: quotients
+    // of functions whose differences are computed without cancellation (expm1, log1p), so they
+    // keep full accuracy however close the two eigenvalues behind delta and x are.
+    double expm1_quotient(const double delta)
+    {
+      return delta == 0.0 ? 2.0 : std::expm1(2.0 * delta) / delta;
+    }
+
+    double log1p_quotient(const double x)
+    {
+      return x == 0.0 ? 1.0 : std::log1p(x) / x;
+    }
+
+    // The eigenvector-rotation part of the derivative of the isotropic function b_e(b_e^tr):
+    // in the eigenbasis, d b_e,ab = theta_ab d b_e,ab^tr for a != b with the divided difference
+    // theta_ab = (b_a - b_b) / (lambda_a - lambda_b) (Daleckii-Krein; Carlson & Hoger 1986, Quart.
+    // Appl. Math. 44, 409; de Souza Neto, Peric & Owen 2008, appendix A). Differencing b_a - b_b would lose all accuracy as the
+    // eigenvalues meet, which is the normal case here (virgin material, the axis of symmetry,
+    // uniaxial states), so the quotient is factored into parts that have none to lose: with
+    // delta = e_a - e_b, the difference of the return equations R_a - R_b = 0 reads
+    // delta + c_N (b_a - b_b) = t_a - t_b, and b_a - b_b = b_b (exp(2 delta) - 1), so
+    //   theta_ab = b_b q_e / (1 + c_N b_b q_e) * q_l / (2 lambda_b),
+    //   q_e = (exp(2 delta) - 1) / delta,   q_l = log(1 + x) / x,   x = (lambda_a - lambda_b) / lambda_b,
+    // which is smooth and tends to the derivative limit as lambda_a -> lambda_b.
+    PrincipalMatrix rotation_divided_differences(const TrialSpectrum         &spectrum,
+                                                 const std::array<double, 3> &b,
+                                                 const J2PrincipalReturn     &principal)
+    {
+      const double    c_N = principal.flow_factor();
+      PrincipalMatrix theta{};
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int c = a + 1; c < 3; ++c)
           {
-            const auto value = smooth_law->evaluate(gamma_p_n + delta_gamma.val());
-            return value.stress + value.slope * (delta_gamma - delta_gamma.val());
+            const double delta = principal.elastic_log_strain(a) - principal.elastic_log_strain(c);
+            const double lambda_c = 1.0 + spectrum.lambda_minus_one[c];
+            const double x =
+                (spectrum.lambda_minus_one[a] - spectrum.lambda_minus_one[c]) / lambda_c;
+            const double b_q_e = b[c] * expm1_quotient(delta);
+            theta[a][c] = theta[c][a] =
+                b_q_e / (1.0 + c_N * b_q_e) * log1p_quotient(x) / (2.0 * lambda_c);
           }
-      }
-
-      template <typename Number>
-      void operator()(const std::array<Number, n_unknowns>   &x,
-                      const std::array<Number, n_parameters> &p,
-                      std::array<Number, n_unknowns>         &R) const
-      {
-        using std::exp;
-        // dev b_e = exp(2 tr(eps_e)/3) dev(exp(2 dev eps_e) - I), written with exp - I so that
-        // the small deviatoric part keeps full relative accuracy (it sets N).
-        const Number                          mean_eps_e = (x[0] + x[1] + x[2]) / 3.0;
-        dealii::SymmetricTensor<2, 3, Number> two_dev_eps_e;
-        for (unsigned int k = 0; k < 6; ++k)
-          two_dev_eps_e.access_raw_entry(k) = 2.0 * (k < 3 ? x[k] - mean_eps_e : x[k]);
-        const auto dev_b_e =
-            scaled(exp(2.0 * mean_eps_e), deviator_symmetric(expm1_symmetric(two_dev_eps_e)));
-        const Number norm_dev_b_e = norm_symmetric(dev_b_e);
-        const Number flow_factor = (sqrt_3_2 * x[delta_gamma_index]) / norm_dev_b_e;
-        for (unsigned int k = 0; k < 6; ++k)
-          R[k] = x[k] - p[k] + flow_factor * dev_b_e.access_raw_entry(k);
-        const Number equivalent_stress_over_mu =
-            cauchy ? Number(sqrt_3_2 * norm_dev_b_e / p[J_index]) : Number(sqrt_3_2 * norm_dev_b_e);
-        R[delta_gamma_index] =
-            equivalent_stress_over_mu - flow_stress<Number>(x[delta_gamma_index]) / mu;
-      }
-    };
-
-    // The return mapping's parameters eps_e^tr = 1/2 log b_e^tr (6, unrolled) and J; when the
-    // tangent is wanted, also as forward-AD functions of the components of F.
-    struct TrialParameters
-    {
-      ReturnMapping::Parameters           values;
-      dealii::Tensor<2, 3, ADNumberF>     F_ad;
-      std::array<ADNumberF, n_parameters> ad;
-    };
-
-    TrialParameters trial_parameters(const dealii::Tensor<2, 3>          &F,
-                                     const dealii::SymmetricTensor<2, 3> &C_p_inverse_n,
-                                     const dealii::SymmetricTensor<2, 3> &b_e_trial, const double J,
-                                     const bool with_derivatives)
-    {
-      TrialParameters trial;
-      if (with_derivatives)
-        {
-          for (unsigned int k = 0; k < 3; ++k)
-            for (unsigned int L = 0; L < 3; ++L)
-              trial.F_ad[k][L] = ADNumberF(9, 3 * k + L, F[k][L]);
-          const auto log_b_e_trial = log_spd(push_forward_symmetric(trial.F_ad, C_p_inverse_n));
-          for (unsigned int k = 0; k < 6; ++k)
-            trial.ad[k] = 0.5 * log_b_e_trial.access_raw_entry(k);
-          trial.ad[J_index] = determinant_3x3(trial.F_ad);
-          trial.ad[J_index].val() = J; // same value, without the cancellation of det F
-          for (unsigned int a = 0; a < n_parameters; ++a)
-            trial.values[a] = trial.ad[a].val();
-        }
-      else
-        {
-          const auto log_b_e_trial = log_spd(b_e_trial);
-          for (unsigned int k = 0; k < 6; ++k)
-            trial.values[k] = 0.5 * log_b_e_trial.access_raw_entry(k);
-          trial.values[J_index] = J;
-        }
-      return trial;
+      return theta;
     }
 
-    enum class ReturnOutcome
+    // The principal values after the return: b_a = exp(2 e_a) and b_a - 1.
+    struct PrincipalStretches
     {
-      plastic,          // Delta gamma > 0
-      on_yield_surface, // Delta gamma = 0 to round-off: the elastic solution
-      not_converged
+      std::array<double, 3> b, b_minus_one;
     };
 
-    // The local Newton of the return mapping. First initial guess: the radial return of the
-    // Hencky approximation dev tau ~ 2 mu dev eps_e, for which
-    // sigma_HMH = sqrt(3/2) 2 mu |dev eps_e| / J^m drops by 3 mu Delta gamma / J^m along N
-    // (exact for small elastic strains, so Newton starts in its quadratic range; the
-    // neo-Hookean f^tr would overshoot for large trial strains, where exp(2 eps) >> 1 + 2 eps,
-    // and could land on the spurious reversed-flow root). Fallback: Newton from the trial state
-    // itself (Delta gamma = 0).
-    ReturnOutcome solve_return_mapping(const ReturnMappingResidual     &residual,
-                                       const ReturnMapping::Parameters &parameters,
-                                       const double J_m, ReturnMapping::Unknowns &unknowns)
+    PrincipalStretches principal_stretches(const J2PrincipalReturn &principal)
     {
-      const double mu = residual.mu, yield_stress_n = residual.yield_stress_n;
-      const auto   set_hencky_guess = [&]() {
-        const double                  mean = (parameters[0] + parameters[1] + parameters[2]) / 3.0;
-        dealii::SymmetricTensor<2, 3> dev_eps_trial;
-        for (unsigned int k = 0; k < 6; ++k)
-          dev_eps_trial.access_raw_entry(k) = parameters[k] - (k < 3 ? mean : 0.0);
-        const double norm_dev = norm_symmetric(dev_eps_trial);
-        const double delta_gamma_0 =
-            std::max(sqrt_3_2 * 2.0 * mu * norm_dev / J_m - yield_stress_n, 0.0) /
-            (3.0 * mu / J_m + residual.hardening_modulus);
-        for (unsigned int k = 0; k < 6; ++k)
-          unknowns[k] = parameters[k] -
-                        delta_gamma_0 * sqrt_3_2 * dev_eps_trial.access_raw_entry(k) / norm_dev;
-        unknowns[delta_gamma_index] = delta_gamma_0;
-      };
-      const auto set_trial_guess = [&]() {
-        for (unsigned int k = 0; k < 6; ++k)
-          unknowns[k] = parameters[k];
-        unknowns[delta_gamma_index] = 0.0;
-      };
-
-      LocalNewtonSettings settings;
-      // Round-off of the residual is ~1e-16 of the largest strain involved.
-      double strain_scale = yield_stress_n / mu;
-      for (unsigned int k = 0; k < 6; ++k)
-        strain_scale = std::max(strain_scale, std::abs(parameters[k]));
-      settings.tolerance = 1e-14 * strain_scale;
-      settings.stagnation_tolerance = 1e-11 * strain_scale;
-      for (unsigned int attempt = 0; attempt < 2; ++attempt)
+      PrincipalStretches stretches;
+      for (unsigned int a = 0; a < 3; ++a)
         {
-          if (attempt == 0)
-            set_hencky_guess();
-          else
-            set_trial_guess();
-          const LocalNewtonResult newton =
-              ReturnMapping::solve(residual, parameters, unknowns, settings);
-          // Delta gamma > 0 is guaranteed for f^tr > 0 (KKT); anything else is a spurious root.
-          if (newton.converged && unknowns[delta_gamma_index] > 0.0)
-            return ReturnOutcome::plastic;
-          // A trial state on the yield surface to round-off returns Delta gamma = 0
-          // (+- round-off): that is the elastic solution, not a failure.
-          if (newton.converged && std::abs(unknowns[delta_gamma_index]) <= 1e-10 * strain_scale)
-            return ReturnOutcome::on_yield_surface;
+          stretches.b_minus_one[a] = std::expm1(2.0 * principal.elastic_log_strain(a));
+          stretches.b[a] = 1.0 + stretches.b_minus_one[a];
         }
-      return ReturnOutcome::not_converged;
+      return stretches;
     }
 
-    // The return on a piecewise-linear law (linear, table), segment by segment. With segment k's
-    // line sigma_k(gamma_p) in place of sigma_y, the yield residual
-    //   g_k(Delta gamma) = sigma_HMH(Delta gamma) - sigma_k(gamma_p,n + Delta gamma)
-    // decreases strictly (sigma_HMH falls along the return, the slope of sigma_k is >= 0), and
-    // it equals the true residual g at the segment's ends. So if line k's root lands beyond the
-    // segment's end, g > 0 there and the true root lies further on; if it lands before the
-    // segment's start, the true root lies before it; otherwise it is the true root. The walk
-    // starts at the segment where the Hencky estimate of the return (a scalar, piecewise-linear
-    // equation solved here exactly) ends, and moves one segment at a time; each solve is the
-    // smooth linear-hardening return, so a kink is never inside a Newton iteration. A root on a
-    // kink to round-off (the walk turns back) is accepted where it is.
-    ReturnOutcome solve_piecewise_linear_return(const IsotropicHardening        &law,
-                                                ReturnMappingResidual           &residual,
-                                                const ReturnMapping::Parameters &parameters,
-                                                const double J_m, ReturnMapping::Unknowns &unknowns)
+    // Q diag(d) Q^T.
+    dealii::SymmetricTensor<2, 3> spectral_sum(const Tensor<2, 3>          &Q,
+                                               const std::array<double, 3> &d)
     {
-      const double       gamma_p_n = residual.gamma_p_n;
-      const unsigned int first = law.segment(gamma_p_n), last = law.n_segments() - 1;
-      const auto         use_segment = [&](const unsigned int k) {
-        const IsotropicHardening::FlowStress line = law.segment_line(k, gamma_p_n);
-        residual.yield_stress_n = line.stress;
-        residual.hardening_modulus = line.slope;
-      };
-      if (first == last)
-        {
-          use_segment(first);
-          return solve_return_mapping(residual, parameters, J_m, unknowns);
-        }
-
-      // Hencky estimate: sqrt(3/2) 2 mu |dev eps_e^tr| / J^m - 3 mu Delta gamma / J^m on line k.
-      const double mean = (parameters[0] + parameters[1] + parameters[2]) / 3.0;
-      double       norm_squared = 0.0;
-      for (unsigned int k = 0; k < 6; ++k)
-        {
-          const double dev = parameters[k] - (k < 3 ? mean : 0.0);
-          norm_squared += (k < 3 ? 1.0 : 2.0) * dev * dev;
-        }
-      const double trial_stress = sqrt_3_2 * 2.0 * residual.mu * std::sqrt(norm_squared) / J_m;
-      unsigned int k = first;
-      while (k < last)
-        {
-          const IsotropicHardening::FlowStress line = law.segment_line(k, gamma_p_n);
-          const double                         delta_gamma =
-              (trial_stress - line.stress) / (3.0 * residual.mu / J_m + line.slope);
-          if (gamma_p_n + delta_gamma <= law.segment_end(k))
-            break;
-          ++k;
-        }
-
-      int previous_move = 0;
-      for (unsigned int attempt = 0; attempt <= last - first + 1; ++attempt)
-        {
-          use_segment(k);
-          const ReturnOutcome outcome = solve_return_mapping(residual, parameters, J_m, unknowns);
-          if (outcome == ReturnOutcome::not_converged)
-            return outcome;
-          const double gamma_p = gamma_p_n + unknowns[delta_gamma_index];
-          if (k < last && gamma_p > law.segment_end(k) && previous_move >= 0)
-            {
-              ++k;
-              previous_move = 1;
-            }
-          else if (k > first && gamma_p < law.segment_start(k) && previous_move <= 0)
-            {
-              --k;
-              previous_move = -1;
-            }
-          else
-            return outcome;
-        }
-      return ReturnOutcome::not_converged;
+      dealii::SymmetricTensor<2, 3> A;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = i; j < 3; ++j)
+          A[i][j] = Q[i][0] * d[0] * Q[j][0] + Q[i][1] * d[1] * Q[j][1] + Q[i][2] * d[2] * Q[j][2];
+      return A;
     }
 
-    // Consistent tangent: eps_e(F) through the implicit function theorem, then
-    // P = tau(b_e) F^-T differentiated by forward AD over the components of F. Fills `response`
-    // and returns b_e, or nothing if the local Jacobian is singular.
-    std::optional<dealii::SymmetricTensor<2, 3>>
-    stress_and_tangent(const NeoHookean &elasticity, const double J_minus_one,
-                       const ReturnMappingResidual &residual, const TrialParameters &trial,
-                       const ReturnMapping::Unknowns &unknowns, MaterialPointResponse &response)
+    // tau = mu (b_e - 1) + lambda/2 (J^2 - 1) 1 (eq. 3, with J^2 - 1 from J - 1) and
+    // P = tau F^-T.
+    void stress(const NeoHookean &elasticity, const Tensor<2, 3> &F_inverse,
+                const double J_minus_one, const Tensor<2, 3> &Q,
+                const PrincipalStretches &stretches, MaterialPointResponse &response)
     {
-      ReturnMapping::Sensitivity dx_dp;
-      if (!ReturnMapping::sensitivity(residual, trial.values, unknowns, dx_dp))
-        return std::nullopt;
-      const auto unknowns_ad = ReturnMapping::linearized_solution(unknowns, dx_dp, trial.ad);
-      dealii::SymmetricTensor<2, 3, ADNumberF> two_eps_e_ad;
-      for (unsigned int k = 0; k < 6; ++k)
-        two_eps_e_ad.access_raw_entry(k) = 2.0 * unknowns_ad[k];
-      const auto b_e_ad = exp_symmetric(two_eps_e_ad);
-
-      // tau = mu (b_e - 1) + lambda/2 (J^2 - 1) 1 (eq. 3); the pressure value is taken from
-      // J - 1, its derivative lambda J dJ/dF from AD.
-      const double     mu = elasticity.shear_modulus();
-      const ADNumberF &J_ad = trial.ad[J_index];
-      ADNumberF        pressure_term = 0.5 * elasticity.lame_lambda() * (J_ad * J_ad - 1.0);
-      pressure_term.val() = 0.5 * elasticity.lame_lambda() * J_minus_one * (J_minus_one + 2.0);
-      dealii::Tensor<2, 3, ADNumberF> tau_ad;
+      const double pressure_term =
+          0.5 * elasticity.lame_lambda() * J_minus_one * (J_minus_one + 2.0);
+      const dealii::SymmetricTensor<2, 3> b_e_minus_identity =
+          spectral_sum(Q, stretches.b_minus_one);
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int j = 0; j < 3; ++j)
-          {
-            tau_ad[i][j] = mu * b_e_ad[i][j];
-            if (i == j)
-              tau_ad[i][j] += pressure_term - mu;
-          }
-      const auto F_inverse_ad = inverse_3x3(trial.F_ad);
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int J_col = 0; J_col < 3; ++J_col)
-          {
-            ADNumberF P_iJ = tau_ad[i][0] * F_inverse_ad[J_col][0];
-            for (unsigned int m = 1; m < 3; ++m)
-              P_iJ += tau_ad[i][m] * F_inverse_ad[J_col][m];
-            response.P[i][J_col] = P_iJ.val();
-            response.tau[i][J_col] = tau_ad[i][J_col].val();
-            for (unsigned int k = 0; k < 3; ++k)
-              for (unsigned int L = 0; L < 3; ++L)
-                response.dP_dF[i][J_col][k][L] = P_iJ.dx(3 * k + L);
-          }
-      dealii::SymmetricTensor<2, 3> b_e;
-      for (unsigned int k = 0; k < 6; ++k)
-        b_e.access_raw_entry(k) = b_e_ad.access_raw_entry(k).val();
-      return b_e;
-    }
-
-    // tau(b_e) and P = tau F^-T without the tangent; returns b_e.
-    dealii::SymmetricTensor<2, 3> stress(const NeoHookean           &elasticity,
-                                         const dealii::Tensor<2, 3> &F, const double J_minus_one,
-                                         const ReturnMapping::Unknowns &unknowns,
-                                         MaterialPointResponse         &response)
-    {
-      dealii::SymmetricTensor<2, 3> two_eps_e;
-      for (unsigned int k = 0; k < 6; ++k)
-        two_eps_e.access_raw_entry(k) = 2.0 * unknowns[k];
-      const dealii::SymmetricTensor<2, 3> b_e = exp_symmetric(two_eps_e);
-      const dealii::SymmetricTensor<2, 3> tau = elasticity.kirchhoff_stress(b_e, J_minus_one);
-      const dealii::Tensor<2, 3>          F_inverse = inverse_3x3(F);
+          response.tau[i][j] = elasticity.shear_modulus() * b_e_minus_identity[i][j] +
+                               (i == j ? pressure_term : 0.0);
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int J_col = 0; J_col < 3; ++J_col)
           {
             double P_iJ = 0.0;
             for (unsigned int m = 0; m < 3; ++m)
-              P_iJ += tau[i][m] * F_inverse[J_col][m];
+              P_iJ += response.tau[i][m] * F_inverse[J_col][m];
             response.P[i][J_col] = P_iJ;
-            response.tau[i][J_col] = tau[i][J_col];
           }
-      return b_e;
+    }
+
+    // The consistent tangent dP/dF. b_e is an isotropic function of b_e^tr = F C_p,n^-1 F^T for
+    // a given J (the return's second parameter). In the eigenbasis n_a of b_e^tr:
+    //   d b_e,aa = sum_c (db_a/dlambda_c) d b_e,cc^tr + (db_a/dJ) dJ,
+    //   d b_e,ab = theta_ab d b_e,ab^tr  (a != b),
+    // with db_a/dlambda_c = 2 b_a (de_a/dt_c) (dt_c/dlambda_c) = b_a (de_a/dt_c) / lambda_c and
+    // db_a/dJ = 2 b_a de_a/dJ from the principal return's sensitivity, and theta_ab from
+    // rotation_divided_differences. For dF = e_k (x) e_L: d b_e^tr = e_k (x) G_L + G_L (x) e_k
+    // with G = F C_p,n^-1, and dJ = J F^-1_Lk. Then
+    //   dP_iJ/dF_kL = mu (d b_e F^-T)_iJ + lambda J dJ F^-1_Ji - P_iL F^-1_Jk
+    // (tau = mu (b_e - 1) + lambda/2 (J^2 - 1) 1, d(F^-T) = -F^-T dF^T F^-T).
+    void consistent_tangent(const NeoHookean &elasticity, const Tensor<2, 3> &F,
+                            const Tensor<2, 3> &F_inverse, const double J,
+                            const dealii::SymmetricTensor<2, 3> &C_p_inverse_n,
+                            const TrialSpectrum &spectrum, const PrincipalStretches &stretches,
+                            const std::array<J2PrincipalReturn::Vector, 3> &de_dp,
+                            const PrincipalMatrix &theta, MaterialPointResponse &response)
+    {
+      const Tensor<2, 3> &Q = spectrum.Q;
+      const double        mu = elasticity.shear_modulus();
+      const double        lambda_J = elasticity.lame_lambda() * J;
+
+      PrincipalMatrix       db_dlambda;
+      std::array<double, 3> db_dJ;
+      for (unsigned int a = 0; a < 3; ++a)
+        {
+          for (unsigned int c = 0; c < 3; ++c)
+            db_dlambda[a][c] = stretches.b[a] * de_dp[a][c] / (1.0 + spectrum.lambda_minus_one[c]);
+          db_dJ[a] = 2.0 * stretches.b[a] * de_dp[a][3];
+        }
+
+      // G' = Q^T F C_p,n^-1 and W = Q^T F^-T: the factors of d b_e^tr and of F^-T in the
+      // eigenbasis.
+      Tensor<2, 3> G_eigen, W;
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int L = 0; L < 3; ++L)
+          {
+            double G_aL = 0.0, W_aL = 0.0;
+            for (unsigned int p = 0; p < 3; ++p)
+              {
+                double G_pL = 0.0;
+                for (unsigned int q = 0; q < 3; ++q)
+                  G_pL += F[p][q] * C_p_inverse_n[q][L];
+                G_aL += Q[p][a] * G_pL;
+                W_aL += Q[p][a] * F_inverse[L][p];
+              }
+            G_eigen[a][L] = G_aL;
+            W[a][L] = W_aL;
+          }
+
+      for (unsigned int k = 0; k < 3; ++k)
+        for (unsigned int L = 0; L < 3; ++L)
+          {
+            const double dJ = J * F_inverse[L][k];
+            // d b_e^tr and d b_e in the eigenbasis.
+            Tensor<2, 3> db_trial, db;
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int c = 0; c < 3; ++c)
+                db_trial[a][c] = Q[k][a] * G_eigen[c][L] + G_eigen[a][L] * Q[k][c];
+            for (unsigned int a = 0; a < 3; ++a)
+              {
+                double db_aa = db_dJ[a] * dJ;
+                for (unsigned int c = 0; c < 3; ++c)
+                  {
+                    db_aa += db_dlambda[a][c] * db_trial[c][c];
+                    if (c != a)
+                      db[a][c] = theta[a][c] * db_trial[a][c];
+                  }
+                db[a][a] = db_aa;
+              }
+            // mu Q db W, then the pressure and the F^-T terms.
+            const Tensor<2, 3> db_W = db * W;
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int J_col = 0; J_col < 3; ++J_col)
+                {
+                  double Q_db_W = 0.0;
+                  for (unsigned int a = 0; a < 3; ++a)
+                    Q_db_W += Q[i][a] * db_W[a][J_col];
+                  response.dP_dF[i][J_col][k][L] = mu * Q_db_W +
+                                                   lambda_J * dJ * F_inverse[J_col][i] -
+                                                   response.P[i][L] * F_inverse[J_col][k];
+                }
+          }
     }
   } // namespace
 
@@ -406,6 +296,10 @@ namespace indentsim::materials
       std::copy(state_old.begin(), state_old.end(), state_new.begin());
       return UpdateStatus::success;
     };
+    const auto failed_step = [&]() {
+      std::copy(state_old.begin(), state_old.end(), state_new.begin());
+      return UpdateStatus::local_newton_failed;
+    };
 
     // Elastic predictor: tau(b_e^tr) directly, no logarithm needed (dev tau = mu dev b_e).
     const dealii::SymmetricTensor<2, 3> b_e_trial = push_forward_symmetric(F, C_p_inverse_n);
@@ -415,46 +309,38 @@ namespace indentsim::materials
     if (trial_yield_function <= 0.0)
       return elastic_step();
 
-    // Plastic corrector: the return mapping from eps_e^tr.
-    const TrialParameters trial = trial_parameters(F, C_p_inverse_n, b_e_trial, J, compute_tangent);
-    ReturnMappingResidual residual{mu, yield_stress_n, 0.0, cauchy, gamma_p_n};
-    ReturnMapping::Unknowns unknowns;
-    ReturnOutcome           outcome;
-    if (hardening.piecewise_linear())
-      outcome = solve_piecewise_linear_return(hardening, residual, trial.values, cauchy ? J : 1.0,
-                                              unknowns);
-    else
+    // Plastic corrector: the return mapping in the eigenbasis of b_e^tr (J2PrincipalReturn.h).
+    const TrialSpectrum spectrum = trial_spectrum(b_e_trial);
+    J2PrincipalReturn   principal(hardening, mu, gamma_p_n, spectrum.log_strain, J, cauchy);
+    switch (principal.solve())
       {
-        residual.hardening_modulus = hardening.slope(gamma_p_n);
-        residual.smooth_law = &hardening;
-        outcome = solve_return_mapping(residual, trial.values, cauchy ? J : 1.0, unknowns);
-      }
-    switch (outcome)
-      {
-      case ReturnOutcome::on_yield_surface:
+      case J2PrincipalReturn::Outcome::on_yield_surface:
         return elastic_step();
-      case ReturnOutcome::not_converged:
-        std::copy(state_old.begin(), state_old.end(), state_new.begin());
-        return UpdateStatus::local_newton_failed;
-      case ReturnOutcome::plastic:
+      case J2PrincipalReturn::Outcome::not_converged:
+        return failed_step();
+      case J2PrincipalReturn::Outcome::plastic:
         break;
       }
 
-    std::optional<dealii::SymmetricTensor<2, 3>> b_e =
-        compute_tangent
-            ? stress_and_tangent(elasticity, J_minus_one, residual, trial, unknowns, response)
-            : stress(elasticity, F, J_minus_one, unknowns, response);
-    if (!b_e)
+    const PrincipalStretches stretches = principal_stretches(principal);
+    const Tensor<2, 3>       F_inverse = inverse_3x3(F);
+    stress(elasticity, F_inverse, J_minus_one, spectrum.Q, stretches, response);
+    if (compute_tangent)
       {
-        std::copy(state_old.begin(), state_old.end(), state_new.begin());
-        return UpdateStatus::local_newton_failed;
+        std::array<J2PrincipalReturn::Vector, 3> de_dp;
+        if (!principal.sensitivity(de_dp))
+          return failed_step();
+        consistent_tangent(elasticity, F, F_inverse, J, C_p_inverse_n, spectrum, stretches, de_dp,
+                           rotation_divided_differences(spectrum, stretches.b, principal),
+                           response);
       }
 
     // Updated plastic metric C_p^-1 = F^-1 b_e F^-T (eq. 9 pulled back) and gamma_p.
-    const dealii::SymmetricTensor<2, 3> C_p_inverse = push_forward_symmetric(inverse_3x3(F), *b_e);
+    const dealii::SymmetricTensor<2, 3> C_p_inverse =
+        push_forward_symmetric(F_inverse, spectral_sum(spectrum.Q, stretches.b));
     for (unsigned int k = 0; k < 6; ++k)
       state_new[k] = C_p_inverse.access_raw_entry(k);
-    state_new[gamma_p_index] = gamma_p_n + unknowns[delta_gamma_index];
+    state_new[gamma_p_index] = gamma_p_n + principal.delta_gamma();
     return UpdateStatus::success;
   }
 } // namespace indentsim::materials

@@ -15,14 +15,21 @@
 // sqrt(2/3) |Delta gamma N| = Delta gamma: the plastic multiplier is the equivalent plastic
 // strain increment, as the paper says (for the Cauchy measure the factor 1/J of eq. 7 is
 // absorbed into the multiplier). Plastic flow is isochoric (tr N = 0), so J_e = J and the
-// pressure is untouched by the return. Because the neo-Hookean stress is not linear in eps_e,
-// the return is a 7-unknown local Newton (eps_e, Delta gamma) solved by ImplicitLocalProblem;
-// the consistent tangent follows from the implicit function theorem, with forward AD through
-// the AD-safe tensor log/exp of TensorFunctions.h (exact also at repeated principal stretches).
+// pressure is untouched by the return. N is an isotropic function of eps_e, so eps_e stays
+// coaxial with b_e^tr: the update takes the eigen-decomposition of b_e^tr and solves the return
+// in principal space, 4 unknowns (the principal eps_e, Delta gamma) in plain doubles with a
+// hand-derived Jacobian (J2PrincipalReturn.h; the neo-Hookean stress is not linear in eps_e, so
+// it is a local Newton). The consistent tangent is the derivative of the isotropic function
+// b_e(b_e^tr): its principal part from the implicit function theorem on that return, its
+// eigenvector-rotation part from divided differences written without cancellation, so that it
+// is exact also at repeated principal stretches (J2Plasticity.cc). The AD update through the
+// tensor log/exp that the tests keep as the oracle (tests/unit/j2_reference_update.h) agrees to
+// round-off.
+//
 // The flow stress sigma_y(gamma_p,n + Delta gamma) is any law of IsotropicHardening.h: a smooth
 // law (power, Voce) enters the Newton with its value and slope; a piecewise-linear one (linear,
-// table) is solved segment by segment, so that no Newton iteration crosses a kink (J2Plasticity.cc,
-// docs/theory.md).
+// table) is solved segment by segment, so that no Newton iteration crosses a kink
+// (J2PrincipalReturn.cc, docs/theory.md).
 //
 // State (7 doubles): C_p^-1 in deal.II's unrolled symmetric order (00, 11, 22, 01, 02, 12),
 // then gamma_p. Units: GPa for moduli and stresses.
@@ -80,7 +87,7 @@ namespace indentsim::materials
     // change into the return (tested).
     bool symmetric_tangent() const override { return measure == YieldStressMeasure::kirchhoff; }
 
-    // A return mapping (about 9 us with its tangent) against an elastic point (about 5 us).
+    // A return mapping with its tangent against an elastic point, element kernel included.
     double relative_plastic_cost() const override { return 3.0; }
 
     // C_p^-1 stored in a state.

@@ -5,9 +5,11 @@
 // A model writes its residual once, as a generic callable over the scalar type, and gets the
 // local Newton, its Jacobian and the sensitivity needed for the consistent tangent from here
 // (the DAMASK / MFEM-hooke idea: one integrator, the physics only supplies the residual). The
-// J2 return mapping uses it. Where AD of the whole residual is too slow (the crystal integrator,
-// 19 unknowns), solve_with_jacobian runs the same Newton with a model-supplied Jacobian and,
-// optionally, a model-supplied linear solve that exploits its structure.
+// tests' AD oracle of the J2 update (tests/unit/j2_reference_update.h) uses it. Where AD of the
+// whole residual is too slow (the production J2 return in principal space, J2PrincipalReturn.h,
+// and the crystal integrator with 19 unknowns), solve_with_jacobian runs the same Newton with a
+// model-supplied Jacobian and, optionally, a model-supplied linear solve that exploits its
+// structure.
 //
 // The residual is called as residual(x, p, R) with x, p and R std::arrays of one scalar type
 // Number (double or Sacado::Fad::SFad<double, n>), and must be a template in Number, e.g. a

@@ -9,11 +9,11 @@
 // that a difficult stretch is not retried at every step; it never exceeds the programme's
 // nominal increment. Geometric spacing raises the nominal increment step by step, and the
 // increment keeps its fraction of it: the nominal one, or 2^-k of it after k cut-backs not yet
-// grown back. Depth-controlled unloading is paced by
-// force: each step lowers the force by about max_force / unload_points, with the depth
-// increment from the last step's secant unloading stiffness (the first step takes a quarter of
-// the nominal increment); the elastic recovery spans a small part of the depth, so uniform
-// depth steps would leave the Oliver-Pharr fit a handful of points.
+// grown back. Depth-controlled unloading is paced by force: each step lowers the force by about
+// max_force / unload_points, with the depth increment from the last step's secant unloading
+// stiffness (the first step takes a quarter of the nominal increment); the elastic recovery
+// spans a small part of the depth, so uniform depth steps would leave the Oliver-Pharr fit a
+// handful of points.
 #pragma once
 
 #include "nonlinear/IncrementStatus.h"

@@ -257,3 +257,39 @@ TEST(Axisymmetric, ConeForceGrowsAsDepthSquaredUnderGeometricSteps)
             << 100 * (*high / *low - 1) << " %)" << std::endl;
   EXPECT_LT(*high / *low - 1, 0.015);
 }
+
+// The augmented Lagrangian at the edge of a sharp cone's contact (elastic, automatic mesh for
+// 1 um, geometric steps): in the increment from 0.5 to 0.707 um a node alternates between
+// penetrating and standing off under its multiplier by the same 1.1e-4 um at every plain Uzawa
+// update, which exhausts contact.max_augmentations and cuts the increment back. The damped
+// update of the later passes (NodeToSurfaceContact::augment) converges it without a cut-back;
+// the test checks that this increment needed those later passes, so that it exercises them.
+TEST(Axisymmetric, AugmentationConvergesWhereAContactEdgeNodeAlternates)
+{
+  io::Case c = test_cases::elastic_rounded_cone_case();
+  c.specimen.symmetry = "axisymmetric";
+  c.indenter.shape = "cone";
+  c.indenter.half_angle_deg = 70.3;
+  c.indenter.tip_radius = 0;
+  c.loading.max_depth = 1.0;
+  c.loading.steps = 13;
+  c.loading.unload = false;
+  c.loading.spacing = "geometric";
+  c.loading.first_fraction = 1.0 / 64;
+  // The mesh designed for 1 um, the run to the twelfth depth of that geometric sequence.
+  io::Case k = with_automatic_mesh(c);
+  k.loading.max_depth = std::sqrt(0.5);
+  k.loading.steps = 12;
+  k.loading.first_fraction = (1.0 / 64) / std::sqrt(0.5);
+  problems::IndentationProblem<2> problem(k, MPI_COMM_WORLD, false);
+  run(problem);
+  const auto &records = problem.records();
+  ASSERT_EQ(records.size(), 13u);
+  for (const auto &r : records)
+    EXPECT_EQ(r.cutbacks, 0u) << "step " << r.step << " at " << r.depth << " um";
+  EXPECT_NEAR(records.back().depth, std::sqrt(0.5), 1e-12);
+  EXPECT_GE(records.back().augmentations, 4u) << "the increment no longer needs damped passes";
+  std::cout << "[ contact edge ] step 12 to " << records.back().depth
+            << " um: " << records.back().augmentations << " augmentations, "
+            << records.back().newton_iterations << " Newton iterations" << std::endl;
+}

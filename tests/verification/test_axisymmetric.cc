@@ -214,6 +214,23 @@ TEST(Axisymmetric, J2AgreesWithQuarterModel)
   EXPECT_NEAR(a_moment / q_moment, 1., 0.01);
 }
 
+namespace
+{
+  // The elastic axisymmetric case loaded to 1 um in 13 geometric steps from 1/64 um (the
+  // indenter set by the test; the automatic mesh designed by with_automatic_mesh).
+  io::Case elastic_geometric_case()
+  {
+    io::Case c = test_cases::elastic_rounded_cone_case();
+    c.specimen.symmetry = "axisymmetric";
+    c.loading.max_depth = 1.0;
+    c.loading.steps = 13;
+    c.loading.unload = false;
+    c.loading.spacing = "geometric";
+    c.loading.first_fraction = 1.0 / 64;
+    return c;
+  }
+} // namespace
+
 // Dimensional analysis: a neo-Hookean solid has no length scale and a cone none either, so under a
 // cone P = C h^2 at every depth (finite strain included). The paper's rounded cone is the cone
 // z = r/a shifted down by delta beyond its tip, so P = C (h + delta)^2 up to O((delta/h)^2). On
@@ -225,16 +242,10 @@ TEST(Axisymmetric, J2AgreesWithQuarterModel)
 // so C may rise by about 1 % over the range; measured +0.88 %.
 TEST(Axisymmetric, ConeForceGrowsAsDepthSquaredUnderGeometricSteps)
 {
-  io::Case c = test_cases::elastic_rounded_cone_case();
-  c.specimen.symmetry = "axisymmetric";
+  io::Case c = elastic_geometric_case();
   c.indenter.shape = "rounded_cone";
   c.indenter.a = 2.48;
   c.indenter.delta = 0.005;
-  c.loading.max_depth = 1.0;
-  c.loading.steps = 13;
-  c.loading.unload = false;
-  c.loading.spacing = "geometric";
-  c.loading.first_fraction = 1.0 / 64;
   const io::Case                  k = with_automatic_mesh(c);
   problems::IndentationProblem<2> problem(k, MPI_COMM_WORLD, false);
   run(problem);
@@ -266,16 +277,10 @@ TEST(Axisymmetric, ConeForceGrowsAsDepthSquaredUnderGeometricSteps)
 // the test checks that this increment needed those later passes, so that it exercises them.
 TEST(Axisymmetric, AugmentationConvergesWhereAContactEdgeNodeAlternates)
 {
-  io::Case c = test_cases::elastic_rounded_cone_case();
-  c.specimen.symmetry = "axisymmetric";
+  io::Case c = elastic_geometric_case();
   c.indenter.shape = "cone";
   c.indenter.half_angle_deg = 70.3;
   c.indenter.tip_radius = 0;
-  c.loading.max_depth = 1.0;
-  c.loading.steps = 13;
-  c.loading.unload = false;
-  c.loading.spacing = "geometric";
-  c.loading.first_fraction = 1.0 / 64;
   // The mesh designed for 1 um, the run to the twelfth depth of that geometric sequence.
   io::Case k = with_automatic_mesh(c);
   k.loading.max_depth = std::sqrt(0.5);

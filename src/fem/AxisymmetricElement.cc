@@ -38,6 +38,7 @@ namespace indentsim::fem
     , reference_values(n_q_points)
     , reference_grad(n_q_points)
     , F(n_q_points)
+    , F_inv(n_q_points)
     , trace(n_q_points)
   {
     const QGauss<2> gauss(gauss_points_per_direction(n_q_points));
@@ -125,77 +126,136 @@ namespace indentsim::fem
       }
   }
 
+  namespace
+  {
+    // MeridianTensor entries (rr, rz, zr, zz, tt) and their places in the 3x3 tensor.
+    constexpr unsigned int rr = 0, rz = 1, zr = 2, zz = 3, tt = 4;
+    constexpr std::array<std::pair<unsigned int, unsigned int>, 5> place = {
+        {{r_, r_}, {r_, z_}, {z_, r_}, {z_, z_}, {theta_, theta_}}};
+
+    // F at Gauss point q (q = n_q_points: the centre), as MeridianTensor.
+    MeridianTensor deformation_gradient(const AxisymmetricScratch &s, const unsigned int q,
+                                        const Vector<double> &u_local)
+    {
+      const bool     centre = q == s.n_q_points;
+      const auto    &N = centre ? s.values0 : s.values[q];
+      const auto    &g = centre ? s.grad0 : s.grad[q];
+      const double   R = centre ? s.radius0 : s.radius[q];
+      MeridianTensor F = {{1, 0, 0, 1, 1}};
+      double         u_r = 0;
+      for (unsigned int i = 0; i < AxisymmetricScratch::n_nodes; ++i)
+        {
+          const double ur_i = u_local[2 * i], uz_i = u_local[2 * i + 1];
+          u_r += N[i] * ur_i;
+          F[rr] += ur_i * g[i][0];
+          F[rz] += ur_i * g[i][1];
+          F[zr] += uz_i * g[i][0];
+          F[zz] += uz_i * g[i][1];
+        }
+      F[tt] += u_r / R; // hoop stretch 1 + u_r/R
+      return F;
+    }
+
+    Tensor<2, 3> full_tensor(const MeridianTensor &X)
+    {
+      Tensor<2, 3> full;
+      for (unsigned int k = 0; k < 5; ++k)
+        full[place[k].first][place[k].second] = X[k];
+      return full;
+    }
+
+    // G_a = dF/du_a of dof a = 2 i + c at Gauss point q (q = n_q_points: the centre).
+    MeridianTensor dof_gradient(const AxisymmetricScratch &s, const unsigned int q,
+                                const unsigned int a)
+    {
+      const bool         centre = q == s.n_q_points;
+      const auto        &g = (centre ? s.grad0 : s.grad[q])[a / 2];
+      const unsigned int i = a / 2;
+      if (a % 2 == 1)
+        return {{0, 0, g[0], g[1], 0}};
+      const double N_over_R =
+          centre ? s.values0[i] / s.radius0 : s.values[q][i] / s.radius[q];
+      return {{g[0], g[1], 0, 0, N_over_R}};
+    }
+
+    // J = det F of the block form; the in-plane part and the hoop stretch must be positive on
+    // their own (J > 0 alone would let a negative hoop stretch and a folded (r, z) section
+    // pass together).
+    double in_plane_determinant(const MeridianTensor &X) { return X[rr] * X[zz] - X[rz] * X[zr]; }
+    double determinant(const MeridianTensor &X) { return in_plane_determinant(X) * X[tt]; }
+    bool   admissible(const MeridianTensor &F)
+    {
+      const double in_plane = in_plane_determinant(F);
+      return F[tt] > 0 && in_plane > 0 && std::isfinite(F[tt]) && std::isfinite(in_plane);
+    }
+
+    MeridianTensor invert(const MeridianTensor &X)
+    {
+      const double d = in_plane_determinant(X);
+      return {{X[zz] / d, -X[rz] / d, -X[zr] / d, X[rr] / d, 1 / X[tt]}};
+    }
+
+    // X Y.
+    MeridianTensor product(const MeridianTensor &X, const MeridianTensor &Y)
+    {
+      return {{X[rr] * Y[rr] + X[rz] * Y[zr], X[rr] * Y[rz] + X[rz] * Y[zz],
+               X[zr] * Y[rr] + X[zz] * Y[zr], X[zr] * Y[rz] + X[zz] * Y[zz], X[tt] * Y[tt]}};
+    }
+
+    double trace(const MeridianTensor &X) { return X[rr] + X[zz] + X[tt]; }
+
+    // tr(X Y).
+    double trace_of_product(const MeridianTensor &X, const MeridianTensor &Y)
+    {
+      return X[rr] * Y[rr] + X[rz] * Y[zr] + X[zr] * Y[rz] + X[zz] * Y[zz] + X[tt] * Y[tt];
+    }
+
+    // X : Y = X_ij Y_ij (for a full 3x3 X: its block entries only, Y being zero elsewhere).
+    double scalar_product(const MeridianTensor &X, const MeridianTensor &Y)
+    {
+      double sum = 0;
+      for (unsigned int k = 0; k < 5; ++k)
+        sum += X[k] * Y[k];
+      return sum;
+    }
+    MeridianTensor block_entries(const Tensor<2, 3> &X)
+    {
+      MeridianTensor block;
+      for (unsigned int k = 0; k < 5; ++k)
+        block[k] = X[place[k].first][place[k].second];
+      return block;
+    }
+
+    // The 5 x 5 block of A = dP/dF that maps block tensors to the block entries of A : X.
+    std::array<MeridianTensor, 5> block_entries(const Tensor<4, 3> &A)
+    {
+      std::array<MeridianTensor, 5> block;
+      for (unsigned int k = 0; k < 5; ++k)
+        for (unsigned int l = 0; l < 5; ++l)
+          block[k][l] = A[place[k].first][place[k].second][place[l].first][place[l].second];
+      return block;
+    }
+  } // namespace
+
   Tensor<2, 3> axisymmetric_deformation_gradient(const AxisymmetricScratch &s, const unsigned int q,
                                                  const Vector<double> &u_local)
   {
-    const bool   centre = q == s.n_q_points;
-    const auto  &N = centre ? s.values0 : s.values[q];
-    const auto  &g = centre ? s.grad0 : s.grad[q];
-    const double R = centre ? s.radius0 : s.radius[q];
-    Tensor<2, 3> F = unit_symmetric_tensor<3>();
-    double       u_r = 0;
-    for (unsigned int i = 0; i < AxisymmetricScratch::n_nodes; ++i)
-      {
-        const double ur_i = u_local[2 * i], uz_i = u_local[2 * i + 1];
-        u_r += N[i] * ur_i;
-        F[r_][r_] += ur_i * g[i][0];
-        F[r_][z_] += ur_i * g[i][1];
-        F[z_][r_] += uz_i * g[i][0];
-        F[z_][z_] += uz_i * g[i][1];
-      }
-    F[theta_][theta_] += u_r / R; // hoop stretch 1 + u_r/R
-    return F;
+    return full_tensor(deformation_gradient(s, q, u_local));
   }
 
   namespace
   {
-    // G_a = dF/du_a of dof a = 2 i + c at Gauss point q (q = n_q_points: the centre).
-    Tensor<2, 3> dof_gradient(const AxisymmetricScratch &s, const unsigned int q,
-                              const unsigned int a)
-    {
-      const bool         centre = q == s.n_q_points;
-      const auto        &N = centre ? s.values0 : s.values[q];
-      const auto        &g = centre ? s.grad0 : s.grad[q];
-      const double       R = centre ? s.radius0 : s.radius[q];
-      const unsigned int i = a / 2, row = a % 2 == 0 ? r_ : z_;
-      Tensor<2, 3>       G;
-      G[row][r_] = g[i][0];
-      G[row][z_] = g[i][1];
-      if (row == r_)
-        G[theta_][theta_] = N[i] / R;
-      return G;
-    }
-
-    // F has the block form [[F_rr, 0, F_rz], [0, F_tt, 0], [F_zr, 0, F_zz]]: J > 0 alone would
-    // let a negative hoop stretch and a folded (r, z) section pass together.
-    bool admissible(const Tensor<2, 3> &F)
-    {
-      const double in_plane = F[r_][r_] * F[z_][z_] - F[r_][z_] * F[z_][r_];
-      return F[theta_][theta_] > 0 && in_plane > 0 && std::isfinite(F[theta_][theta_]) &&
-             std::isfinite(in_plane);
-    }
-
-    // tr(X Y) for 3x3 tensors.
-    double trace_of_product(const Tensor<2, 3> &X, const Tensor<2, 3> &Y)
-    {
-      double t = 0;
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = 0; j < 3; ++j)
-          t += X[i][j] * Y[j][i];
-      return t;
-    }
-
     // J_0 at the element centre: d ln J_0/du_a = tr(F_0^-1 G0_a),
     // d^2 ln J_0/du_a du_b = -tr(F_0^-1 G0_b F_0^-1 G0_a). Returns J_0 (0 if inadmissible).
     double centre_dilatation(AxisymmetricScratch &s, const Vector<double> &u_local)
     {
-      const Tensor<2, 3> F0 = axisymmetric_deformation_gradient(s, s.n_q_points, u_local);
+      const MeridianTensor F0 = deformation_gradient(s, s.n_q_points, u_local);
       if (!admissible(F0))
         return 0;
-      const Tensor<2, 3> F0_inv = invert(F0);
+      const MeridianTensor F0_inv = invert(F0);
       for (unsigned int a = 0; a < AxisymmetricScratch::n_dofs; ++a)
         {
-          s.H[a] = F0_inv * dof_gradient(s, s.n_q_points, a);
+          s.H[a] = product(F0_inv, dof_gradient(s, s.n_q_points, a));
           s.dlnJ0[a] = trace(s.H[a]);
         }
       for (unsigned int a = 0; a < AxisymmetricScratch::n_dofs; ++a)
@@ -210,7 +270,7 @@ namespace indentsim::fem
     //   d ln J_bar/du_a = sum_q dV_q dJ_q/du_a / (V J_bar),
     //   d^2 ln J_bar/du_a du_b = sum_q dV_q d^2 J_q/du_a du_b / (V J_bar)
     //                            - d ln J_bar/du_a d ln J_bar/du_b.
-    // Needs s.F and s.trace at every Gauss point (element_residual_and_tangent fills them).
+    // Needs s.F, s.F_inv and s.trace at every Gauss point (the kernel fills them).
     double mean_dilatation(AxisymmetricScratch &s)
     {
       constexpr unsigned int n_dofs = AxisymmetricScratch::n_dofs;
@@ -226,52 +286,44 @@ namespace indentsim::fem
         row.fill(0);
       for (unsigned int q = 0; q < s.n_q_points; ++q)
         {
-          const double       weight = s.dV[q] * determinant(s.F[q]) / weighted_J;
-          const Tensor<2, 3> F_inv = invert(s.F[q]);
+          const double weight = s.dV[q] * determinant(s.F[q]) / weighted_J;
           for (unsigned int a = 0; a < n_dofs; ++a)
             {
-              s.H[a] = F_inv * dof_gradient(s, q, a);
+              s.H[a] = product(s.F_inv[q], dof_gradient(s, q, a));
               s.dlnJ0[a] += weight * s.trace[q][a];
             }
           for (unsigned int a = 0; a < n_dofs; ++a)
-            for (unsigned int b = 0; b < n_dofs; ++b)
+            for (unsigned int b = 0; b <= a; ++b)
               s.d2lnJ0[a][b] +=
                   weight * (s.trace[q][a] * s.trace[q][b] - trace_of_product(s.H[b], s.H[a]));
         }
       for (unsigned int a = 0; a < n_dofs; ++a)
-        for (unsigned int b = 0; b < n_dofs; ++b)
-          s.d2lnJ0[a][b] -= s.dlnJ0[a] * s.dlnJ0[b];
+        for (unsigned int b = 0; b <= a; ++b)
+          {
+            s.d2lnJ0[a][b] -= s.dlnJ0[a] * s.dlnJ0[b];
+            s.d2lnJ0[b][a] = s.d2lnJ0[a][b];
+          }
       return J_bar;
-    }
-
-    // (A : X)_ij = A_ijkl X_kl.
-    Tensor<2, 3> contract(const Tensor<4, 3> &A, const Tensor<2, 3> &X)
-    {
-      Tensor<2, 3> result;
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = 0; j < 3; ++j)
-          for (unsigned int k = 0; k < 3; ++k)
-            for (unsigned int l = 0; l < 3; ++l)
-              result[i][j] += A[i][j][k][l] * X[k][l];
-      return result;
     }
 
     // Adds one Gauss point's K_ab = (B_a : A : B_b + P : dB_a/du_b) dV, the second term (F-bar
     // only) theta/3 [c_b P:G_a + c_a P:G_b + p/3 c_a c_b + p d_ab] with p = P : F and
     // d_ab = d^2 ln J_0/du_a du_b + tr(F^-1 G_b F^-1 G_a) (s.H[a] = F^-1 G_a).
     void add_point_tangent(AxisymmetricScratch &s, const materials::MaterialPointResponse &response,
-                           const Tensor<2, 3> &F, const double theta, const bool use_f_bar,
+                           const MeridianTensor &F, const double theta, const bool use_f_bar,
                            const double dV, FullMatrix<double> &K)
     {
-      constexpr unsigned int n_dofs = AxisymmetricScratch::n_dofs;
+      constexpr unsigned int              n_dofs = AxisymmetricScratch::n_dofs;
+      const std::array<MeridianTensor, 5> A = block_entries(response.dP_dF);
       for (unsigned int b = 0; b < n_dofs; ++b)
-        s.AB[b] = contract(response.dP_dF, s.B[b]);
+        for (unsigned int k = 0; k < 5; ++k)
+          s.AB[b][k] = scalar_product(A[k], s.B[b]);
       for (unsigned int a = 0; a < n_dofs; ++a)
         for (unsigned int b = 0; b < n_dofs; ++b)
           K(a, b) += scalar_product(s.B[a], s.AB[b]) * dV;
       if (!use_f_bar)
         return;
-      const Tensor<2, 3>        &P = response.P;
+      const MeridianTensor       P = block_entries(response.P);
       const double               p = scalar_product(P, F);
       std::array<double, n_dofs> PG; // P : G_a
       for (unsigned int a = 0; a < n_dofs; ++a)
@@ -310,14 +362,14 @@ namespace indentsim::fem
     // tr(F^-1 G_a) (= d ln J/du_a).
     for (unsigned int q = 0; q < s.n_q_points; ++q)
       {
-        s.F[q] = axisymmetric_deformation_gradient(s, q, u_local);
+        s.F[q] = deformation_gradient(s, q, u_local);
         if (!admissible(s.F[q]))
           return materials::UpdateStatus::invalid_deformation;
         if (!use_f_bar)
           continue;
-        const Tensor<2, 3> F_inv = invert(s.F[q]);
+        s.F_inv[q] = invert(s.F[q]);
         for (unsigned int a = 0; a < n_dofs; ++a)
-          s.trace[q][a] = trace_of_product(F_inv, dof_gradient(s, q, a));
+          s.trace[q][a] = trace_of_product(s.F_inv[q], dof_gradient(s, q, a));
       }
     double J0 = 1;
     if (use_f_bar)
@@ -331,30 +383,31 @@ namespace indentsim::fem
     materials::MaterialPointResponse response;
     for (unsigned int q = 0; q < s.n_q_points; ++q)
       {
-        const Tensor<2, 3> &F = s.F[q];
-        const double        theta = use_f_bar ? std::cbrt(J0 / determinant(F)) : 1.0;
-        const Tensor<2, 3>  F_bar = theta * F;
-        const auto          status =
+        const MeridianTensor &F = s.F[q];
+        const double          theta = use_f_bar ? std::cbrt(J0 / determinant(F)) : 1.0;
+        const Tensor<2, 3>    F_bar = theta * full_tensor(F);
+        const auto            status =
             material.update(F_bar, state_old.subspan(q * n_state, n_state), response,
                             state_new.subspan(q * n_state, n_state), tangent != nullptr);
         if (status != materials::UpdateStatus::success)
           return status;
         if (cauchy_stress)
-          (*cauchy_stress)[q] = response.tau / determinant(F_bar);
+          (*cauchy_stress)[q] = response.tau / dealii::determinant(F_bar);
 
         // B_a = theta G_a + beta_a F with beta_a = theta c_a / 3.
-        const Tensor<2, 3> F_inv = use_f_bar ? invert(F) : Tensor<2, 3>();
+        const MeridianTensor P = block_entries(response.P);
         for (unsigned int a = 0; a < n_dofs; ++a)
           {
             s.G[a] = dof_gradient(s, q, a);
             s.B[a] = s.G[a];
             if (use_f_bar)
               {
-                s.H[a] = F_inv * s.G[a];
+                s.H[a] = product(s.F_inv[q], s.G[a]);
                 s.c[a] = s.dlnJ0[a] - s.trace[q][a];
-                s.B[a] = theta * s.G[a] + (theta * s.c[a] / 3.) * F;
+                for (unsigned int k = 0; k < 5; ++k)
+                  s.B[a][k] = theta * s.G[a][k] + (theta * s.c[a] / 3.) * F[k];
               }
-            residual[a] += scalar_product(response.P, s.B[a]) * s.dV[q];
+            residual[a] += scalar_product(P, s.B[a]) * s.dV[q];
           }
         if (tangent)
           add_point_tangent(s, response, F, theta, use_f_bar, s.dV[q], *tangent);

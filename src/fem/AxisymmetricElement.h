@@ -56,6 +56,12 @@ namespace indentsim::fem
     element_centre // det F at the element centre, as the 3D kernel
   };
 
+  // A tensor of the block form [[X_rr, 0, X_rz], [0, X_tt, 0], [X_zr, 0, X_zz]] by its five
+  // entries, in the order (rr, rz, zr, zz, tt). F, G_a, F^-1 and their products all have this
+  // form, so the kernel multiplies and contracts them at 5 entries instead of 9 (and A : B_a at
+  // 25 instead of 81).
+  using MeridianTensor = std::array<double, 5>;
+
   struct AxisymmetricScratch
   {
     static constexpr unsigned int n_nodes = 4, n_dofs = 8;
@@ -85,9 +91,9 @@ namespace indentsim::fem
     std::array<Tensor<1, 2>, n_nodes>              reference_grad0;
 
     // Work arrays of the kernel (allocated once).
-    std::vector<Tensor<2, 3>>                      F;           // [q]
+    std::vector<MeridianTensor>                    F, F_inv;    // [q]
     std::vector<std::array<double, n_dofs>>        trace;       // [q][a] tr(F^-1 G_a)
-    std::array<Tensor<2, 3>, n_dofs>               G, B, H, AB; // [a] G_a, B_a, F^-1 G_a, A : B_a
+    std::array<MeridianTensor, n_dofs>             G, B, H, AB; // [a] G_a, B_a, F^-1 G_a, A : B_a
     std::array<double, n_dofs>                     c, dlnJ0;    // [a]
     std::array<std::array<double, n_dofs>, n_dofs> d2lnJ0;      // [a][b]
   };

@@ -170,9 +170,13 @@ namespace indentsim::analysis
         settings.epsilon = default_epsilon(to_string(the_case.indenter.shape));
         if (the_case.material.model != io::ModelKind::crystal)
           settings.sample_poisson_ratio = the_case.material.poisson_ratio;
-        // One contact element h_e across the contact radius at the least (mesh/IndentationMesh).
-        const double element =
-            the_case.specimen.refined_region[0] / the_case.specimen.contact_elements;
+        // One contact element across the contact radius at the least: the refined region's h_e
+        // (mesh/IndentationMesh), or the automatic mesh's smallest edge h_min, beyond which its
+        // elements grow as rho/n (mesh/MeshDesign.h).
+        const io::SpecimenParameters &specimen = the_case.specimen;
+        const double                  element = specimen.automatic_mesh()
+                                                    ? specimen.grading.min_element
+                                                    : specimen.refined_region[0] / specimen.contact_elements;
         settings.min_true_contact_area = std::numbers::pi * element * element;
         const OliverPharrResult result = analyze_and_write(curve, indenter, the_case.indenter,
                                                            settings, run_directory, curve.source);

@@ -393,7 +393,7 @@ namespace indentsim::io
               .range(above(0), "every edge length must be > 0 um")
               .comment("full block edge lengths [um]")
               .default_is("[360, 360, 180]; with `contact_elements: auto` designed: half-width "
-                          "and depth 40 a_d (a_d the predicted contact radius)")
+                          "and depth 160 a_d (a_d the predicted contact radius)")
               .describe("edge lengths of the full block"),
           D::at<&C::specimen, &S::refined_region>("specimen.refined_region")
               .unit("um")

@@ -4,14 +4,26 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace indentsim::mesh
 {
   namespace
   {
-    // The radius of the indenter's cross-section at the height h_c: its largest reach from the
-    // axis (a pyramid's corner) [um].
-    double cross_section_radius(const indenter::IndenterSurface &surface, const double height)
+    // The radius of the circle of the same area as the indenter's cross-section at the height
+    // h_c [um]: the contact radius of an axisymmetric tip, and for a pyramid the size that its
+    // contact's area (and so the force) depends on. A pyramid's corners reach further (a
+    // Vickers pyramid's half-diagonal 1.25 times, a Berkovich pyramid's corner 1.56 times),
+    // its faces' middles less; sizing by either would resolve one pyramid 1.6 times finer
+    // than another of the same area function.
+    double equal_area_radius(const indenter::IndenterSurface &surface, const double height)
+    {
+      return std::sqrt(surface.projected_area(height) / std::numbers::pi);
+    }
+
+    // The largest reach of the indenter's cross-section at the height h_c from the axis (a
+    // pyramid's corner) [um]: the contact nodes must cover it.
+    double cross_section_reach(const indenter::IndenterSurface &surface, const double height)
     {
       const PatchExtent extent = indenter_extent(surface, height);
       return std::max(extent.x, extent.y);
@@ -34,8 +46,9 @@ namespace indentsim::mesh
     const double n = axisymmetric ? design::elements_per_radius_2d : design::elements_per_radius_3d;
 
     const double h_c = predicted_contact_height(the_case, surface);
-    const double a_d = cross_section_radius(surface, h_c);
-    const double a_low = cross_section_radius(surface, design::smallest_resolved_depth * h_c);
+    const double a_d = equal_area_radius(surface, h_c);
+    const double a_low = equal_area_radius(surface, design::smallest_resolved_depth * h_c);
+    const double reach = cross_section_reach(surface, h_c);
 
     io::MeshGrading &g = s.grading;
     g.contact_radius = a_d;
@@ -51,7 +64,7 @@ namespace indentsim::mesh
         const double half = round_up(design::specimen_radii * a_d);
         s.size = {{2 * half, 2 * half, half}};
       }
-    const double contact_half = round_up(design::contact_region_radii * a_d);
+    const double contact_half = round_up(design::contact_region_radii * std::max(a_d, reach));
     s.refined_region = {{std::min(2 * contact_half, s.size[0]),
                          std::min(2 * contact_half, s.size[1]),
                          std::min(round_up(g.graded_radius), s.size[2])}};

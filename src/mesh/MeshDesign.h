@@ -1,9 +1,11 @@
 // The automatic mesh (specimen.contact_elements: auto): an octree graded toward the tip, designed
 // from the indenter's area function and the loading. Units: um.
 //
-// The rule. a_d is the predicted contact radius at the maximum (mesh/MeshAdequacy.h: the
-// indenter's cross-section at h_c = 1.2 h_max for plastic models, the pile-up allowance; 2/pi
-// h_max for neo-Hookean; under force control the area F/H with H = 3 sigma_y if smaller). An
+// The rule. a_d is the predicted contact radius at the maximum: the radius of the circle of the
+// same area as the indenter's cross-section (a pyramid's corners reach further) at the predicted
+// contact height (mesh/MeshAdequacy.h: h_c = 1.2 h_max for plastic models, the pile-up
+// allowance; 2/pi h_max for neo-Hookean; under force control the area F/H with H = 3 sigma_y
+// if smaller). An
 // element at the distance rho from the tip (the apex's point on the undeformed surface) gets the
 // edge
 //     s(rho) = max(h_min, rho / n)       for rho <= rho_p = 3 a_d   (contact and plastic zone)
@@ -16,8 +18,8 @@
 // axisymmetric mode) of half-width and depth 160 a_d unless specimen.size is given: its fixed
 // bottom then stiffens an elastic contact by about 0.4 % (Hertz: +2.6 % at 40 a_d, +1.6 % at
 // 80 a_d, +1.25 % at 160 a_d, of which about 0.9 % is the finite-strain excess at h/R = 0.01).
-// Contact nodes are the top face's nodes within 1.5 a_d of the axis (the refined region the
-// guards watch).
+// Contact nodes are the top face's nodes in the box of 1.5 times the cross-section's extent
+// along x and y (a Berkovich corner reaches 1.56 a_d; the refined region the guards watch).
 #pragma once
 
 #include "case/Case.h"

@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 using namespace indentsim;
@@ -119,6 +120,40 @@ TEST(MeshDesign, QuarterMeshFollowsTheRule)
   const io::Case c = designed_paper_case("quarter");
   EXPECT_EQ(c.specimen.grading.elements_per_radius, mesh::design::elements_per_radius_3d);
   check_rule<3>(c);
+}
+
+// A pyramid's elements are sized by the radius of the circle of its cross-section's area:
+// Vickers and Berkovich pyramids, whose area functions agree to 0.04 %, get the same elements
+// (sized by their largest extent, the Berkovich elements would be 1.75 times the Vickers ones),
+// while the contact nodes still cover 1.5 times each pyramid's cross-section.
+TEST(MeshDesign, PyramidsAreSizedByTheirArea)
+{
+  const auto designed = [](const std::string &shape) {
+    io::Case c;
+    c.material.model = "j2";
+    c.indenter.shape = shape;
+    c.specimen.symmetry = "full";
+    c.specimen.contact_elements = io::automatic_contact_elements;
+    c.loading.max_depth = 4.0;
+    mesh::design_mesh(c, *indenter::create_indenter(c.indenter), /*size_given=*/false);
+    return c;
+  };
+  const double   h_c = 1.2 * 4.0, deg = std::numbers::pi / 180;
+  const io::Case vickers = designed("vickers"), berkovich = designed("berkovich");
+  // Closed forms of the sharp pyramids: area 4 tan^2(68 deg) h^2 and 3 sqrt(3) tan^2(65.27 deg)
+  // h^2; extent along x: tan(68 deg) h (half-side) and 2 tan(65.27 deg) h (corner).
+  const double tan_v = std::tan(68 * deg), tan_b = std::tan(65.27 * deg);
+  EXPECT_NEAR(vickers.specimen.grading.contact_radius,
+              h_c * std::sqrt(4 * tan_v * tan_v / std::numbers::pi), 1e-6 * h_c);
+  EXPECT_NEAR(berkovich.specimen.grading.contact_radius,
+              h_c * std::sqrt(3 * std::sqrt(3.) * tan_b * tan_b / std::numbers::pi), 1e-6 * h_c);
+  EXPECT_NEAR(berkovich.specimen.grading.min_element / vickers.specimen.grading.min_element, 1,
+              1e-3);
+  // The contact nodes' box: 1.5 times the cross-section's extent along x and y (the Vickers
+  // faces face x and y at rotation 0; a Berkovich corner points along -x).
+  EXPECT_GE(vickers.specimen.refined_region[0] / 2, 1.5 * tan_v * h_c);
+  EXPECT_GE(berkovich.specimen.refined_region[0] / 2, 1.5 * 2 * tan_b * h_c);
+  EXPECT_GE(berkovich.specimen.refined_region[1] / 2, 1.5 * 2 * tan_b * h_c);
 }
 
 namespace

@@ -6,6 +6,7 @@
 #include "../test_files.h"
 #include "analysis/AnalyzeCommand.h"
 #include "analysis/OliverPharr.h"
+#include "indenter/IndenterFactory.h"
 #include "indenter/ProfileTable.h"
 #include "io/CommandLine.h"
 
@@ -307,4 +308,27 @@ TEST(OliverPharrChecks, UnresolvedTrueContactAreaIsNotCompared)
   ASSERT_TRUE(resolved.true_contact_area);
   EXPECT_DOUBLE_EQ(*resolved.true_hardness, resolved.max_force / 500.0);
   EXPECT_TRUE(resolved.true_area_note.empty());
+}
+
+// The analysis of a run on the automatic mesh compares with the true contact area once the
+// contact spans the mesh's smallest edge h_min (that mesh has no refined-region edge h_e: the
+// threshold must come from its design, not from a division by the `auto` contact elements).
+TEST(OliverPharrChecks, AutomaticMeshRunComparesTheTrueContactArea)
+{
+  io::Case the_case;
+  the_case.material.model = "j2";
+  the_case.specimen.contact_elements = io::automatic_contact_elements;
+  the_case.specimen.grading.min_element = 0.14; // um
+  the_case.output.directory = test_files::scratch_directory("oliver_pharr_checks", "auto").string();
+  LoadCurve curve = SyntheticCurve().curve();
+  curve.contact_area.assign(curve.depth.size(), 700.0); // um^2: 15 um, a hundred h_min
+  std::ostringstream summary, warnings;
+  ASSERT_TRUE(analysis::analyze_run(curve, the_case, *indenter::create_indenter(the_case.indenter),
+                                    summary, warnings))
+      << warnings.str();
+  const std::string json =
+      test_files::read_text(fs::path(the_case.output.directory) / "oliver_pharr.json");
+  EXPECT_NE(json.find("\"true_contact_area_um2\": 700"), std::string::npos) << json;
+  EXPECT_EQ(warnings.str().find("does not resolve"), std::string::npos) << warnings.str();
+  EXPECT_EQ(summary.str().find("does not resolve"), std::string::npos) << summary.str();
 }

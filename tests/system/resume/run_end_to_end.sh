@@ -4,12 +4,13 @@
 # with code 130 and says how to resume; `--resume` finishes it, and its load_penetration.csv
 # equals an uninterrupted run's in every column but wall_time_s; the finished run leaves no
 # checkpoint; --resume with --overwrite, a plain rerun and a resume without checkpoint are refused.
-# Usage: run_end_to_end.sh INDENTSIM_EXECUTABLE SCRATCH_DIRECTORY
+# Usage: run_end_to_end.sh INDENTSIM_EXECUTABLE SCRATCH_DIRECTORY [CASE_FILE]
+# (CASE_FILE: small_j2.yaml next to this script by default.)
 set -uo pipefail
 indentsim="$1"
 out="$2"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-case_file="$here/small_j2.yaml"
+case_file="${3:-$here/small_j2.yaml}"
 rm -rf "$out"
 mkdir -p "$out"
 
@@ -23,8 +24,10 @@ INDENTSIM_STOP_AFTER_STEP=3 "$indentsim" run "$case_file" --output "$out/resumed
 code=$?
 cat "$out/stopped.txt"
 [[ $code -eq 130 ]] || fail "the stopped run exited with $code, expected 130"
-grep -qF "stopped at step 3 (depth 0.5 um); resume with: $indentsim run $case_file --output" \
-  "$out/stopped.txt" || fail "no stop message"
+grep -qE "^stopped at step 3 \(depth [0-9.]+ um\); resume with: " "$out/stopped.txt" \
+  || fail "no stop message"
+grep -qF "resume with: $indentsim run $case_file --output" "$out/stopped.txt" \
+  || fail "the stop message lacks the command"
 grep -qF -- "--resume" "$out/stopped.txt" || fail "the stop message lacks --resume"
 [[ -f "$out/resumed/checkpoint/rank_0.bin" ]] || fail "no checkpoint written"
 [[ ! -f "$out/resumed/pileup.json" ]] || fail "a stopped run wrote end-of-run outputs"

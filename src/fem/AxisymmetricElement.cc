@@ -173,17 +173,22 @@ namespace indentsim::fem
       const unsigned int i = a / 2;
       if (a % 2 == 1)
         return {{0, 0, g[0], g[1], 0}};
-      const double N_over_R =
-          centre ? s.values0[i] / s.radius0 : s.values[q][i] / s.radius[q];
+      const double N_over_R = centre ? s.values0[i] / s.radius0 : s.values[q][i] / s.radius[q];
       return {{g[0], g[1], 0, 0, N_over_R}};
     }
 
     // J = det F of the block form; the in-plane part and the hoop stretch must be positive on
     // their own (J > 0 alone would let a negative hoop stretch and a folded (r, z) section
     // pass together).
-    double in_plane_determinant(const MeridianTensor &X) { return X[rr] * X[zz] - X[rz] * X[zr]; }
-    double determinant(const MeridianTensor &X) { return in_plane_determinant(X) * X[tt]; }
-    bool   admissible(const MeridianTensor &F)
+    double in_plane_determinant(const MeridianTensor &X)
+    {
+      return X[rr] * X[zz] - X[rz] * X[zr];
+    }
+    double determinant(const MeridianTensor &X)
+    {
+      return in_plane_determinant(X) * X[tt];
+    }
+    bool admissible(const MeridianTensor &F)
     {
       const double in_plane = in_plane_determinant(F);
       return F[tt] > 0 && in_plane > 0 && std::isfinite(F[tt]) && std::isfinite(in_plane);
@@ -202,7 +207,10 @@ namespace indentsim::fem
                X[zr] * Y[rr] + X[zz] * Y[zr], X[zr] * Y[rz] + X[zz] * Y[zz], X[tt] * Y[tt]}};
     }
 
-    double trace(const MeridianTensor &X) { return X[rr] + X[zz] + X[tt]; }
+    double trace(const MeridianTensor &X)
+    {
+      return X[rr] + X[zz] + X[tt];
+    }
 
     // tr(X Y).
     double trace_of_product(const MeridianTensor &X, const MeridianTensor &Y)

@@ -6,6 +6,7 @@
 // the residual. Units: um, mN, GPa.
 #include "contact/NodeToSurfaceContact.h"
 #include "indenter/RoundedCone.h"
+#include "indenter/Sphere.h"
 
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -275,6 +276,55 @@ TEST(Friction, TangentMatchesDifferencesOfTheResidual)
         }
       EXPECT_LT(max_error, 1e-6 * max_entry) << "largest entry " << max_entry;
     }
+}
+
+// Requirement: the frictionless contact tangent is the exact derivative of the contact forces,
+// the indenter's curvature term -p A dn/dx included. Oracle: a sphere of radius R pressed 0.05 um
+// into the block touches only the node on its axis, whose normal turns as (I - n n)/rho with the
+// distance rho = R - 0.05 um from the centre: that node's two tangential diagonal entries are
+// the spring's k - p A / rho, and the tangent equals the central differences of the residual.
+TEST(FrictionlessContact, TangentHoldsTheIndentersCurvature)
+{
+  const double           radius = 2.0, depth = 0.05;
+  const indenter::Sphere sphere(radius);
+  SpringBlock            block(sphere, 0.0, 50.0);
+  const unsigned int     n = block.dof_handler.n_dofs();
+  block.residual_values.assign(n, 0.);
+  using ActiveSet = contact::NodeToSurfaceContact::ActiveSet;
+  FullMatrix<double> tangent;
+  block.assemble(ActiveSet::free, depth, &tangent);
+  ASSERT_EQ(block.contact.summary().n_active, 1u);
+  const contact::ContactNode *apex = nullptr;
+  for (const auto &node : block.contact.nodes())
+    if (node.active)
+      apex = &node;
+  ASSERT_NE(apex, nullptr);
+  ASSERT_LT(apex->x.norm(), 1e-12);
+  const double force = apex->pressure * apex->area, rho = radius - depth;
+  ASSERT_GT(force, 0);
+
+  const double h = 1e-6;
+  double       max_error = 0;
+  for (unsigned int j = 0; j < n; ++j)
+    {
+      if (!block.is_top[j])
+        continue;
+      std::vector<double> r_plus, r_minus;
+      for (const double sign : {1.0, -1.0})
+        {
+          block.shift(j, sign * h);
+          block.assemble(ActiveSet::frozen, depth, nullptr);
+          (sign > 0 ? r_plus : r_minus) = block.residual_values;
+          block.shift(j, -sign * h);
+        }
+      for (unsigned int i = 0; i < n; ++i)
+        max_error =
+            std::max(max_error, std::abs((r_plus[i] - r_minus[i]) / (2 * h) - tangent(i, j)));
+    }
+  EXPECT_LT(max_error, 1e-6 * force / rho);
+  for (const unsigned int c : {0u, 1u})
+    EXPECT_NEAR(tangent(apex->dofs[c], apex->dofs[c]), block.k - force / rho, 1e-9 * block.k)
+        << "tangential direction " << c;
 }
 
 #include "../test_cases.h"

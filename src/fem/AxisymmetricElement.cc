@@ -218,7 +218,7 @@ namespace indentsim::fem
       return X[rr] * Y[rr] + X[rz] * Y[zr] + X[zr] * Y[rz] + X[zz] * Y[zz] + X[tt] * Y[tt];
     }
 
-    // X : Y = X_ij Y_ij (for a full 3x3 X: its block entries only, Y being zero elsewhere).
+    // X : Y = X_ij Y_ij.
     double scalar_product(const MeridianTensor &X, const MeridianTensor &Y)
     {
       double sum = 0;
@@ -226,6 +226,10 @@ namespace indentsim::fem
         sum += X[k] * Y[k];
       return sum;
     }
+
+    // The block entries of a 3x3 tensor (the stress P: its other entries, zero for an isotropic
+    // material under an axisymmetric F, would meet only zeros of the block tensors B_a, G_a, F
+    // it is contracted with).
     MeridianTensor block_entries(const Tensor<2, 3> &X)
     {
       MeridianTensor block;

@@ -21,8 +21,9 @@ namespace indentsim::mesh
       return std::sqrt(surface.projected_area(height) / std::numbers::pi);
     }
 
-    // The largest reach of the indenter's cross-section at the height h_c from the axis (a
-    // pyramid's corner) [um]: the contact nodes must cover it.
+    // The largest extent of the indenter's cross-section at the height h_c along x or y (a
+    // Berkovich corner along -x; a Vickers half-side at rotation 0) [um]: the box of contact
+    // nodes must cover it.
     double cross_section_reach(const indenter::IndenterSurface &surface, const double height)
     {
       const PatchExtent extent = indenter_extent(surface, height);

@@ -5,9 +5,8 @@
 // same area as the indenter's cross-section (a pyramid's corners reach further) at the predicted
 // contact height (mesh/MeshAdequacy.h: h_c = 1.2 h_max for plastic models, the pile-up
 // allowance; 2/pi h_max for neo-Hookean; under force control the area F/H with H = 3 sigma_y
-// if smaller). An
-// element at the distance rho from the tip (the apex's point on the undeformed surface) gets the
-// edge
+// if smaller). An element at the distance rho from the tip (the apex's point on the undeformed
+// surface) gets the edge
 //     s(rho) = max(h_min, rho / n)       for rho <= rho_p = 3 a_d   (contact and plastic zone)
 //     s(rho) = rho / n_far               beyond                     (elastic far field)
 // so the contact radius a(h) spans about n elements at every depth h: for a self-similar tip

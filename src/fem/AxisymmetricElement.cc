@@ -39,6 +39,8 @@ namespace indentsim::fem
     , reference_grad(n_q_points)
     , F(n_q_points)
     , F_inv(n_q_points)
+    , G(n_q_points)
+    , H(n_q_points)
     , trace(n_q_points)
   {
     const QGauss<2> gauss(gauss_points_per_direction(n_q_points));
@@ -264,15 +266,16 @@ namespace indentsim::fem
       const MeridianTensor F0 = deformation_gradient(s, s.n_q_points, u_local);
       if (!admissible(F0))
         return 0;
-      const MeridianTensor F0_inv = invert(F0);
+      const MeridianTensor                                    F0_inv = invert(F0);
+      std::array<MeridianTensor, AxisymmetricScratch::n_dofs> H0; // F_0^-1 G0_a
       for (unsigned int a = 0; a < AxisymmetricScratch::n_dofs; ++a)
         {
-          s.H[a] = product(F0_inv, dof_gradient(s, s.n_q_points, a));
-          s.dlnJ0[a] = trace(s.H[a]);
+          H0[a] = product(F0_inv, dof_gradient(s, s.n_q_points, a));
+          s.dlnJ0[a] = trace(H0[a]);
         }
       for (unsigned int a = 0; a < AxisymmetricScratch::n_dofs; ++a)
         for (unsigned int b = 0; b < AxisymmetricScratch::n_dofs; ++b)
-          s.d2lnJ0[a][b] = -trace_of_product(s.H[b], s.H[a]);
+          s.d2lnJ0[a][b] = -trace_of_product(H0[b], H0[a]);
       return determinant(F0);
     }
 
@@ -282,7 +285,7 @@ namespace indentsim::fem
     //   d ln J_bar/du_a = sum_q dV_q dJ_q/du_a / (V J_bar),
     //   d^2 ln J_bar/du_a du_b = sum_q dV_q d^2 J_q/du_a du_b / (V J_bar)
     //                            - d ln J_bar/du_a d ln J_bar/du_b.
-    // Needs s.F, s.F_inv and s.trace at every Gauss point (the kernel fills them).
+    // Needs s.F, s.H and s.trace at every Gauss point (the kernel fills them).
     double mean_dilatation(AxisymmetricScratch &s)
     {
       constexpr unsigned int n_dofs = AxisymmetricScratch::n_dofs;
@@ -299,15 +302,13 @@ namespace indentsim::fem
       for (unsigned int q = 0; q < s.n_q_points; ++q)
         {
           const double weight = s.dV[q] * determinant(s.F[q]) / weighted_J;
+          const auto  &H = s.H[q];
           for (unsigned int a = 0; a < n_dofs; ++a)
-            {
-              s.H[a] = product(s.F_inv[q], dof_gradient(s, q, a));
-              s.dlnJ0[a] += weight * s.trace[q][a];
-            }
+            s.dlnJ0[a] += weight * s.trace[q][a];
           for (unsigned int a = 0; a < n_dofs; ++a)
             for (unsigned int b = 0; b <= a; ++b)
               s.d2lnJ0[a][b] +=
-                  weight * (s.trace[q][a] * s.trace[q][b] - trace_of_product(s.H[b], s.H[a]));
+                  weight * (s.trace[q][a] * s.trace[q][b] - trace_of_product(H[b], H[a]));
         }
       for (unsigned int a = 0; a < n_dofs; ++a)
         for (unsigned int b = 0; b <= a; ++b)
@@ -320,11 +321,14 @@ namespace indentsim::fem
 
     // Adds one Gauss point's K_ab = (B_a : A : B_b + P : dB_a/du_b) dV, the second term (F-bar
     // only) theta/3 [c_b P:G_a + c_a P:G_b + p/3 c_a c_b + p d_ab] with p = P : F and
-    // d_ab = d^2 ln J_0/du_a du_b + tr(F^-1 G_b F^-1 G_a) (s.H[a] = F^-1 G_a).
-    void add_point_tangent(AxisymmetricScratch &s, const materials::MaterialPointResponse &response,
-                           const MeridianTensor &F, const double theta, const bool use_f_bar,
-                           const double dV, FullMatrix<double> &K)
+    // d_ab = d^2 ln J_0/du_a du_b + tr(F^-1 G_b F^-1 G_a) (s.H[q][a] = F^-1 G_a).
+    void add_point_tangent(AxisymmetricScratch &s, const unsigned int q,
+                           const materials::MaterialPointResponse &response, const double theta,
+                           const bool use_f_bar, FullMatrix<double> &K)
     {
+      const MeridianTensor               &F = s.F[q];
+      const auto                         &G = s.G[q], &H = s.H[q];
+      const double                        dV = s.dV[q];
       constexpr unsigned int              n_dofs = AxisymmetricScratch::n_dofs;
       const std::array<MeridianTensor, 5> A = block_entries(response.dP_dF);
       for (unsigned int b = 0; b < n_dofs; ++b)
@@ -339,11 +343,11 @@ namespace indentsim::fem
       const double               p = scalar_product(P, F);
       std::array<double, n_dofs> PG; // P : G_a
       for (unsigned int a = 0; a < n_dofs; ++a)
-        PG[a] = scalar_product(P, s.G[a]);
+        PG[a] = scalar_product(P, G[a]);
       for (unsigned int a = 0; a < n_dofs; ++a)
         for (unsigned int b = 0; b < n_dofs; ++b)
           {
-            const double d_ab = s.d2lnJ0[a][b] + trace_of_product(s.H[b], s.H[a]);
+            const double d_ab = s.d2lnJ0[a][b] + trace_of_product(H[b], H[a]);
             K(a, b) += theta / 3. *
                        (s.c[b] * PG[a] + s.c[a] * PG[b] + p / 3. * s.c[a] * s.c[b] + p * d_ab) * dV;
           }
@@ -371,17 +375,22 @@ namespace indentsim::fem
       *tangent = 0;
 
     // Kinematics at every Gauss point first: the mean dilatation needs them all, with
-    // tr(F^-1 G_a) (= d ln J/du_a).
+    // F^-1 G_a and its trace tr(F^-1 G_a) (= d ln J/du_a).
     for (unsigned int q = 0; q < s.n_q_points; ++q)
       {
         s.F[q] = deformation_gradient(s, q, u_local);
         if (!admissible(s.F[q]))
           return materials::UpdateStatus::invalid_deformation;
+        for (unsigned int a = 0; a < n_dofs; ++a)
+          s.G[q][a] = dof_gradient(s, q, a);
         if (!use_f_bar)
           continue;
         s.F_inv[q] = invert(s.F[q]);
         for (unsigned int a = 0; a < n_dofs; ++a)
-          s.trace[q][a] = trace_of_product(s.F_inv[q], dof_gradient(s, q, a));
+          {
+            s.H[q][a] = product(s.F_inv[q], s.G[q][a]);
+            s.trace[q][a] = trace(s.H[q][a]);
+          }
       }
     double J0 = 1;
     if (use_f_bar)
@@ -408,21 +417,20 @@ namespace indentsim::fem
 
         // B_a = theta G_a + beta_a F with beta_a = theta c_a / 3.
         const MeridianTensor P = block_entries(response.P);
+        const auto          &G = s.G[q];
         for (unsigned int a = 0; a < n_dofs; ++a)
           {
-            s.G[a] = dof_gradient(s, q, a);
-            s.B[a] = s.G[a];
+            s.B[a] = G[a];
             if (use_f_bar)
               {
-                s.H[a] = product(s.F_inv[q], s.G[a]);
                 s.c[a] = s.dlnJ0[a] - s.trace[q][a];
                 for (unsigned int k = 0; k < 5; ++k)
-                  s.B[a][k] = theta * s.G[a][k] + (theta * s.c[a] / 3.) * F[k];
+                  s.B[a][k] = theta * G[a][k] + (theta * s.c[a] / 3.) * F[k];
               }
             residual[a] += scalar_product(P, s.B[a]) * s.dV[q];
           }
         if (tangent)
-          add_point_tangent(s, response, F, theta, use_f_bar, s.dV[q], *tangent);
+          add_point_tangent(s, q, response, theta, use_f_bar, *tangent);
       }
     return materials::UpdateStatus::success;
   }

@@ -91,11 +91,12 @@ namespace indentsim::fem
     std::array<Tensor<1, 2>, n_nodes>              reference_grad0;
 
     // Work arrays of the kernel (allocated once).
-    std::vector<MeridianTensor>                    F, F_inv;    // [q]
-    std::vector<std::array<double, n_dofs>>        trace;       // [q][a] tr(F^-1 G_a)
-    std::array<MeridianTensor, n_dofs>             G, B, H, AB; // [a] G_a, B_a, F^-1 G_a, A : B_a
-    std::array<double, n_dofs>                     c, dlnJ0;    // [a]
-    std::array<std::array<double, n_dofs>, n_dofs> d2lnJ0;      // [a][b]
+    std::vector<MeridianTensor>                     F, F_inv; // [q]
+    std::vector<std::array<MeridianTensor, n_dofs>> G, H;     // [q][a] G_a, F^-1 G_a
+    std::vector<std::array<double, n_dofs>>         trace;    // [q][a] tr(F^-1 G_a)
+    std::array<MeridianTensor, n_dofs>              B, AB;    // [a] B_a, A : B_a
+    std::array<double, n_dofs>                      c, dlnJ0; // [a]
+    std::array<std::array<double, n_dofs>, n_dofs>  d2lnJ0;   // [a][b]
   };
 
   // Throws std::invalid_argument unless `fe` is FESystem(FE_Q<2>(1), 2) with dof a = component

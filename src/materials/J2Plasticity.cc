@@ -59,10 +59,11 @@ namespace indentsim::materials
 
     // The eigenvector-rotation part of the derivative of the isotropic function b_e(b_e^tr):
     // in the eigenbasis, d b_e,ab = theta_ab d b_e,ab^tr for a != b with the divided difference
-    // theta_ab = (b_a - b_b) / (lambda_a - lambda_b) (Daleckii-Krein; Carlson & Hoger 1986, Quart.
-    // Appl. Math. 44, 409; de Souza Neto, Peric & Owen 2008, appendix A). Differencing b_a - b_b would lose all accuracy as the
-    // eigenvalues meet, which is the normal case here (virgin material, the axis of symmetry,
-    // uniaxial states), so the quotient is factored into parts that have none to lose: with
+    // theta_ab = (b_a - b_b) / (lambda_a - lambda_b) (Daleckii-Krein; Carlson & Hoger 1986,
+    // Quart. Appl. Math. 44, 409; de Souza Neto, Peric & Owen 2008, appendix A). Differencing
+    // b_a - b_b would lose all accuracy as the eigenvalues meet, which is the normal case here
+    // (virgin material, the axis of symmetry, uniaxial states), so the quotient is factored into
+    // parts that have none to lose: with
     // delta = e_a - e_b, the difference of the return equations R_a - R_b = 0 reads
     // delta + c_N (b_a - b_b) = t_a - t_b, and b_a - b_b = b_b (exp(2 delta) - 1), so
     //   theta_ab = b_b q_e / (1 + c_N b_b q_e) * q_l / (2 lambda_b),

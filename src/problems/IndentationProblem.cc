@@ -144,7 +144,7 @@ namespace indentsim::problems
   {
     const auto  &size = case_.specimen.size;
     const double bottom_area =
-        dim == 2 ? M_PI * size[0] * size[0] / 4 : size[0] * size[1] / symmetry_factor();
+        dim == 2 ? std::numbers::pi * size[0] * size[0] / 4 : size[0] * size[1] / symmetry_factor();
     return 1e-14 * material_->reference_modulus() * bottom_area;
   }
 

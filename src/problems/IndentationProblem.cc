@@ -86,6 +86,29 @@ namespace indentsim::problems
 
   // Hanging-node constraints, then the supports (bottom face, symmetry planes or the axis) on top
   // of them, as step-42 layers them.
+  // The bottom's z reaction is the internal force its supported DoFs receive: from the cells
+  // that touch the bottom, and through the hanging-node constraints from hanging DoFs whose
+  // masters lie on the bottom (an automatic mesh coarsens toward the bottom, so a coarse cell's
+  // side edge can end there).
+  template <int dim>
+  void IndentationProblem<dim>::collect_reaction_weights()
+  {
+    reaction_weights_.clear();
+    const IndexSet bottom_z = DoFTools::extract_boundary_dofs(
+        solid_.dof_handler, solid_.component_mask(dim - 1), {mesh::boundary::bottom});
+    for (const types::global_dof_index dof : bottom_z)
+      reaction_weights_[dof] = 1;
+    for (const auto &line : constraints_hanging_.get_lines())
+      {
+        double weight = 0;
+        for (const auto &[master, coefficient] : line.entries)
+          if (bottom_z.is_element(master))
+            weight += coefficient;
+        if (weight != 0)
+          reaction_weights_[line.index] = weight;
+      }
+  }
+
   template <int dim>
   void IndentationProblem<dim>::make_constraints()
   {
@@ -100,6 +123,7 @@ namespace indentsim::problems
     const Functions::ZeroFunction<dim> zero(dim);
     VectorTools::interpolate_boundary_values(solid_.dof_handler, mesh::boundary::bottom, zero,
                                              constraints_all_);
+    collect_reaction_weights();
     if constexpr (dim == 2)
       {
         // The axis r = 0: u_r = 0 (the section's nodes there stay on the axis).
@@ -263,14 +287,12 @@ namespace indentsim::problems
                                                with_matrix ? &contribution.matrix : nullptr);
       cell->get_dof_indices(contribution.dof_indices);
       contribution.cell_index = cell->active_cell_index();
-      // Bottom reaction: the internal force at the supported nodes (z components, the last).
+      // Bottom reaction: the internal force that reaches the supported z DoFs.
       contribution.sums[0] = 0;
-      for (const unsigned int f : cell->face_indices())
-        if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == mesh::boundary::bottom)
-          for (unsigned int a = 0; a < solid_.fe.n_dofs_per_cell(); ++a)
-            if (solid_.fe.system_to_component_index(a).first == dim - 1 &&
-                solid_.fe.has_support_on_face(a, f))
-              contribution.sums[0] += contribution.vector[a];
+      for (unsigned int a = 0; a < solid_.fe.n_dofs_per_cell(); ++a)
+        if (const auto w = reaction_weights_.find(contribution.dof_indices[a]);
+            w != reaction_weights_.end())
+          contribution.sums[0] += w->second * contribution.vector[a];
     };
     const auto copier = [&](const CellContribution &contribution) {
       if (contribution.status != materials::UpdateStatus::success)

@@ -43,6 +43,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <unordered_map>
 #include <optional>
 #include <span>
 #include <string>
@@ -174,6 +175,7 @@ namespace indentsim::problems
     // weighted by the material's relative plastic cost.
     void balance_plastic_zone();
     void make_constraints();
+    void collect_reaction_weights();
 
     // The augmented-Lagrangian Newton of one increment, in steps (IndentationNewton.cc).
     struct NewtonIncrement;
@@ -279,6 +281,9 @@ namespace indentsim::problems
     mesh::MeshInfo                    mesh_info_;
     dealii::AffineConstraints<double> constraints_hanging_;
     dealii::AffineConstraints<double> constraints_all_; // Dirichlet and hanging nodes
+    // The share of a DoF's internal force that lands on the bottom's z reactions: 1 for a
+    // supported z DoF, the constraint weight of its bottom masters for a hanging z DoF.
+    std::unordered_map<dealii::types::global_dof_index, double> reaction_weights_;
 
     std::unique_ptr<materials::MaterialModel>        material_;
     std::shared_ptr<const indenter::IndenterSurface> indenter_;

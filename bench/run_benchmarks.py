@@ -95,9 +95,11 @@ CASES["berkovich_j2_24"] = (
      "indenter": {"shape": "berkovich", "tip_radius": 0.05, "rotation_deg": 0}})
 CASES["j2_axi_auto"] = (
     "J2 indentation (Table 1) in axisymmetric mode on the automatic mesh, 192 geometric steps "
-    "(dh/h = 2.2 % from 6/64 um on) to 6 um and back",
+    "(dh/h = 2.2 % from 6/64 um on) to 6 um and back, contact tolerance 1e-5 um (the default "
+    "example, examples/paper_j2_auto_axisymmetric.yaml)",
     {**indentation(J2, "auto", "axisymmetric"),
      "specimen": {"contact_elements": "auto", "symmetry": "axisymmetric"},
+     "contact": {"friction_coefficient": 0.0, "penetration_tolerance": 1e-5},
      "loading": {"max_depth": 6.0, "steps": 192, "spacing": "geometric", "unload": True}})
 CASES["tensile_27"] = (
     "tensile test of 27 random grains (crystal, 3x3x3 elements, 100 steps), no J2 comparison",

@@ -100,14 +100,18 @@ namespace indentsim::io
   // The graded mesh of specimen.contact_elements: auto, designed from the indenter and the
   // loading (mesh/MeshDesign.h); derived from the other keys, never read from a case file.
   // Target element edge at the distance rho from the tip: max(min_element, rho / n) with
-  // n = elements_per_radius up to graded_radius and far_elements_per_radius beyond. Units: um.
+  // n = elements_per_radius up to graded_radius and far_elements_per_radius beyond; the cells on
+  // the top face within surface_radius of the axis are halved surface_halvings times more.
+  // Units: um.
   struct MeshGrading
   {
-    double contact_radius = 0;          // a_d: the predicted contact radius at the maximum
-    double min_element = 0;             // h_min: resolves the contact from max_depth / 8
-    double elements_per_radius = 0;     // n: elements per distance from the tip, near field
-    double graded_radius = 0;           // rho_p: the near field (contact and plastic zone)
-    double far_elements_per_radius = 0; // beyond rho_p
+    double       contact_radius = 0;          // a_d: the predicted contact radius at the maximum
+    double       min_element = 0;             // h_min: resolves the contact from max_depth / 8
+    double       elements_per_radius = 0;     // n: elements per distance from the tip, near field
+    double       graded_radius = 0;           // rho_p: the near field (contact and plastic zone)
+    double       far_elements_per_radius = 0; // beyond rho_p
+    double       surface_radius = 0;          // the contact nodes' reach on the top face
+    unsigned int surface_halvings = 0;        // m: top-face cells there: edge s(rho) / 2^m
 
     bool operator==(const MeshGrading &) const = default;
   };
@@ -121,6 +125,7 @@ namespace indentsim::io
     std::array<double, 3> refined_region = {{120., 120., 30.}}; // refined block under the tip [um]
     unsigned int          contact_elements = 12; // N: N x N faces across the refined top face;
                                                  // 0: auto (the graded mesh of `grading`)
+    unsigned int     elements_per_radius = 0;    // n of the automatic mesh; 0: auto (by dimension)
     Choice<Symmetry> symmetry = Symmetry::full;
     bool             f_bar = true; // F-bar element (default on for plasticity)
     // Tensile test (test: tensile): a cube of elements_per_side^3 elements of 1 um edge.

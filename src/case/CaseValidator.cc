@@ -47,6 +47,11 @@ namespace indentsim::io
         check_section("specimen");
         if (!tensile() && checked.specimen.automatic_mesh())
           design_automatic_mesh(*surface);
+        else if (checked.specimen.elements_per_radius != 0)
+          reject("specimen.elements_per_radius",
+                 std::to_string(checked.specimen.elements_per_radius),
+                 "it sets the automatic mesh: give specimen.contact_elements: auto with it, or "
+                 "remove it to mesh the refined region with contact_elements");
         check_specimen(*surface);
         check_section("loading");
         check_loading();

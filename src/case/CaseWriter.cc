@@ -61,7 +61,8 @@ namespace indentsim::io
            << "  # designed (user guide, \"Automatic meshes\"): contact radius a_d = "
            << g.contact_radius << " um; element edge max(h_min, rho/n), h_min = " << g.min_element
            << " um, n = " << g.elements_per_radius << " for rho <= " << g.graded_radius
-           << " um, rho/" << g.far_elements_per_radius << " beyond;\n"
+           << " um, rho/" << g.far_elements_per_radius << " beyond, halved " << g.surface_halvings
+           << " more time(s) on the top face for rho <= " << g.surface_radius << " um;\n"
            << "  # contact nodes and guards on refined_region = [" << s.refined_region[0] << ", "
            << s.refined_region[1] << ", " << s.refined_region[2] << "] um\n";
       out << text.str();

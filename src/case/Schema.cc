@@ -51,6 +51,10 @@ namespace indentsim::io
     {
       return !c.specimen.automatic_mesh();
     }
+    bool automatic_mesh(const Case &c)
+    {
+      return c.specimen.automatic_mesh();
+    }
     bool linear_hardening(const Case &c)
     {
       return c.material.hardening_law == HardeningLaw::linear;
@@ -425,6 +429,19 @@ namespace indentsim::io
                         "max_depth; `size` (if not given) and `refined_region` (never given) "
                         "are designed, and the resolved case lists them (user guide, "
                         "\"Automatic meshes\")"),
+          D::at<&C::specimen, &S::elements_per_radius>("specimen.elements_per_radius")
+              .written_if(&automatic_mesh)
+              .range(between(2, true, 64, true),
+                     "n must satisfy 2 <= n <= 64 (elements of edge rho/n at the distance rho "
+                     "from the tip; the cells grow as n^2 in axisymmetric mode and n^3 in 3D)")
+              .or_word("auto")
+              .comment("n: elements of edge rho/n at the distance rho from the tip; auto: "
+                       "10 axisymmetric, 6 in 3D")
+              .describe("with `contact_elements: auto` only: n, the automatic mesh's elements "
+                        "per distance from the tip (edge ρ/n at the distance ρ, within three "
+                        "contact radii; ρ/(n/2) beyond). `auto`: 10 in axisymmetric mode, 6 in "
+                        "3D. A larger n refines the whole design, for convergence studies "
+                        "(user guide, \"Automatic meshes\")"),
           D::at<&C::specimen, &S::symmetry>("specimen.symmetry")
               .expect("a symmetry")
               .comment("full | quarter (x >= 0, y >= 0) | axisymmetric (r, z)")

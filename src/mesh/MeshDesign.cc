@@ -44,7 +44,9 @@ namespace indentsim::mesh
   {
     io::SpecimenParameters &s = the_case.specimen;
     const bool              axisymmetric = s.symmetry == io::Symmetry::axisymmetric;
-    const double n = axisymmetric ? design::elements_per_radius_2d : design::elements_per_radius_3d;
+    const double            n = s.elements_per_radius != 0 ? double(s.elements_per_radius)
+                                : axisymmetric             ? design::elements_per_radius_2d
+                                                           : design::elements_per_radius_3d;
 
     const double h_c = predicted_contact_height(the_case, surface);
     const double a_d = equal_area_radius(surface, h_c);
@@ -66,6 +68,8 @@ namespace indentsim::mesh
         s.size = {{2 * half, 2 * half, half}};
       }
     const double contact_half = round_up(design::contact_region_radii * std::max(a_d, reach));
+    g.surface_radius = contact_half;
+    g.surface_halvings = axisymmetric ? design::surface_halvings_2d : design::surface_halvings_3d;
     s.refined_region = {{std::min(2 * contact_half, s.size[0]),
                          std::min(2 * contact_half, s.size[1]),
                          std::min(round_up(g.graded_radius), s.size[2])}};
@@ -114,6 +118,11 @@ namespace indentsim::mesh
         distance2 += nearest * nearest;
         edge = std::max(edge, upper[d] - lower[d]);
       }
-    return edge > target_element_size(grading, std::sqrt(distance2)) * (1 + 1e-9);
+    const double rho = std::sqrt(distance2);
+    double       target = target_element_size(grading, rho);
+    // The top face is z = 0 (the last coordinate's upper bound).
+    if (upper[dim - 1] >= 0 && rho <= grading.surface_radius)
+      target = std::ldexp(target, -static_cast<int>(grading.surface_halvings));
+    return edge > target * (1 + 1e-9);
   }
 } // namespace indentsim::mesh

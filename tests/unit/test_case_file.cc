@@ -162,7 +162,7 @@ TEST(CaseFile, ResolvedCaseRoundTrips)
   c.indenter.rotation_deg = -22.5;
   c.indenter.edge_radius = 0.3;
   c.indenter.file = "/data/tips/my tip #2.csv"; // read only for shape: profile_table
-  c.specimen = {{{300., 310., 150.}}, {{100., 90., 25.}}, 16, "quarter", false};
+  c.specimen = {{{300., 310., 150.}}, {{100., 90., 25.}}, 16, 0, "quarter", false};
   c.loading = {"depth", 5.5, 0.0, 33, false, 7, 11, 2, 1, 5};
   c.contact = {0.0, 12.5, 3e-7, 17};
   c.solver = {1e-9, 2.5e-11, 31};
@@ -1178,6 +1178,9 @@ TEST(CaseFile, EveryKeyIsDocumentedAndWritten)
   Case geometric; // writes loading.first_fraction
   geometric.loading.spacing = Spacing::geometric;
   written += resolved_case_yaml(geometric);
+  Case automatic; // writes specimen.elements_per_radius
+  automatic.specimen.contact_elements = automatic_contact_elements;
+  written += resolved_case_yaml(automatic);
   for (const auto &key : case_keys())
     {
       EXPECT_NE(reference.find("| `" + key.path + "` |"), std::string::npos) << key.path;

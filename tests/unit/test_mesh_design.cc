@@ -1,7 +1,9 @@
 // The automatic mesh (specimen.contact_elements: auto, mesh/MeshDesign.h): the built octree
-// obeys the design's rule s(rho) = max(h_min, rho / n) cell by cell, the contact radius spans n
-// to 2n elements from an eighth of the maximum depth on, the size estimate matches the built
-// mesh, and the case file reads, refuses and writes the key as documented. Units: um, mN, GPa.
+// obeys the design's rule s(rho) = max(h_min, rho / n) cell by cell, s(rho) / 2^m for the top
+// face's cells within the surface radius, so that the contact radius spans 2^m n to 2^(m+1) n
+// surface elements from an eighth of the maximum depth on; the size estimate matches the built
+// mesh, specimen.elements_per_radius sets n, and the case file reads, refuses and writes the
+// keys as documented. Units: um, mN, GPa.
 #include "../case_file_errors.h"
 #include "../test_cases.h"
 #include "case/CaseFile.h"
@@ -63,8 +65,10 @@ namespace
     const io::MeshGrading &g = c.specimen.grading;
     EXPECT_TRUE(info.graded);
 
-    // Every cell is no larger than s(rho) at its point nearest to the tip.
-    double smallest = 1e300;
+    // Every cell is no larger than s(rho) at its point nearest to the tip, or s(rho) / 2^m on
+    // the top face within the surface radius.
+    const double surface_factor = std::pow(2., -double(g.surface_halvings));
+    double       smallest = 1e300;
     for (const auto &cell : triangulation.active_cell_iterators())
       {
         const dealii::BoundingBox<dim> box = cell->bounding_box();
@@ -75,20 +79,24 @@ namespace
             rho2 += nearest * nearest;
             edge = std::max(edge, box.upper_bound(d) - box.lower_bound(d));
           }
-        ASSERT_LE(edge, mesh::target_element_size(g, std::sqrt(rho2)) * (1 + 1e-9));
+        const double rho = std::sqrt(rho2);
+        const double s = mesh::target_element_size(g, rho);
+        const bool   on_surface = box.upper_bound(dim - 1) > -1e-9 && rho <= g.surface_radius;
+        ASSERT_LE(edge, (on_surface ? surface_factor : 1.) * s * (1 + 1e-9)) << "rho " << rho;
         smallest = std::min(smallest, edge);
       }
-    EXPECT_GT(smallest, g.min_element / 2);
-    EXPECT_LE(smallest, g.min_element);
+    EXPECT_GT(smallest, surface_factor * g.min_element / 2);
+    EXPECT_LE(smallest, surface_factor * g.min_element);
 
-    // The contact radius at h (the cross-section at 1.2 h) spans n to 2n elements from h_max/8.
+    // The contact radius at h (the cross-section at 1.2 h) spans 2^m n to 2^(m+1) n surface
+    // elements from h_max/8 on.
     const auto indenter = indenter::create_indenter(c.indenter);
     for (const double h : {0.75, 1.5, 3.0, 6.0})
       {
         const double a = std::sqrt(indenter->projected_area(1.2 * h) / M_PI);
         const double elements = a / surface_edge_at(triangulation, a);
-        EXPECT_GE(elements, g.elements_per_radius * (1 - 1e-9)) << "h = " << h;
-        EXPECT_LE(elements, 2 * g.elements_per_radius) << "h = " << h;
+        EXPECT_GE(elements, g.elements_per_radius / surface_factor * (1 - 1e-9)) << "h = " << h;
+        EXPECT_LE(elements, 2 * g.elements_per_radius / surface_factor) << "h = " << h;
       }
 
     // The estimate counts the unbalanced octree: the balance adds a few per cent.
@@ -109,10 +117,39 @@ TEST(MeshDesign, AxisymmetricMeshFollowsTheRule)
   // a_d: the rounded cone's cross-section at h_c = 1.2 x 6.0 um, a (h_c + delta) (eq. 16).
   EXPECT_NEAR(g.contact_radius, 2.48 * (7.2 + 0.005), 1e-4);
   EXPECT_EQ(g.elements_per_radius, mesh::design::elements_per_radius_2d);
+  EXPECT_EQ(g.surface_halvings, mesh::design::surface_halvings_2d);
+  EXPECT_GE(g.surface_halvings, 1u);
+  // The surface radius: the contact nodes' reach, 1.5 a_d (rounded up).
+  EXPECT_GE(g.surface_radius, 1.5 * g.contact_radius);
+  EXPECT_EQ(g.surface_radius, c.specimen.refined_region[0] / 2);
   EXPECT_NEAR(g.min_element, 2.48 * (0.9 + 0.005) / g.elements_per_radius, 1e-5);
   EXPECT_GE(c.specimen.size[0] / 2, mesh::design::specimen_radii * g.contact_radius);
   EXPECT_EQ(c.specimen.size[2], c.specimen.size[0] / 2);
   check_rule<2>(c);
+}
+
+// specimen.elements_per_radius: n = 16 instead of the default, every length of the design but
+// h_min unchanged, and the mesh again follows the rule.
+TEST(MeshDesign, ElementsPerRadiusSetsTheDesign)
+{
+  const io::Case given = io::parse_case_yaml(
+      "test: indentation\nmaterial: {model: j2}\n"
+      "specimen: {contact_elements: auto, symmetry: axisymmetric, elements_per_radius: 16}\n"
+      "loading: {max_depth: 6.0}\n",
+      "n16.yaml");
+  const io::Case defaulted = designed_paper_case("axisymmetric");
+  const auto    &g = given.specimen.grading, &d = defaulted.specimen.grading;
+  EXPECT_EQ(g.elements_per_radius, 16.);
+  EXPECT_EQ(g.far_elements_per_radius, 8.);
+  EXPECT_NEAR(g.min_element * 16, d.min_element * d.elements_per_radius, 1e-12);
+  EXPECT_EQ(g.contact_radius, d.contact_radius);
+  EXPECT_EQ(g.surface_radius, d.surface_radius);
+  EXPECT_EQ(given.specimen.size, defaulted.specimen.size);
+  check_rule<2>(given);
+  const std::string resolved = io::resolved_case_yaml(given);
+  EXPECT_NE(resolved.find("elements_per_radius: 16"), std::string::npos) << resolved;
+  EXPECT_NE(io::resolved_case_yaml(defaulted).find("elements_per_radius: auto"),
+            std::string::npos);
 }
 
 TEST(MeshDesign, QuarterMeshFollowsTheRule)
@@ -205,4 +242,11 @@ TEST(MeshDesign, CaseFileRefusals)
   expect_rejected(
       "test: indentation\nmaterial: {model: j2}\nspecimen: {contact_elements: automatic}\n",
       {"specimen.contact_elements = automatic: unknown word"});
+  expect_rejected(
+      "test: indentation\nmaterial: {model: j2}\n"
+      "specimen: {contact_elements: 12, elements_per_radius: 16}\n",
+      {"specimen.elements_per_radius = 16", "give specimen.contact_elements: auto"});
+  expect_rejected("test: indentation\nmaterial: {model: j2}\n"
+                  "specimen: {contact_elements: auto, elements_per_radius: 1}\n",
+                  {"specimen.elements_per_radius = 1", "2 <= n <= 64"});
 }

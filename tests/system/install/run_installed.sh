@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# The installed program works on its own (CTest: Install.RunsTheDefaultExampleAnywhere).
+# The installed program works on its own (CTest: Install.RunsAnExampleAnywhere).
 # Requirement: `cmake --install BUILD --prefix P` puts indentsim into P/bin, its Python helpers
 # into P/share/indentsim/python and the examples into P/share/indentsim/examples; the binary holds
-# no path of the source or build tree; run from an empty directory on a copy of the default
+# no path of the source or build tree; run from an empty directory on a copy of the 12x12
 # example (examples/paper_j2_n12.yaml, loading shortened with its own keys to 1.0 um in 4 steps
 # and back), it writes load_penetration.csv, load_penetration.png and the ParaView files.
 # Usage: run_installed.sh CMAKE BUILD_DIRECTORY SOURCE_DIRECTORY SCRATCH_DIRECTORY
@@ -61,4 +61,4 @@ for file in load_penetration.csv load_penetration.png specimen.pvd; do
 done
 ls "$results"/*.vtu > /dev/null 2>&1 || ls "$results"/*/*.vtu > /dev/null 2>&1 \
   || fail "no .vtu files next to specimen.pvd"
-echo "Install.RunsTheDefaultExampleAnywhere: OK ($(($(wc -l < "$results/load_penetration.csv") - 1)) rows)"
+echo "Install.RunsAnExampleAnywhere: OK ($(($(wc -l < "$results/load_penetration.csv") - 1)) rows)"

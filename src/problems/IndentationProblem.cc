@@ -84,8 +84,6 @@ namespace indentsim::problems
     return solid_.n_constrained_dofs(constraints_hanging_);
   }
 
-  // Hanging-node constraints, then the supports (bottom face, symmetry planes or the axis) on top
-  // of them, as step-42 layers them.
   // The bottom's z reaction is the internal force its supported DoFs receive: from the cells
   // that touch the bottom, and through the hanging-node constraints from hanging DoFs whose
   // masters lie on the bottom (an automatic mesh coarsens toward the bottom, so a coarse cell's
@@ -109,6 +107,8 @@ namespace indentsim::problems
       }
   }
 
+  // Hanging-node constraints, then the supports (bottom face, symmetry planes or the axis) on top
+  // of them, as step-42 layers them.
   template <int dim>
   void IndentationProblem<dim>::make_constraints()
   {

@@ -38,7 +38,6 @@ namespace indentsim::fem
     , reference_values(n_q_points)
     , reference_grad(n_q_points)
     , F(n_q_points)
-    , F_inv(n_q_points)
     , G(n_q_points)
     , H(n_q_points)
     , trace(n_q_points)
@@ -322,9 +321,11 @@ namespace indentsim::fem
     // Adds one Gauss point's K_ab = (B_a : A : B_b + P : dB_a/du_b) dV, the second term (F-bar
     // only) theta/3 [c_b P:G_a + c_a P:G_b + p/3 c_a c_b + p d_ab] with p = P : F and
     // d_ab = d^2 ln J_0/du_a du_b + tr(F^-1 G_b F^-1 G_a) (s.H[q][a] = F^-1 G_a).
+    // P: the block entries of response.P.
     void add_point_tangent(AxisymmetricScratch &s, const unsigned int q,
-                           const materials::MaterialPointResponse &response, const double theta,
-                           const bool use_f_bar, FullMatrix<double> &K)
+                           const materials::MaterialPointResponse &response,
+                           const MeridianTensor &P, const double theta, const bool use_f_bar,
+                           FullMatrix<double> &K)
     {
       const MeridianTensor               &F = s.F[q];
       const auto                         &G = s.G[q], &H = s.H[q];
@@ -339,7 +340,6 @@ namespace indentsim::fem
           K(a, b) += scalar_product(s.B[a], s.AB[b]) * dV;
       if (!use_f_bar)
         return;
-      const MeridianTensor       P = block_entries(response.P);
       const double               p = scalar_product(P, F);
       std::array<double, n_dofs> PG; // P : G_a
       for (unsigned int a = 0; a < n_dofs; ++a)
@@ -385,10 +385,10 @@ namespace indentsim::fem
           s.G[q][a] = dof_gradient(s, q, a);
         if (!use_f_bar)
           continue;
-        s.F_inv[q] = invert(s.F[q]);
+        const MeridianTensor F_inv = invert(s.F[q]);
         for (unsigned int a = 0; a < n_dofs; ++a)
           {
-            s.H[q][a] = product(s.F_inv[q], s.G[q][a]);
+            s.H[q][a] = product(F_inv, s.G[q][a]);
             s.trace[q][a] = trace(s.H[q][a]);
           }
       }
@@ -430,7 +430,7 @@ namespace indentsim::fem
             residual[a] += scalar_product(P, s.B[a]) * s.dV[q];
           }
         if (tangent)
-          add_point_tangent(s, q, response, theta, use_f_bar, *tangent);
+          add_point_tangent(s, q, response, P, theta, use_f_bar, *tangent);
       }
     return materials::UpdateStatus::success;
   }

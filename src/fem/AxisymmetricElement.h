@@ -91,7 +91,7 @@ namespace indentsim::fem
     std::array<Tensor<1, 2>, n_nodes>              reference_grad0;
 
     // Work arrays of the kernel (allocated once).
-    std::vector<MeridianTensor>                     F, F_inv; // [q]
+    std::vector<MeridianTensor>                     F;        // [q]
     std::vector<std::array<MeridianTensor, n_dofs>> G, H;     // [q][a] G_a, F^-1 G_a
     std::vector<std::array<double, n_dofs>>         trace;    // [q][a] tr(F^-1 G_a)
     std::array<MeridianTensor, n_dofs>              B, AB;    // [a] B_a, A : B_a

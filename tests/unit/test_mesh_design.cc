@@ -148,8 +148,7 @@ TEST(MeshDesign, ElementsPerRadiusSetsTheDesign)
   check_rule<2>(given);
   const std::string resolved = io::resolved_case_yaml(given);
   EXPECT_NE(resolved.find("elements_per_radius: 16"), std::string::npos) << resolved;
-  EXPECT_NE(io::resolved_case_yaml(defaulted).find("elements_per_radius: auto"),
-            std::string::npos);
+  EXPECT_NE(io::resolved_case_yaml(defaulted).find("elements_per_radius: auto"), std::string::npos);
 }
 
 TEST(MeshDesign, QuarterMeshFollowsTheRule)
@@ -242,10 +241,9 @@ TEST(MeshDesign, CaseFileRefusals)
   expect_rejected(
       "test: indentation\nmaterial: {model: j2}\nspecimen: {contact_elements: automatic}\n",
       {"specimen.contact_elements = automatic: unknown word"});
-  expect_rejected(
-      "test: indentation\nmaterial: {model: j2}\n"
-      "specimen: {contact_elements: 12, elements_per_radius: 16}\n",
-      {"specimen.elements_per_radius = 16", "give specimen.contact_elements: auto"});
+  expect_rejected("test: indentation\nmaterial: {model: j2}\n"
+                  "specimen: {contact_elements: 12, elements_per_radius: 16}\n",
+                  {"specimen.elements_per_radius = 16", "give specimen.contact_elements: auto"});
   expect_rejected("test: indentation\nmaterial: {model: j2}\n"
                   "specimen: {contact_elements: auto, elements_per_radius: 1}\n",
                   {"specimen.elements_per_radius = 1", "2 <= n <= 64"});

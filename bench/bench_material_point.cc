@@ -1,6 +1,6 @@
 // Cost of one material-point update [us], elastic and plastic, with and without the tangent,
-// for the J2 model of Table 1 and the crystal model of Table 2. Run on demand:
-// build/bench_material_point. Not a test: timings are machine facts.
+// for the J2 model of Table 1, the crystal model of Table 2 (FCC, 12 systems) and BCC with all 48
+// systems (bcc48). Run on demand: build/bench_material_point. Not a test: timings are machine facts.
 // `build/bench_material_point crystal plastic yes 100` runs one row only, 100 times: the form to
 // count instructions with valgrind --tool=callgrind (repeatable, unlike times on a shared machine).
 // Each repetition updates from the same old state into the same state_new, so the crystal's local
@@ -44,11 +44,19 @@ int main(int argc, char **argv)
   };
   const unsigned int      n_repetitions = argc >= 5 ? std::stoul(argv[4]) : 2000;
   const J2Plasticity      j2(69.0, 0.26, 0.305, 0.5);
-  const CrystalPlasticity crystal(fcc_slip_systems(), CubicElasticity(), ExtendedVoceHardening(),
+  const CrystalPlasticity crystal(fcc_slip_systems(), LatticeElasticity(), ExtendedVoceHardening(),
                                   10.0);
+  // BCC with all 48 systems ({110}, {112}, {123}<111>), Table 2's hardening on each family: the
+  // cost per system against FCC's 12.
+  const CrystalPlasticity bcc48(
+      slip_systems("bcc", known_slip_families("bcc")), LatticeElasticity(),
+      FamilyVoceHardening(std::vector<ExtendedVoceHardening>(3),
+                          slip_systems("bcc", known_slip_families("bcc")).family, 1.4),
+      10.0);
   std::printf("model    regime   tangent  time_us  plastic_strain\n");
   for (const MaterialModel *model :
-       {static_cast<const MaterialModel *>(&j2), static_cast<const MaterialModel *>(&crystal)})
+       {static_cast<const MaterialModel *>(&j2), static_cast<const MaterialModel *>(&crystal),
+        static_cast<const MaterialModel *>(&bcc48)})
     {
       std::vector<double> state(model->n_state_variables());
       model->oriented_initial_state(state, bunge_rotation({{20., 35., 10.}}));
@@ -60,7 +68,9 @@ int main(int argc, char **argv)
           F[0][2] = 0.3 * strain;
           for (const bool tangent : {false, true})
             {
-              const char *model_name = model == &j2 ? "j2" : "crystal";
+              const char *model_name = model == &j2        ? "j2"
+                                       : model == &crystal ? "crystal"
+                                                           : "bcc48";
               const char *regime = strain < 1e-2 ? "elastic" : "plastic";
               if (!selected(model_name, regime, tangent ? "yes" : "no"))
                 continue;

@@ -3,6 +3,6 @@
 
 namespace indentsim::materials
 {
-  template class CrystalPlasticityModel<CubicElasticity, RegularizedSchmidFlow,
-                                        ExtendedVoceHardening>;
+  template class CrystalPlasticityModel<LatticeElasticity, RegularizedSchmidFlow,
+                                        FamilyVoceHardening>;
 } // namespace indentsim::materials

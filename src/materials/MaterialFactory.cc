@@ -31,7 +31,7 @@ namespace indentsim::materials
     if (parameters.model == io::ModelKind::crystal)
       return std::make_unique<CrystalPlasticity>(
           slip_systems(to_string(parameters.lattice)),
-          CubicElasticity{parameters.C11, parameters.C12, parameters.C44},
+          LatticeElasticity::cubic(parameters.C11, parameters.C12, parameters.C44),
           ExtendedVoceHardening{parameters.tau0, parameters.tau1, parameters.theta0,
                                 parameters.theta1, parameters.q},
           parameters.yield_exponent_n);

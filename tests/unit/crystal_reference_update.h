@@ -415,11 +415,16 @@ namespace indentsim::testing::reference
                              std::span<const double> state_old, MaterialPointResponse &response,
                              std::span<double> state_new, const bool compute_tangent)
   {
-    constexpr int                n_slip = 12;
-    const CubicElasticity       &elasticity = model.elastic_constants();
-    const ExtendedVoceHardening &hardening = model.hardening_law();
-    const double                 n = model.yield_exponent();
-    std::vector<Matrix<double>>  schmid;
+    constexpr int n_slip = 12;
+    // The reference covers the paper's model: cubic elasticity, one hardening law.
+    const LatticeElasticity     &elastic = model.elastic_constants();
+    const ExtendedVoceHardening &hardening = model.hardening_law().laws.front();
+    const struct
+    {
+      double C11, C12, C44;
+    } elasticity{elastic.normal[0][0], elastic.normal[0][1], elastic.shear[2]};
+    const double                n = model.yield_exponent();
+    std::vector<Matrix<double>> schmid;
     for (unsigned int r = 0; r < n_slip; ++r)
       schmid.push_back(to_matrix(model.slip_systems().schmid_tensor(r)));
     const auto plastic_deformation = [](std::span<const double> state) {

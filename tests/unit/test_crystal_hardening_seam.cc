@@ -5,7 +5,7 @@
 // integrator, its Jacobian and its consistent tangent are not touched: the law supplies its
 // increment and derivatives through the interface of crystal/ExtendedVoceHardening.h.
 #include "materials/crystal/CrystalPlasticityModel.templates.h"
-#include "materials/crystal/CubicElasticity.h"
+#include "materials/crystal/LatticeElasticity.h"
 #include "materials/crystal/RegularizedSchmidFlow.h"
 #include "materials/crystal/SlipSystems.h"
 
@@ -30,7 +30,8 @@ namespace
     double h = 0.08;    // hardening modulus [GPa]
     double q = 1.4;     // latent hardening ratio [-]
 
-    double initial_critical_shear() const { return tau0; }
+    double initial_critical_shear(unsigned int /*r*/) const { return tau0; }
+    double stress_scale() const { return tau0; }
 
     template <int n_slip>
     void increment(double /*Gamma_n*/, const std::array<double, n_slip> &abs_delta_gamma,
@@ -52,13 +53,13 @@ namespace
   };
 
   using LinearHardeningCrystal =
-      CrystalPlasticityModel<CubicElasticity, RegularizedSchmidFlow, LinearHardening>;
+      CrystalPlasticityModel<LatticeElasticity, RegularizedSchmidFlow, LinearHardening>;
 
   LinearHardeningCrystal linear_model(const double q)
   {
     LinearHardening hardening;
     hardening.q = q;
-    return LinearHardeningCrystal(fcc_slip_systems(), CubicElasticity(),
+    return LinearHardeningCrystal(fcc_slip_systems(), LatticeElasticity(),
                                   RegularizedSchmidFlow{10.0}, hardening);
   }
 

@@ -1,8 +1,8 @@
 // The local problem of one crystal-plasticity increment (backward Euler in the exponential map,
 // eq. 12), for any elasticity, flow rule and hardening law with the interfaces of
-// CubicElasticity.h, RegularizedSchmidFlow.h and ExtendedVoceHardening.h. Unknowns x: the
+// LatticeElasticity.h, RegularizedSchmidFlow.h and FamilyVoceHardening.h. Unknowns x: the
 // elastic strain E_e (6), the scaled multiplier Delta lambda / tau_ref and the scaled critical
-// shears tau_c^r / tau_ref (tau_ref the initial critical shear); residuals in strain units
+// shears tau_c^r / tau_ref (tau_ref the hardening law's stress scale, the smallest tau0); residuals in strain units
 // (stresses divided by the elastic stiffness scale):
 //   R_E   = E_e - 1/2 (A^T C_e^tr A - I),  A = exp(-Delta L_p),  C_e^tr = F_p,n^-T C F_p,n^-1,
 //   R_f   = Phi(tau, tau_c) - 1,

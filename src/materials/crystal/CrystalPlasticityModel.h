@@ -1,6 +1,6 @@
 // Finite-strain rate-independent crystal elasto-plasticity (the paper's section 2.2, eqs 10-15)
 // for any elasticity, flow rule and hardening law with the interfaces described in
-// CubicElasticity.h, RegularizedSchmidFlow.h and ExtendedVoceHardening.h, and any lattice
+// LatticeElasticity.h, RegularizedSchmidFlow.h and FamilyVoceHardening.h, and any lattice
 // (SlipSystems.h): the laws supply their values and derivatives, this class does the rest.
 //   F = F_e F_p (eq. 1),  E_e = (C_e - I)/2,  C_e = F_e^T F_e,  S_e = L^e : E_e (eq. 11),
 //   Mandel stress M_e = C_e S_e (eq. 10),  resolved shear tau^r = M_e : (m_0^r (x) n_0^r),
@@ -49,8 +49,10 @@ namespace indentsim::materials
   class CrystalPlasticityModel : public MaterialModel
   {
   public:
-    // The slip-system counts the integrator is instantiated for.
-    static constexpr std::array<unsigned int, 1> slip_system_counts = {{12}};
+    // The slip-system counts the integrator is instantiated for: every combination of the
+    // families of SlipSystems.h (FCC 12; BCC 12, 24, 36, 48; HCP multiples of 3 up to 30).
+    static constexpr std::array<unsigned int, 12> slip_system_counts = {
+        {12, 24, 18, 3, 6, 9, 15, 21, 27, 30, 36, 48}};
 
     // Throws std::invalid_argument ("CrystalPlasticity: ...") for an unsupported number of slip
     // systems or parameters a law rejects.

@@ -138,7 +138,7 @@ namespace indentsim::materials
       for (unsigned int j = 0; j < 3; ++j)
         state[3 * i + j] = orientation[i][j];
     for (unsigned int r = 0; r < n_systems; ++r)
-      state[9 + r] = hardening.initial_critical_shear();
+      state[9 + r] = hardening.initial_critical_shear(r);
     state[9 + n_systems] = 0.0;
   }
 
@@ -161,7 +161,7 @@ namespace indentsim::materials
     using namespace crystal;
     const Symmetric E =
         elastic_strain(to_matrix(F), to_matrix(inverse_3x3(plastic_deformation(state))));
-    const double                                       tau_ref = hardening.initial_critical_shear();
+    const double                                       tau_ref = hardening.stress_scale();
     const CrystalLaws<Elasticity, FlowRule, Hardening> laws{
         &elasticity, &flow, &hardening, schmid.data(), tau_ref, elasticity.stiffness_scale()};
     Matrix              S_e;
@@ -226,7 +226,7 @@ namespace indentsim::materials
       return false;
     const Symmetric E = elastic_strain(F, to_matrix(inverse_3x3(F_p_hint)));
     std::copy(E.begin(), E.end(), x.begin());
-    const double tau_ref = hardening.initial_critical_shear();
+    const double tau_ref = hardening.stress_scale();
     for (int r = 0; r < n_slip; ++r)
       {
         x[7 + r] = hint[9 + r] / tau_ref;
@@ -265,7 +265,7 @@ namespace indentsim::materials
     const Matrix  F_p_n_inverse = to_matrix(inverse_3x3(plastic_deformation(state_old)));
     const double *tau_c_n = &state_old[9];
     const double  Gamma_n = state_old[9 + n_slip];
-    const double  tau_ref = hardening.initial_critical_shear();
+    const double  tau_ref = hardening.stress_scale();
     const typename LocalProblem::Laws laws{&elasticity,   &flow,   &hardening,
                                            schmid.data(), tau_ref, elasticity.stiffness_scale()};
 

@@ -9,18 +9,11 @@
 // q = 1, where tau_c^r = tau_c(Gamma) exactly), so a monotonic single-crystal path does not
 // depend on the step size.
 //
-// A hardening law for CrystalPlasticityModel (crystal/CrystalPlasticityModel.h) supplies:
-//   initial_critical_shear()     tau_c^r of the virgin state [GPa], also the integrator's stress scale,
-//   increment(Gamma_n, |Delta gamma|, Delta Gamma, out)
-//                                Delta tau_c^r over the increment and its derivative in the form
-//                                dDelta tau_c^r = a_r dDelta Gamma + b_r d|Delta gamma^r|
-//                                (total slip plus the system's own: any h_rs = q + (1 - q) delta_rs),
-//   parameter_error()            nullptr, or what is wrong with the parameters.
+// The law of one slip family; FamilyVoceHardening.h gives each family its own and is the
+// hardening-law policy of CrystalPlasticityModel. HardeningIncrement is that interface's result.
 #pragma once
 
 #include "materials/TensorFunctions.h"
-
-#include <Sacado.hpp>
 
 #include <array>
 
@@ -47,31 +40,11 @@ namespace indentsim::materials
     // h(Gamma) = dtau_c/dGamma [GPa].
     double hardening_rate(double Gamma) const;
 
-    double initial_critical_shear() const { return tau0; }
-
     // Hbar = theta1 (1 - e_n e^-x) + (tau1 + theta1 Gamma_n) e_n k phi(x),
     //   k = theta0 / tau1, e_n = exp(-k Gamma_n), x = k Delta Gamma, phi(x) = (1 - e^-x) / x;
     // Hbar -> h(Gamma_n) as Delta Gamma -> 0 (phi by its series for small x).
     template <typename Number>
     Number secant_modulus(double Gamma_n, const Number &delta_Gamma) const;
-
-    // Hbar' by one forward-AD direction.
-    template <int n_slip>
-    void increment(const double Gamma_n, const std::array<double, n_slip> &abs_delta_gamma,
-                   const double delta_Gamma, HardeningIncrement<n_slip> &out) const
-    {
-      using SecantDerivative = Sacado::Fad::SFad<double, 1>;
-      const SecantDerivative H_bar_ad =
-          secant_modulus(Gamma_n, SecantDerivative(1, 0, delta_Gamma));
-      const double H_bar = H_bar_ad.val(), dH_bar = H_bar_ad.fastAccessDx(0);
-      for (int r = 0; r < n_slip; ++r)
-        {
-          const double latent_slip = q * delta_Gamma + (1.0 - q) * abs_delta_gamma[r];
-          out.value[r] = H_bar * latent_slip;
-          out.total_rate[r] = dH_bar * latent_slip + H_bar * q;
-          out.own_rate[r] = H_bar * (1.0 - q);
-        }
-    }
 
     const char *parameter_error() const;
   };

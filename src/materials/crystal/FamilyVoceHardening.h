@@ -1,0 +1,102 @@
+// Extended Voce hardening per slip family (ExtendedVoceHardening.h gives the law and its secant
+// integration): family f has its own tau0_f, tau1_f, theta0_f, theta1_f; all families harden with
+// the total slip Gamma and the common latent ratio q (h_rs = q + (1 - q) delta_rs):
+//   Delta tau_c^r = Hbar_f(r) (q Delta Gamma + (1 - q) |Delta gamma^r|),
+// Hbar_f the secant of family f's law over the increment, so that with q = 1 every system of
+// family f has tau_c^r = tau_c,f(Gamma) exactly. One family (FCC, or a single block in the case
+// file) is the paper's law.
+//
+// The hardening-law interface of CrystalPlasticityModel (crystal/CrystalPlasticityModel.h):
+//   initial_critical_shear(r)    tau_c^r of the virgin state [GPa],
+//   stress_scale()               the integrator's stress scale tau_ref: the smallest tau0 [GPa],
+//   increment(Gamma_n, |Delta gamma|, Delta Gamma, out)
+//                                Delta tau_c^r over the increment and its derivative in the form
+//                                dDelta tau_c^r = a_r dDelta Gamma + b_r d|Delta gamma^r|,
+//   parameter_error()            nullptr, or what is wrong with the parameters.
+// Units: GPa.
+#pragma once
+
+#include "materials/crystal/ExtendedVoceHardening.h"
+
+#include <Sacado.hpp>
+
+#include <algorithm>
+#include <array>
+#include <vector>
+
+namespace indentsim::materials
+{
+  struct FamilyVoceHardening
+  {
+    std::vector<ExtendedVoceHardening> laws;             // per family; their own q is not used
+    std::vector<unsigned int>          family_of_system; // empty: every system follows laws[0]
+    double                             q = 1.4;          // latent hardening ratio [-]
+
+    // One law for every system (with its q).
+    FamilyVoceHardening(const ExtendedVoceHardening &law = ExtendedVoceHardening())
+      : laws{law}
+      , q(law.q)
+    {
+    }
+    FamilyVoceHardening(std::vector<ExtendedVoceHardening> laws,
+                        std::vector<unsigned int> family_of_system, const double q)
+      : laws(std::move(laws))
+      , family_of_system(std::move(family_of_system))
+      , q(q)
+    {
+    }
+
+    const ExtendedVoceHardening &law_of_system(const unsigned int r) const
+    {
+      return laws[family_of_system.empty() ? 0 : family_of_system[r]];
+    }
+    double initial_critical_shear(const unsigned int r) const { return law_of_system(r).tau0; }
+    double stress_scale() const
+    {
+      double smallest = laws.front().tau0;
+      for (const ExtendedVoceHardening &law : laws)
+        smallest = std::min(smallest, law.tau0);
+      return smallest;
+    }
+
+    // Hbar_f and Hbar_f' (one forward-AD direction) per family, then each system's share.
+    template <int n_slip>
+    void increment(const double Gamma_n, const std::array<double, n_slip> &abs_delta_gamma,
+                   const double delta_Gamma, HardeningIncrement<n_slip> &out) const
+    {
+      using SecantDerivative = Sacado::Fad::SFad<double, 1>;
+      constexpr unsigned int           max_families = 8;
+      std::array<double, max_families> H_bar, dH_bar;
+      for (unsigned int f = 0; f < laws.size(); ++f)
+        {
+          const SecantDerivative H =
+              laws[f].secant_modulus(Gamma_n, SecantDerivative(1, 0, delta_Gamma));
+          H_bar[f] = H.val();
+          dH_bar[f] = H.fastAccessDx(0);
+        }
+      for (int r = 0; r < n_slip; ++r)
+        {
+          const unsigned int f = family_of_system.empty() ? 0 : family_of_system[r];
+          const double       latent_slip = q * delta_Gamma + (1.0 - q) * abs_delta_gamma[r];
+          out.value[r] = H_bar[f] * latent_slip;
+          out.total_rate[r] = dH_bar[f] * latent_slip + H_bar[f] * q;
+          out.own_rate[r] = H_bar[f] * (1.0 - q);
+        }
+    }
+
+    const char *parameter_error() const
+    {
+      if (laws.empty() || laws.size() > 8)
+        return "between 1 and 8 slip families need a hardening law";
+      for (const unsigned int f : family_of_system)
+        if (f >= laws.size())
+          return "a slip system's family has no hardening law";
+      if (!(q >= 0))
+        return "the latent hardening ratio q must be non-negative";
+      for (const ExtendedVoceHardening &law : laws)
+        if (const char *error = law.parameter_error())
+          return error;
+      return nullptr;
+    }
+  };
+} // namespace indentsim::materials

@@ -1,0 +1,323 @@
+// Unit tests of the BCC and HCP lattices of the crystal model: the slip families (counts, unit
+// and orthogonal vectors, closure under the point group), their Schmid factors and the initial
+// yield of the regularized Schmid law against an independent script
+// (tests/data/schmid_yield.py, which derives the systems from crystallography alone), the
+// hexagonal elasticity against the closed form for transversely isotropic media, and the
+// consistent tangent with several families active. Units: GPa.
+#include "materials/CrystalPlasticity.h"
+#include "materials/crystal/SlipSystems.h"
+
+#include "material_test_utilities.h"
+#include "uniaxial_driver.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+  using namespace indentsim::materials;
+  using namespace indentsim::testing;
+  using dealii::Tensor;
+
+  constexpr double zirconium_c_over_a = 1.593;
+
+  std::vector<std::string> split(const std::string &text, const char separator)
+  {
+    std::vector<std::string> parts;
+    std::stringstream        stream(text);
+    for (std::string part; std::getline(stream, part, separator);)
+      parts.push_back(part);
+    return parts;
+  }
+
+  // The rows of a CSV file in tests/data (header dropped), each split at commas.
+  std::vector<std::vector<std::string>> read_rows(const std::string &name)
+  {
+    std::ifstream in(std::string(INDENTSIM_TEST_DATA_DIR) + "/data/" + name);
+    EXPECT_TRUE(in.good()) << name;
+    std::vector<std::vector<std::string>> rows;
+    std::string                           line;
+    std::getline(in, line);
+    while (std::getline(in, line))
+      if (!line.empty())
+        rows.push_back(split(line, ','));
+    return rows;
+  }
+
+  std::array<double, 3> direction_of(const std::string &text)
+  {
+    const auto parts = split(text, ' ');
+    return {{std::stod(parts[0]), std::stod(parts[1]), std::stod(parts[2])}};
+  }
+
+  std::string lower(std::string text)
+  {
+    for (char &c : text)
+      c = static_cast<char>(std::tolower(c));
+    return text;
+  }
+
+  // Schmid factors S_r = (d . m_r)(d . n_r) of unit d.
+  std::vector<double> schmid_factors(const SlipSystems &systems, std::array<double, 3> d)
+  {
+    const double        length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    Tensor<1, 3>        axis({d[0] / length, d[1] / length, d[2] / length});
+    std::vector<double> S;
+    for (unsigned int r = 0; r < systems.size(); ++r)
+      S.push_back((axis * systems.direction[r]) * (axis * systems.normal[r]));
+    return S;
+  }
+
+  TEST(CrystalLattices, FamiliesHaveTheirCountsAndOrthonormalSystems)
+  {
+    const std::vector<std::pair<std::string, std::vector<unsigned int>>> lattices = {
+        {"fcc", {12}}, {"bcc", {12, 12, 24}}, {"hcp", {3, 3, 6, 12, 6}}};
+    for (const auto &[lattice, counts] : lattices)
+      {
+        const auto families = known_slip_families(lattice);
+        ASSERT_EQ(families.size(), counts.size()) << lattice;
+        const SlipSystems systems = slip_systems(lattice, families, zirconium_c_over_a);
+        unsigned int      total = 0;
+        for (unsigned int f = 0; f < counts.size(); ++f)
+          {
+            EXPECT_EQ(family_size(lattice, families[f]), counts[f]) << families[f];
+            total += counts[f];
+          }
+        ASSERT_EQ(systems.size(), total) << lattice;
+        for (unsigned int r = 0; r < systems.size(); ++r)
+          {
+            EXPECT_NEAR(systems.direction[r].norm(), 1.0, 1e-14);
+            EXPECT_NEAR(systems.normal[r].norm(), 1.0, 1e-14);
+            EXPECT_NEAR(systems.direction[r] * systems.normal[r], 0.0, 1e-14);
+            for (unsigned int s = 0; s < r; ++s)
+              {
+                const Tensor<2, 3> P = systems.schmid_tensor(r), Q = systems.schmid_tensor(s);
+                EXPECT_GT(std::min((P - Q).norm(), (P + Q).norm()), 1e-3) << r << " " << s;
+              }
+          }
+      }
+    EXPECT_THROW(slip_systems("bcc", {"{111}<110>"}), std::invalid_argument);
+    EXPECT_THROW(slip_systems("hcp", {"basal"}, 0.0), std::invalid_argument);
+    EXPECT_THROW(slip_systems("bcc", {"{110}<111>", "{110}<111>"}), std::invalid_argument);
+  }
+
+  // Every operation of the point group maps each family onto itself (m (x) n onto +- the Schmid
+  // tensor of a system of the same family); for FCC this checks the Schmid & Boas table, which
+  // is not generated from the group.
+  TEST(CrystalLattices, PointGroupMapsEachFamilyOntoItself)
+  {
+    for (const std::string lattice : {"fcc", "bcc", "hcp"})
+      {
+        const auto group = point_group(lattice);
+        EXPECT_EQ(group.size(), lattice == "hcp" ? 24u : 48u);
+        const SlipSystems systems =
+            slip_systems(lattice, known_slip_families(lattice), zirconium_c_over_a);
+        for (const Tensor<2, 3> &g : group)
+          {
+            EXPECT_NEAR((g * dealii::transpose(g) - identity()).norm(), 0.0, 1e-14);
+            for (unsigned int r = 0; r < systems.size(); ++r)
+              {
+                const Tensor<2, 3> image =
+                    dealii::outer_product(g * systems.direction[r], g * systems.normal[r]);
+                unsigned int matches = 0;
+                for (unsigned int s = 0; s < systems.size(); ++s)
+                  if (systems.family[s] == systems.family[r] &&
+                      std::min((image - systems.schmid_tensor(s)).norm(),
+                               (image + systems.schmid_tensor(s)).norm()) < 1e-12)
+                    ++matches;
+                EXPECT_EQ(matches, 1u) << lattice << " system " << r;
+              }
+          }
+      }
+  }
+
+  // The largest Schmid factor and the sum of |S|^20 of each family along the script's loading
+  // directions: invariants of the family, whatever the numbering and signs.
+  TEST(CrystalLattices, SchmidFactorsMatchTheIndependentScript)
+  {
+    const auto rows = read_rows("schmid_factors.csv");
+    ASSERT_GE(rows.size(), 29u);
+    for (const auto &row : rows)
+      {
+        const std::string lattice = lower(row[0]);
+        const double      c_over_a = row[2].empty() ? 0.0 : std::stod(row[2]);
+        const auto        S =
+            schmid_factors(slip_systems(lattice, {row[1]}, c_over_a), direction_of(row[3]));
+        double largest = 0, sum = 0;
+        for (const double s : S)
+          {
+            largest = std::max(largest, std::abs(s));
+            sum += std::pow(std::abs(s), 20);
+          }
+        const double expected_largest = std::stod(row[4]), expected_sum = std::stod(row[5]);
+        EXPECT_NEAR(largest, expected_largest, 1e-9) << row[0] << " " << row[1] << " " << row[3];
+        EXPECT_NEAR(sum, expected_sum, 1e-8 * expected_sum + 1e-300)
+            << row[0] << " " << row[1] << " " << row[3];
+      }
+  }
+
+  // A model of the script's case: the families with their own tau0, n = 10, and a
+  // stiffness 1000 times a metal's so that the elastic strain at yield (~1e-6) leaves the
+  // small-strain closed form exact to ~1e-5.
+  CrystalPlasticity stiff_model(const std::string              &lattice,
+                                const std::vector<std::string> &families,
+                                const std::vector<double> &tau0, const double c_over_a)
+  {
+    const SlipSystems                  systems = slip_systems(lattice, families, c_over_a);
+    std::vector<ExtendedVoceHardening> laws;
+    for (const double t : tau0) // hardening as stiff as the elasticity keeps the driver regular
+      laws.push_back({t, t, 1000 * t, 0.0, 1.0});
+    const LatticeElasticity elasticity =
+        lattice == "hcp" ? LatticeElasticity::hexagonal(143.5e3, 72.5e3, 65.4e3, 164.9e3, 32.1e3)
+                         : LatticeElasticity::cubic(522.4e3, 204.4e3, 160.6e3);
+    return CrystalPlasticity(systems, elasticity, FamilyVoceHardening(laws, systems.family, 1.0),
+                             10.0);
+  }
+
+  // The Cauchy stress at which slip starts in tension along `axis`: the strain is doubled from
+  // 1e-7 until slip starts (yield strains are 2e-6 to 7e-6; the first plastic point is at most
+  // twice the yield strain, where the uniaxial driver's Newton still converges), then bisected.
+  double initial_yield_stress(const CrystalPlasticity &model, const std::array<double, 3> &axis)
+  {
+    std::vector<double> state0(model.n_state_variables());
+    model.oriented_initial_state(state0, axis_along_z(axis));
+    const auto slips = [&](const double stretch) {
+      UniaxialDriver driver{model, state0};
+      EXPECT_TRUE(std::isfinite(driver.load_to(stretch))) << "stretch - 1 = " << stretch - 1;
+      return model.equivalent_plastic_strain(driver.state) > 0;
+    };
+    double elastic = 1.0, plastic = 1.0 + 1e-7;
+    while (!slips(plastic) && plastic < 1.001)
+      elastic = plastic, plastic = 1.0 + 2 * (plastic - 1.0);
+    for (unsigned int k = 0; k < 30; ++k)
+      {
+        const double middle = 0.5 * (elastic + plastic);
+        (slips(middle) ? plastic : elastic) = middle;
+      }
+    UniaxialDriver driver{model, state0};
+    return driver.load_to(elastic);
+  }
+
+  // The regularized Schmid law's sigma_y = (sum_r |S_r / tau0_r|^2n)^(-1/2n) of the script, for
+  // BCC with one, two and three families and HCP with three and five, along the script's axes
+  // (the issue asks for 0.1 %; the small-strain limit allows 1e-4).
+  TEST(CrystalLattices, InitialYieldMatchesRegularizedSchmidLaw)
+  {
+    const auto rows = read_rows("schmid_yield.csv");
+    ASSERT_GE(rows.size(), 20u);
+    double largest_deviation = 0;
+    for (const auto &row : rows)
+      {
+        std::vector<double> tau0;
+        for (const std::string &t : split(row[2], '+'))
+          tau0.push_back(std::stod(t));
+        const CrystalPlasticity model = stiff_model(lower(row[0]), split(row[1], '+'), tau0,
+                                                    row[3].empty() ? 0.0 : std::stod(row[3]));
+        const double            sigma_y = initial_yield_stress(model, direction_of(row[4]));
+        const double            deviation = sigma_y / std::stod(row[5]) - 1.0;
+        largest_deviation = std::max(largest_deviation, std::abs(deviation));
+        EXPECT_LT(std::abs(deviation), 1e-4) << row[0] << " " << row[1] << " " << row[4];
+      }
+    report("largest relative deviation of sigma_y from the script", largest_deviation);
+  }
+
+  // Young's modulus of the hexagonal lattice along a direction at angle theta from the c axis,
+  // 1/E = s11 sin^4 + s33 cos^4 + (2 s13 + s44) sin^2 cos^2 (transversely isotropic media), with
+  // the compliances in closed form from C11, C12, C13, C33, C44 (zirconium, Fisher & Renken 1964).
+  TEST(CrystalLattices, HexagonalYoungsModulusMatchesTransverselyIsotropicClosedForm)
+  {
+    const double            C11 = 143.5, C12 = 72.5, C13 = 65.4, C33 = 164.9, C44 = 32.1;
+    const double            D = C33 * (C11 + C12) - 2 * C13 * C13;
+    const double            s11 = (C11 * C33 - C13 * C13) / ((C11 - C12) * D), s13 = -C13 / D;
+    const double            s33 = (C11 + C12) / D, s44 = 1 / C44;
+    const CrystalPlasticity model(slip_systems("hcp", {}, zirconium_c_over_a),
+                                  LatticeElasticity::hexagonal(C11, C12, C13, C33, C44),
+                                  ExtendedVoceHardening{10.0, 0.0, 0.0, 0.0, 1.0}, 10.0);
+    for (const double degrees : {0.0, 30.0, 45.0, 60.0, 90.0})
+      for (const double azimuth : {0.0, 17.0}) // transverse isotropy: no dependence on it
+        {
+          const double theta = degrees * M_PI / 180, phi = azimuth * M_PI / 180;
+          const double s = std::sin(theta), c = std::cos(theta);
+          const double expected =
+              1 / (s11 * s * s * s * s + s33 * c * c * c * c + (2 * s13 + s44) * s * s * c * c);
+          std::vector<double> state(model.n_state_variables());
+          model.oriented_initial_state(state,
+                                       axis_along_z({{s * std::cos(phi), s * std::sin(phi), c}}));
+          UniaxialDriver driver{model, state};
+          const double   strain = 1e-7;
+          const double   modulus = driver.load_to(1.0 + strain) / std::log(1.0 + strain);
+          if (azimuth == 0.0)
+            report("hcp E at " + std::to_string(int(degrees)) + " deg from c [GPa]", modulus);
+          EXPECT_NEAR(modulus / expected, 1.0, 1e-5) << degrees << " " << azimuth;
+        }
+  }
+
+  // Monotonic tension along [001] of BCC {110}<111> (8 equally stressed systems, no lattice
+  // rotation) with latent hardening: the exponential map and the secant Voce update are exact,
+  // so 1 and 50 increments to 5 % strain give the same stress, as for FCC.
+  TEST(CrystalLattices, BccMonotonicPathIsStepSizeIndependent)
+  {
+    const CrystalPlasticity model(slip_systems("bcc"),
+                                  LatticeElasticity::cubic(232.1, 135.9, 117.0),
+                                  ExtendedVoceHardening{0.061, 0.216, 0.593, 0.0, 1.4}, 10.0);
+    const auto              stress_after = [&](const unsigned int n_steps) {
+      std::vector<double> state(model.n_state_variables());
+      model.oriented_initial_state(state, identity());
+      UniaxialDriver driver{model, state};
+      double         sigma = 0;
+      for (unsigned int step = 1; step <= n_steps; ++step)
+        sigma = driver.load_to(std::exp(0.05 * step / n_steps));
+      return sigma;
+    };
+    const double one_step = stress_after(1), fifty_steps = stress_after(50);
+    report("bcc [001] sigma at 5 % strain, 1 step [GPa]", one_step);
+    EXPECT_NEAR(one_step / fifty_steps, 1.0, 1e-9);
+    EXPECT_GT(one_step, 0.061 * std::sqrt(6.0) * 1.5); // hardened well beyond first yield
+  }
+
+  // The consistent tangent against central differences with every BCC family (48 systems) and
+  // every HCP family (30), each family with its own hardening law (so the families' critical
+  // shears differ), at plastic states of random orientations and deformations.
+  TEST(CrystalLattices, TangentMatchesFiniteDifferencesWithSeveralFamilies)
+  {
+    for (const std::string lattice : {"bcc", "hcp"})
+      {
+        const auto                         families = known_slip_families(lattice);
+        const SlipSystems                  systems = slip_systems(lattice, families, 1.587);
+        std::vector<ExtendedVoceHardening> laws;
+        for (unsigned int f = 0; f < families.size(); ++f)
+          laws.push_back({0.10 + 0.02 * f, 0.05 + 0.01 * f, 1.0 + 0.2 * f, 0.01, 1.4});
+        const LatticeElasticity elasticity =
+            lattice == "hcp" ? LatticeElasticity::hexagonal(162.4, 92.0, 69.0, 180.7, 46.7)
+                             : LatticeElasticity::cubic(231.4, 134.7, 116.4);
+        const CrystalPlasticity model(systems, elasticity,
+                                      FamilyVoceHardening(laws, systems.family, 1.4), 10.0);
+        std::mt19937            generator(5);
+        for (unsigned int sample = 0; sample < 4; ++sample)
+          {
+            std::vector<double> state(model.n_state_variables());
+            model.oriented_initial_state(state, random_rotation(generator));
+            const Tensor<2, 3>    F_target = random_deformation(generator, 0.02);
+            MaterialPointResponse response;
+            for (unsigned int step = 1; step <= 4; ++step)
+              {
+                const Tensor<2, 3>  F = identity() + (F_target - identity()) * (step / 5.0);
+                std::vector<double> state_new(state.size());
+                ASSERT_EQ(model.update(F, state, response, state_new, false),
+                          UpdateStatus::success);
+                state = state_new;
+              }
+            ASSERT_GT(model.equivalent_plastic_strain(state), 0.0);
+            const double error = tangent_error(model, F_target, state, 1e-7);
+            if (sample == 0)
+              report(lattice + " plastic tangent FD error", error);
+            EXPECT_LT(error, 1e-5) << lattice << " sample " << sample;
+          }
+      }
+  }
+} // namespace

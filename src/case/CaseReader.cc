@@ -216,6 +216,9 @@ namespace indentsim::io
           case ValueType::list:
             key.list(result) = parse_list(node, key);
             break;
+          case ValueType::words:
+            key.words(result) = parse_words(node, key);
+            break;
           }
         return true;
       }
@@ -504,6 +507,17 @@ namespace indentsim::io
         for (std::size_t i = 0; i < node.size(); ++i)
           values[i] =
               parse_double(node[i], key.path + "[" + std::to_string(i) + "]", key.entry_unit);
+        return values;
+      }
+
+      std::vector<std::string> parse_words(const YAML::Node &node, const Key &key) const
+      {
+        const std::string expected = "expected a list of words (" + key.expected + ")";
+        if (!node.IsSequence() || node.size() == 0)
+          fail(line_of(node), key.path + " = " + node_text(node) + ": " + expected);
+        std::vector<std::string> values(node.size());
+        for (std::size_t i = 0; i < node.size(); ++i)
+          values[i] = parse_word(node[i], key.path + "[" + std::to_string(i) + "]", key.entry_unit);
         return values;
       }
 

@@ -49,6 +49,8 @@ namespace indentsim::io
           return "3 numbers";
         case ValueType::list:
           return "list of numbers";
+        case ValueType::words:
+          return "list of words";
         }
       return {};
     }

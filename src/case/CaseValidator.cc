@@ -8,7 +8,9 @@
 #include "indenter/ProfileTable.h"
 #include "io/LoadCurveCsv.h"
 #include "materials/MaterialFactory.h"
+#include "materials/crystal/LatticeElasticity.h"
 #include "materials/crystal/Orientation.h"
+#include "materials/crystal/SlipSystems.h"
 #include "mesh/MeshAdequacy.h"
 #include "mesh/MeshDesign.h"
 
@@ -130,6 +132,8 @@ namespace indentsim::io
                 reject(key.path, format_triple(key.triple(c)),
                        key.range_message + "; the " + axis_names[d] + " entry is not");
             break;
+          case ValueType::words: // the allowed words depend on other keys: checked by hand
+            break;
           case ValueType::list:
             for (std::size_t i = 0; i < key.list(c).size(); ++i)
               if (key.has_range && !key.range.contains(key.list(c)[i]))
@@ -244,22 +248,25 @@ namespace indentsim::io
       {
         const auto &m = checked.material;
 
+        check_lattice();
         // Cubic stiffness positive definite: eigenvalues C11 + 2 C12 (dilatation), C11 - C12
-        // (tetragonal shear) and C44 (shear).
+        // (tetragonal shear) and C44 (shear). The hexagonal one: check_lattice.
         const std::string constants = "(C11 = " + format_number(m.C11) +
                                       ", C12 = " + format_number(m.C12) +
                                       ", C44 = " + format_number(m.C44) + " GPa)";
-        if (!(m.C44 > 0.))
+        if (m.lattice == Lattice::hcp)
+          ; // checked in check_lattice
+        else if (!(m.C44 > 0.))
           reject("material.elastic.C44", format_number(m.C44),
                  "the cubic stiffness must be positive definite: C44 > 0 GPa " + constants);
-        if (!(m.C11 - m.C12 > 0.))
+        else if (!(m.C11 - m.C12 > 0.))
           {
             const std::string path =
                 given_or_first({"material.elastic.C12", "material.elastic.C11"});
             reject(path, format_number(path == "material.elastic.C11" ? m.C11 : m.C12),
                    "the cubic stiffness must be positive definite: C11 - C12 > 0 " + constants);
           }
-        if (!(m.C11 + 2. * m.C12 > 0.))
+        else if (!(m.C11 + 2. * m.C12 > 0.))
           {
             const std::string path =
                 given_or_first({"material.elastic.C12", "material.elastic.C11"});
@@ -464,6 +471,60 @@ namespace indentsim::io
 
       // The first of `paths` that the case file gave explicitly, else the first: a check on a
       // pair of values then points at the line the user wrote.
+      // material.lattice with its own keys: hcp needs c_over_a, C13 and C33 (which no cubic
+      // lattice takes) and a positive-definite hexagonal stiffness; slip_families are the
+      // lattice's, each once (none given: the lattice's default ones, written in the resolved
+      // case).
+      void check_lattice() const
+      {
+        const auto &m = checked.material;
+        if (!m.lattice.known())
+          return; // named by the single-key check, with the allowed words
+        const std::string                                 lattice = m.lattice.word();
+        const bool                                        hcp = m.lattice == Lattice::hcp;
+        const std::vector<std::pair<std::string, double>> hcp_keys = {
+            {"material.c_over_a", m.c_over_a},
+            {"material.elastic.C13", m.C13},
+            {"material.elastic.C33", m.C33}};
+        for (const auto &[path, value] : hcp_keys)
+          {
+            const bool given = value_origins != nullptr && value_origins->count(path) > 0;
+            if (!hcp && given)
+              reject(path, format_number(value),
+                     "only the hexagonal lattice takes it (material.lattice = " + lattice + ")");
+            if (hcp && !(value > 0.))
+              reject(path, format_number(value),
+                     "material.lattice = hcp needs c/a, C13 and C33 (> 0), e.g. zirconium: "
+                     "c_over_a: 1.593, elastic: {C11: 143.5, C12: 72.5, C13: 65.4, C33: 164.9, "
+                     "C44: 32.1}");
+          }
+        if (hcp)
+          if (const char *error =
+                  materials::LatticeElasticity::hexagonal(m.C11, m.C12, m.C13, m.C33, m.C44)
+                      .parameter_error())
+            reject(given_or_first({"material.elastic.C13", "material.elastic.C11"}),
+                   "C11 = " + format_number(m.C11) + ", C12 = " + format_number(m.C12) +
+                       ", C13 = " + format_number(m.C13) + ", C33 = " + format_number(m.C33) +
+                       ", C44 = " + format_number(m.C44),
+                   error);
+        // The resolved case names the families a bcc or hcp run uses.
+        if (m.slip_families.empty() && m.lattice != Lattice::fcc)
+          designed.material.slip_families = materials::default_slip_families(lattice);
+        const std::vector<std::string> known = materials::known_slip_families(lattice);
+        for (std::size_t i = 0; i < m.slip_families.size(); ++i)
+          {
+            const std::string &family = m.slip_families[i];
+            if (std::find(known.begin(), known.end(), family) == known.end())
+              reject("material.slip_families", format_words(m.slip_families),
+                     "\"" + family + "\" is not a slip family of " + lattice +
+                         "; allowed: " + join(known, ", "));
+            for (std::size_t j = 0; j < i; ++j)
+              if (m.slip_families[j] == family)
+                reject("material.slip_families", format_words(m.slip_families),
+                       "\"" + family + "\" is listed twice");
+          }
+      }
+
       std::string given_or_first(std::initializer_list<std::string> paths) const
       {
         if (value_origins != nullptr)
@@ -522,14 +583,15 @@ namespace indentsim::io
       }
 
       // The quarter model imposes u_x = 0 on x = 0 and u_y = 0 on y = 0; for a crystal that is
-      // exact only if both planes are mirror planes of the lattice (m-3m point group).
+      // exact only if both planes are mirror planes of the lattice (its point group).
       void check_quarter_symmetry_of_the_lattice() const
       {
         const auto                &o = checked.material.orientation;
         const dealii::Tensor<2, 3> g = materials::create_orientation(o);
         const dealii::Tensor<1, 3> e_x({1., 0., 0.}), e_y({0., 1., 0.});
-        const bool                 x_mirror = materials::is_cubic_mirror_plane(g, e_x);
-        const bool                 y_mirror = materials::is_cubic_mirror_plane(g, e_y);
+        const std::string          lattice = checked.material.lattice.word();
+        const bool                 x_mirror = materials::is_mirror_plane(lattice, g, e_x);
+        const bool                 y_mirror = materials::is_mirror_plane(lattice, g, e_y);
         if (x_mirror && y_mirror)
           return;
         const std::string orientation =
@@ -539,7 +601,7 @@ namespace indentsim::io
                 : "material.orientation: euler_bunge_deg " + format_triple(o.euler_bunge_deg);
         reject("specimen.symmetry", to_string(checked.specimen.symmetry),
                "the quarter model needs the sample planes x = 0 and y = 0 to be mirror planes "
-               "of the cubic lattice, but for " +
+               "of the " + lattice + " lattice, but for " +
                    orientation + " the plane " +
                    (x_mirror ? "y = 0" : (y_mirror ? "x = 0" : "x = 0 (and y = 0)")) +
                    " is not one (e.g. a (111) surface has no two perpendicular mirror planes); "

@@ -56,7 +56,7 @@ namespace indentsim::io
          {HardeningLaw::table, "table"}}};
   };
 
-  // The crystal lattice and its slip systems; bcc and hcp are recognised but not implemented.
+  // The crystal lattice (materials/crystal/SlipSystems.h: its slip families and frame).
   enum class Lattice
   {
     fcc,
@@ -67,7 +67,7 @@ namespace indentsim::io
   struct ChoiceWords<Lattice>
   {
     static constexpr std::array<ChoiceWord<Lattice>, 3> words = {
-        {{Lattice::fcc, "fcc"}, {Lattice::bcc, "bcc", false}, {Lattice::hcp, "hcp", false}}};
+        {{Lattice::fcc, "fcc"}, {Lattice::bcc, "bcc"}, {Lattice::hcp, "hcp"}}};
   };
 
   // Which form of material.orientation the case file gave.
@@ -118,14 +118,18 @@ namespace indentsim::io
     std::string          hardening_file; // table: CSV read into the two lists above ("": inline)
 
     // Crystal plasticity (model: crystal), the paper's section 2.2 and Table 2.
-    Choice<Lattice> lattice = Lattice::fcc;              // fcc: {111}<110>, 12 slip systems
-    double          C11 = 106.7, C12 = 60.4, C44 = 28.3; // cubic elastic constants [GPa]
-    double          tau0 = 0.12;           // initial critical resolved shear stress [GPa]
-    double          tau1 = 0.02;           // Voce back-extrapolated increment [GPa]
-    double          theta0 = 0.1;          // initial hardening rate [GPa]
-    double          theta1 = 0.006;        // asymptotic hardening rate [GPa]
-    double          q = 1.4;               // latent hardening ratio [-]
-    double          yield_exponent_n = 10; // n of the regularized Schmid law (exponent 2n), eq. 14
+    Choice<Lattice> lattice = Lattice::fcc; // fcc: {111}<110>, 12 slip systems
+    // The slip families (SlipSystems.h names); empty: the lattice's default ones.
+    std::vector<std::string> slip_families;
+    double                   c_over_a = 0.0;                      // hcp: c/a [-]; 0: not given
+    double                   C11 = 106.7, C12 = 60.4, C44 = 28.3; // elastic constants [GPa]
+    double                   C13 = 0.0, C33 = 0.0; // hcp's further constants [GPa]; 0: not given
+    double                   tau0 = 0.12;          // initial critical resolved shear stress [GPa]
+    double                   tau1 = 0.02;          // Voce back-extrapolated increment [GPa]
+    double                   theta0 = 0.1;         // initial hardening rate [GPa]
+    double                   theta1 = 0.006;       // asymptotic hardening rate [GPa]
+    double                   q = 1.4;              // latent hardening ratio [-]
+    double yield_exponent_n = 10; // n of the regularized Schmid law (exponent 2n), eq. 14
     OrientationParameters orientation;
 
     bool operator==(const MaterialParameters &) const = default;

@@ -84,6 +84,15 @@ namespace indentsim::io
       return c.material.hardening_law == HardeningLaw::table && !c.material.hardening_file.empty();
     }
 
+    bool hexagonal(const Case &c)
+    {
+      return c.material.lattice == Lattice::hcp;
+    }
+    bool not_fcc(const Case &c)
+    {
+      return c.material.lattice != Lattice::fcc;
+    }
+
     bool orientation_by_normal(const Case &c)
     {
       return c.material.orientation.kind == OrientationKind::surface_normal;
@@ -154,10 +163,26 @@ namespace indentsim::io
               .describe("the stress in the Mises yield function, eq. 4 (j2)"),
           D::at<&C::material, &M::lattice>("material.lattice")
               .expect("a lattice")
-              .not_implemented("only fcc ({111}<110>, 12 slip systems) is implemented; bcc and hcp "
-                               "are not yet")
-              .comment("fcc: {111}<110> slip (crystal)")
-              .describe("`fcc`: {111}⟨110⟩, 12 slip systems; `bcc`, `hcp` not yet (crystal)"),
+              .comment("fcc | bcc | hcp (crystal)")
+              .describe("the crystal lattice: `fcc` ({111}⟨110⟩ slip), `bcc`, `hcp` with the slip "
+                        "families of `slip_families`; the crystal frames in the user guide "
+                        "(crystal)"),
+          D::at<&C::material, &M::slip_families>("material.slip_families")
+              .entries("slip family names", "a slip family")
+              .written_if(&not_fcc)
+              .default_is("bcc: [\"{110}<111>\"]; hcp: [basal, prismatic, pyramidal_ca]")
+              .allowed_is("bcc: {110}<111>, {112}<111>, {123}<111>; hcp: basal, prismatic, "
+                          "pyramidal_a, pyramidal_ca, pyramidal_ca2; each once")
+              .comment("slip families (crystal)")
+              .describe("the slip families of the lattice, each once; quote the bcc names "
+                        "(YAML reads `{` as a map): `[\"{110}<111>\", \"{112}<111>\"]` (crystal)"),
+          D::at<&C::material, &M::c_over_a>("material.c_over_a")
+              .expect("the ratio c/a")
+              .written_if(&hexagonal)
+              .default_is("– (required for hcp)")
+              .allowed_is("> 0 (hcp only)")
+              .comment("c/a of the hexagonal cell (hcp)")
+              .describe("c/a of the hexagonal lattice, e.g. 1.593 (Zr), 1.587 (Ti) (hcp)"),
           D::at<&C::material, &M::C11>("material.elastic.C11")
               .unit("GPa")
               .expect("C11 in GPa")
@@ -174,7 +199,25 @@ namespace indentsim::io
               .expect("C44 in GPa")
               .allowed_is("> 0; checked with C11 and C12 (positive definite)")
               .comment("[GPa]")
-              .describe("cubic shear stiffness in the lattice frame (crystal)"),
+              .describe("cubic shear stiffness in the lattice frame; hcp: the shear stiffness on "
+                        "planes containing c (crystal)"),
+          D::at<&C::material, &M::C13>("material.elastic.C13")
+              .unit("GPa")
+              .expect("C13 in GPa")
+              .written_if(&hexagonal)
+              .default_is("– (required for hcp)")
+              .allowed_is("positive definite with C11, C12, C33, C44 (hcp only)")
+              .comment("[GPa]")
+              .describe("hexagonal stiffness, c along z: C13 couples the basal and c directions "
+                        "(hcp)"),
+          D::at<&C::material, &M::C33>("material.elastic.C33")
+              .unit("GPa")
+              .expect("C33 in GPa")
+              .written_if(&hexagonal)
+              .default_is("– (required for hcp)")
+              .allowed_is("positive definite with C11, C12, C13, C44 (hcp only)")
+              .comment("[GPa]")
+              .describe("hexagonal stiffness along c (hcp); C66 = (C11 − C12)/2"),
           D::at<&C::material, &M::hardening_law>("material.hardening.law")
               .expect("a hardening law")
               .written_if(&nonlinear_hardening)
@@ -703,8 +746,9 @@ namespace indentsim::io
     std::vector<Group> declare_groups()
     {
       return {
-          {"material.elastic", "cubic constants, lattice frame (crystal)",
-           "Cubic elastic constants in the lattice frame (crystal)."},
+          {"material.elastic", "elastic constants, lattice frame (crystal)",
+           "Elastic constants in the lattice frame (crystal): cubic C11, C12, C44 for fcc and bcc; "
+           "hexagonal C11, C12, C13, C33, C44 for hcp (c along z, a1 along x)."},
           {"material.hardening", "extended Voce law (crystal)",
            "The hardening law: for `j2` the law σy(εp) (`law` and its keys; without `law`, "
            "linear with `hardening_modulus`), for `crystal` the extended Voce law (`tau0` to "
@@ -784,6 +828,8 @@ namespace indentsim::io
         return format_triple(triple(readable));
       case ValueType::list:
         return format_list(list(readable));
+      case ValueType::words:
+        return format_words(words(readable));
       }
     return {};
   }
@@ -870,6 +916,14 @@ namespace indentsim::io
     std::string text = "[";
     for (std::size_t i = 0; i < values.size(); ++i)
       text += (i == 0 ? "" : ", ") + format_number(values[i]);
+    return text + "]";
+  }
+
+  std::string format_words(const std::vector<std::string> &values)
+  {
+    std::string text = "[";
+    for (std::size_t i = 0; i < values.size(); ++i)
+      text += (i == 0 ? "\"" : ", \"") + values[i] + "\"";
     return text + "]";
   }
 

@@ -27,7 +27,8 @@ namespace indentsim::io
     choice, // Choice<E>: a word of its table
     text,   // a string the user chooses freely (a path)
     triple, // three numbers
-    list    // one or more numbers (std::vector<double>)
+    list,   // one or more numbers (std::vector<double>)
+    words   // one or more words (std::vector<std::string>)
   };
 
   // Admissible values: an interval, open or closed at each end (infinite ends exclude infinity),
@@ -85,6 +86,7 @@ namespace indentsim::io
     std::string &(*text)(Case &) = nullptr;
     std::array<double, 3> &(*triple)(Case &) = nullptr;
     std::vector<double> &(*list)(Case &) = nullptr;
+    std::vector<std::string> &(*words)(Case &) = nullptr;
     ChoiceAccess choice;
 
     // "C11" for "material.elastic.C11"; the map holding it: "material.elastic" ("" on top).
@@ -118,5 +120,6 @@ namespace indentsim::io
   std::string format_number(double value);
   std::string format_triple(const std::array<double, 3> &values);
   std::string format_list(const std::vector<double> &values);
+  std::string format_words(const std::vector<std::string> &values); // ["a", "b"], quoted
   std::string format_bool(bool value);
 } // namespace indentsim::io

@@ -105,6 +105,11 @@ namespace indentsim::io::schema_builder
           k.type = ValueType::list;
           k.list = &stored<Members...>;
         }
+      else if constexpr (std::is_same_v<T, std::vector<std::string>>)
+        {
+          k.type = ValueType::words;
+          k.words = &stored<Members...>;
+        }
       else
         {
           using Enum = typename ChoiceEnum<T>::type;

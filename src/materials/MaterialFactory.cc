@@ -29,12 +29,17 @@ namespace indentsim::materials
       }
 
     if (parameters.model == io::ModelKind::crystal)
-      return std::make_unique<CrystalPlasticity>(
-          slip_systems(to_string(parameters.lattice)),
-          LatticeElasticity::cubic(parameters.C11, parameters.C12, parameters.C44),
-          ExtendedVoceHardening{parameters.tau0, parameters.tau1, parameters.theta0,
-                                parameters.theta1, parameters.q},
-          parameters.yield_exponent_n);
+      {
+        const auto &p = parameters;
+        return std::make_unique<CrystalPlasticity>(
+            slip_systems(to_string(p.lattice), p.slip_families, p.c_over_a),
+            p.lattice == io::Lattice::hcp
+                ? LatticeElasticity::hexagonal(p.C11, p.C12, p.C13, p.C33, p.C44)
+                : LatticeElasticity::cubic(p.C11, p.C12, p.C44),
+            ExtendedVoceHardening{parameters.tau0, parameters.tau1, parameters.theta0,
+                                  parameters.theta1, parameters.q},
+            parameters.yield_exponent_n);
+      }
 
     throw std::invalid_argument("material.model = \"" + to_string(parameters.model) +
                                 "\" is not supported; allowed: neo_hookean, j2, crystal");

@@ -89,8 +89,8 @@ namespace
     Tensor<1, 3> e_y;
     e_y[1] = 1;
     const Tensor<2, 3> g011 = rotation_from_surface_normal({{0, 1, 1}}, {{1, 0, 0}});
-    EXPECT_TRUE(is_cubic_mirror_plane(g011, e_x) && is_cubic_mirror_plane(g011, e_y));
-    EXPECT_FALSE(is_cubic_mirror_plane(g111, e_x) && is_cubic_mirror_plane(g111, e_y));
+    EXPECT_TRUE(is_mirror_plane("fcc", g011, e_x) && is_mirror_plane("fcc", g011, e_y));
+    EXPECT_FALSE(is_mirror_plane("fcc", g111, e_x) && is_mirror_plane("fcc", g111, e_y));
   }
 
   // Random orientations are rotations, reproducible from the seed, and uniform on SO(3): under

@@ -136,6 +136,26 @@ namespace
       }
   }
 
+  // The quarter model's mirror planes x = 0 and y = 0 (the reflection in the point group): a
+  // basal (0001) surface with a1 along x has both (planes containing c every 30 degrees), and
+  // loses them when turned 15 degrees about c; BCC (001) and (011) have them, (111) not.
+  TEST(CrystalLattices, MirrorPlanesOfTheQuarterModel)
+  {
+    const Tensor<1, 3> e_x({1., 0., 0.}), e_y({0., 1., 0.});
+    const Tensor<2, 3> basal = rotation_from_surface_normal({{0, 0, 1}}, {{1, 0, 0}});
+    EXPECT_TRUE(is_mirror_plane("hcp", basal, e_x) && is_mirror_plane("hcp", basal, e_y));
+    const Tensor<2, 3> turned = bunge_rotation({{15., 0., 0.}});
+    EXPECT_FALSE(is_mirror_plane("hcp", turned, e_x) || is_mirror_plane("hcp", turned, e_y));
+    EXPECT_TRUE(is_mirror_plane("hcp", bunge_rotation({{30., 0., 0.}}), e_x));
+    for (const std::array<double, 3> &normal : {std::array<double, 3>{{0, 0, 1}}, {{0, 1, 1}}})
+      {
+        const Tensor<2, 3> g = rotation_from_surface_normal(normal, {{1, 0, 0}});
+        EXPECT_TRUE(is_mirror_plane("bcc", g, e_x) && is_mirror_plane("bcc", g, e_y));
+      }
+    const Tensor<2, 3> g111 = rotation_from_surface_normal({{1, 1, 1}}, {{1, -1, 0}});
+    EXPECT_FALSE(is_mirror_plane("bcc", g111, e_x) && is_mirror_plane("bcc", g111, e_y));
+  }
+
   // The largest Schmid factor and the sum of |S|^20 of each family along the script's loading
   // directions: invariants of the family, whatever the numbering and signs.
   TEST(CrystalLattices, SchmidFactorsMatchTheIndependentScript)

@@ -1,4 +1,7 @@
 #include "materials/crystal/Orientation.h"
+#include "materials/crystal/SlipSystems.h"
+
+#include <deal.II/base/symmetric_tensor.h>
 
 #include <algorithm>
 #include <cmath>
@@ -132,16 +135,16 @@ namespace indentsim::materials
     return result;
   }
 
-  bool is_cubic_mirror_plane(const dealii::Tensor<2, 3> &g,
-                             const dealii::Tensor<1, 3> &sample_normal)
+  bool is_mirror_plane(const std::string &lattice, const dealii::Tensor<2, 3> &g,
+                       const dealii::Tensor<1, 3> &sample_normal)
   {
     dealii::Tensor<1, 3> n = g * sample_normal;
     n /= n.norm();
-    std::array<double, 3> a = {{std::abs(n[0]), std::abs(n[1]), std::abs(n[2])}};
-    std::sort(a.begin(), a.end());
-    const double tolerance = 1e-8;
-    const bool   along_100 = a[0] < tolerance && a[1] < tolerance;
-    const bool   along_110 = a[0] < tolerance && std::abs(a[1] - a[2]) < tolerance;
-    return along_100 || along_110;
+    const dealii::Tensor<2, 3> reflection =
+        dealii::Tensor<2, 3>(dealii::unit_symmetric_tensor<3>()) - 2.0 * dealii::outer_product(n, n);
+    for (const dealii::Tensor<2, 3> &operation : point_group(lattice))
+      if ((operation - reflection).norm() < 1e-8)
+        return true;
+    return false;
   }
 } // namespace indentsim::materials

@@ -37,8 +37,10 @@ namespace indentsim::materials
   std::vector<dealii::Tensor<2, 3>> random_orientations(unsigned int n, std::uint64_t seed);
 
   // True if the plane through the origin with sample-frame normal `sample_normal` is a mirror
-  // plane of the cubic lattice (m-3m: normals along <100> or <110> in the crystal frame) for
-  // orientation g. The quarter model needs the planes x = 0 and y = 0 to be mirror planes.
-  bool is_cubic_mirror_plane(const dealii::Tensor<2, 3> &g,
-                             const dealii::Tensor<1, 3> &sample_normal);
+  // plane of the lattice ("fcc", "bcc": m-3m, normals along <100> or <110>; "hcp": 6/mmm, the
+  // basal plane and the planes containing c at multiples of 30 degrees from a1) for orientation
+  // g: the reflection I - 2 n (x) n, n the crystal-frame normal, is in the point group. The
+  // quarter model needs the planes x = 0 and y = 0 to be mirror planes.
+  bool is_mirror_plane(const std::string &lattice, const dealii::Tensor<2, 3> &g,
+                       const dealii::Tensor<1, 3> &sample_normal);
 } // namespace indentsim::materials

@@ -601,8 +601,8 @@ namespace indentsim::io
                 : "material.orientation: euler_bunge_deg " + format_triple(o.euler_bunge_deg);
         reject("specimen.symmetry", to_string(checked.specimen.symmetry),
                "the quarter model needs the sample planes x = 0 and y = 0 to be mirror planes "
-               "of the " + lattice + " lattice, but for " +
-                   orientation + " the plane " +
+               "of the " +
+                   lattice + " lattice, but for " + orientation + " the plane " +
                    (x_mirror ? "y = 0" : (y_mirror ? "x = 0" : "x = 0 (and y = 0)")) +
                    " is not one (e.g. a (111) surface has no two perpendicular mirror planes); "
                    "use symmetry: full");

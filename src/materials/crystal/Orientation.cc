@@ -141,7 +141,8 @@ namespace indentsim::materials
     dealii::Tensor<1, 3> n = g * sample_normal;
     n /= n.norm();
     const dealii::Tensor<2, 3> reflection =
-        dealii::Tensor<2, 3>(dealii::unit_symmetric_tensor<3>()) - 2.0 * dealii::outer_product(n, n);
+        dealii::Tensor<2, 3>(dealii::unit_symmetric_tensor<3>()) -
+        2.0 * dealii::outer_product(n, n);
     for (const dealii::Tensor<2, 3> &operation : point_group(lattice))
       if ((operation - reflection).norm() < 1e-8)
         return true;

@@ -36,9 +36,7 @@ namespace indentsim::materials
             p.lattice == io::Lattice::hcp
                 ? LatticeElasticity::hexagonal(p.C11, p.C12, p.C13, p.C33, p.C44)
                 : LatticeElasticity::cubic(p.C11, p.C12, p.C44),
-            ExtendedVoceHardening{parameters.tau0, parameters.tau1, parameters.theta0,
-                                  parameters.theta1, parameters.q},
-            parameters.yield_exponent_n);
+            ExtendedVoceHardening{p.tau0, p.tau1, p.theta0, p.theta1, p.q}, p.yield_exponent_n);
       }
 
     throw std::invalid_argument("material.model = \"" + to_string(parameters.model) +

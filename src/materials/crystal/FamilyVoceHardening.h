@@ -22,15 +22,17 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 #include <vector>
 
 namespace indentsim::materials
 {
   struct FamilyVoceHardening
   {
-    std::vector<ExtendedVoceHardening> laws;             // per family; their own q is not used
-    std::vector<unsigned int>          family_of_system; // empty: every system follows laws[0]
-    double                             q = 1.4;          // latent hardening ratio [-]
+    std::vector<ExtendedVoceHardening> laws;    // per family; their own q is not used
+    std::vector<unsigned int> family_of_system; // one per system (SlipSystems::family), or empty:
+                                                // every system follows laws[0]
+    double q = 1.4;                             // latent hardening ratio [-]
 
     // One law for every system (with its q).
     FamilyVoceHardening(const ExtendedVoceHardening &law = ExtendedVoceHardening())

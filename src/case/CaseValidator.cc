@@ -254,19 +254,18 @@ namespace indentsim::io
         const std::string constants = "(C11 = " + format_number(m.C11) +
                                       ", C12 = " + format_number(m.C12) +
                                       ", C44 = " + format_number(m.C44) + " GPa)";
-        if (m.lattice == Lattice::hcp)
-          ; // checked in check_lattice
-        else if (!(m.C44 > 0.))
+        const bool cubic = m.lattice != Lattice::hcp;
+        if (cubic && !(m.C44 > 0.))
           reject("material.elastic.C44", format_number(m.C44),
                  "the cubic stiffness must be positive definite: C44 > 0 GPa " + constants);
-        else if (!(m.C11 - m.C12 > 0.))
+        if (cubic && !(m.C11 - m.C12 > 0.))
           {
             const std::string path =
                 given_or_first({"material.elastic.C12", "material.elastic.C11"});
             reject(path, format_number(path == "material.elastic.C11" ? m.C11 : m.C12),
                    "the cubic stiffness must be positive definite: C11 - C12 > 0 " + constants);
           }
-        else if (!(m.C11 + 2. * m.C12 > 0.))
+        if (cubic && !(m.C11 + 2. * m.C12 > 0.))
           {
             const std::string path =
                 given_or_first({"material.elastic.C12", "material.elastic.C11"});
@@ -510,18 +509,16 @@ namespace indentsim::io
         // The resolved case names the families a bcc or hcp run uses.
         if (m.slip_families.empty() && m.lattice != Lattice::fcc)
           designed.material.slip_families = materials::default_slip_families(lattice);
-        const std::vector<std::string> known = materials::known_slip_families(lattice);
-        for (std::size_t i = 0; i < m.slip_families.size(); ++i)
+        // The library names an unknown or repeated family and the allowed ones.
+        try
           {
-            const std::string &family = m.slip_families[i];
-            if (std::find(known.begin(), known.end(), family) == known.end())
-              reject("material.slip_families", format_words(m.slip_families),
-                     "\"" + family + "\" is not a slip family of " + lattice +
-                         "; allowed: " + join(known, ", "));
-            for (std::size_t j = 0; j < i; ++j)
-              if (m.slip_families[j] == family)
-                reject("material.slip_families", format_words(m.slip_families),
-                       "\"" + family + "\" is listed twice");
+            materials::slip_systems(lattice, m.slip_families, hcp ? m.c_over_a : 0.0);
+          }
+        catch (const std::invalid_argument &error)
+          {
+            const std::string what = error.what(), prefix = "material.slip_families: ";
+            reject("material.slip_families", format_words(m.slip_families),
+                   what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what);
           }
       }
 

@@ -56,8 +56,9 @@ namespace indentsim::materials
       std::string allowed;
       for (const FamilySeed &s : list)
         allowed += (allowed.empty() ? "" : ", ") + std::string(s.name);
-      throw std::invalid_argument("material.slip_families: \"" + family + "\" is not a " + lattice +
-                                  " slip family; allowed: " + allowed);
+      throw std::invalid_argument("material.slip_families: \"" + family +
+                                  "\" is not a slip family of " + lattice +
+                                  "; allowed: " + allowed);
     }
 
     Tensor<2, 3> rotation_about_z(const double angle)

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <limits>
 #include <system_error>
+#include <type_traits>
 
 namespace indentsim::io
 {
@@ -23,6 +24,9 @@ namespace indentsim::io
     namespace fs = std::filesystem;
 
     const std::string orientation_path = "material.orientation";
+    // The map whose keys may also be slip families, each with its own block.
+    const std::string              family_blocks_path = "material.hardening";
+    const std::vector<std::string> family_block_keys = {"tau0", "tau1", "theta0", "theta1"};
 
     class CaseReader
     {
@@ -54,6 +58,11 @@ namespace indentsim::io
                 continue;
               }
             const YAML::Node &map = map_at(key.parent());
+            if (key.type == ValueType::family_blocks)
+              {
+                read_family_blocks(map, key, result);
+                continue;
+              }
             if (!read_value(map, key, result) && key.required)
               fail(key.parent().empty() ? -1 : line_of(map),
                    "missing required key '" + key.path +
@@ -61,6 +70,7 @@ namespace indentsim::io
           }
 
         read_hardening_law(result.material);
+        given_once("material.hardening.q", "material.latent_hardening.q");
 
         // F-bar by default for plasticity (isochoric flow locks plain hexahedra) and for nearly
         // incompressible hyperelasticity (nu > 0.45: the volumetric stiffness locks them as
@@ -130,7 +140,11 @@ namespace indentsim::io
 
             if (std::find(allowed.begin(), allowed.end(), key) != allowed.end())
               continue;
-            fail(line, "unknown key '" + path + "'" + unknown_key_hint(section_name, key) +
+            // A slip family's block (read by read_family_blocks, its name checked against
+            // material.slip_families by the validator).
+            if (section_name == family_blocks_path && entry.second.IsMap())
+              continue;
+            fail(line, "unknown key '" + path + "'" + unknown_key_hint(section_name, key, allowed) +
                            " Allowed keys " +
                            (section_name.empty() ? std::string("at the top level")
                                                  : "in '" + section_name + "'") +
@@ -139,7 +153,8 @@ namespace indentsim::io
       }
 
       // "; did you mean ...?" for an unknown key, or ".".
-      static std::string unknown_key_hint(const std::string &section_name, const std::string &key)
+      static std::string unknown_key_hint(const std::string &section_name, const std::string &key,
+                                          const std::vector<std::string> &allowed)
       {
         // A known key placed in the wrong section is the likeliest mistake.
         for (const auto &[other_section, other_keys] : maps_with_names())
@@ -147,8 +162,7 @@ namespace indentsim::io
               std::find(other_keys.begin(), other_keys.end(), key) != other_keys.end())
             return "; did you mean '" + other_section + "." + key + "' (under '" + other_section +
                    ":')?";
-        if (const std::string guess = closest_name(key, allowed_names(section_name));
-            !guess.empty())
+        if (const std::string guess = closest_name(key, allowed); !guess.empty())
           return "; did you mean '" + key_path(section_name, guess) + "'?";
         return ".";
       }
@@ -219,8 +233,53 @@ namespace indentsim::io
           case ValueType::words:
             key.words(result) = parse_words(node, key);
             break;
+          case ValueType::matrix:
+            key.matrix(result) = parse_matrix(node, key);
+            break;
+          case ValueType::family_blocks: // read by read_family_blocks
+            break;
           }
         return true;
+      }
+
+      // The maps under material.hardening named by slip families, in file order: each key a
+      // block leaves out takes the common value read before (material.hardening.tau0, ...).
+      void read_family_blocks(const YAML::Node &map, const Key &key, Case &result)
+      {
+        if (!map.IsDefined() || !map.IsMap())
+          return;
+        const MaterialParameters &m = result.material;
+        for (const auto &entry : map)
+          {
+            if (!entry.second.IsMap())
+              continue; // a key of the schema
+            const std::string family = entry.first.Scalar();
+            const std::string path = key.parent() + "." + family;
+            value_origins[path] = {line_of(entry.second), node_text(entry.second)};
+            check_keys(entry.second, path, family_block_keys);
+            FamilyHardening block{family, m.tau0, m.tau1, m.theta0, m.theta1};
+            double         *values[] = {&block.tau0, &block.tau1, &block.theta0, &block.theta1};
+            for (std::size_t i = 0; i < family_block_keys.size(); ++i)
+              {
+                const YAML::Node node = value_node(entry.second, path, family_block_keys[i]);
+                if (node.IsDefined())
+                  *values[i] =
+                      parse_double(node, path + "." + family_block_keys[i],
+                                   family_block_keys[i] + " in GPa for the family " + family);
+              }
+            key.family_blocks(result).push_back(block);
+          }
+      }
+
+      // Two spellings of one value (material.hardening.q and material.latent_hardening.q): at
+      // most one.
+      void given_once(const std::string &first, const std::string &second) const
+      {
+        if (value_origins.count(first) > 0 && value_origins.count(second) > 0)
+          fail(value_origins.at(second).line,
+               second + " = " + value_origins.at(second).text + ": the same value as " + first +
+                   " (given on line " + std::to_string(value_origins.at(first).line + 1) +
+                   "); give it once");
       }
 
       // material.orientation: exactly one of euler_bunge_deg or surface_normal (which needs
@@ -252,9 +311,13 @@ namespace indentsim::io
           fail(line_of(node),
                shown + "reference_direction is only used with surface_normal; " + either);
 
-        const auto read_form = [&](const char *name, std::array<double, 3> &values) {
+        const auto read_form = [&](const char *name, auto &values) {
           const Key &key = find_key(path + "." + name);
-          values = parse_triple(value_node(node, path, name), key);
+          if constexpr (std::is_same_v<std::remove_cvref_t<decltype(values)>,
+                                       std::array<double, 3>>)
+            values = parse_triple(value_node(node, path, name), key);
+          else
+            values = parse_list(value_node(node, path, name), key);
         };
         if (has_euler)
           {
@@ -519,6 +582,25 @@ namespace indentsim::io
         for (std::size_t i = 0; i < node.size(); ++i)
           values[i] = parse_word(node[i], key.path + "[" + std::to_string(i) + "]", key.entry_unit);
         return values;
+      }
+
+      std::vector<std::vector<double>> parse_matrix(const YAML::Node &node, const Key &key) const
+      {
+        const std::string expected =
+            "expected a list of rows, each a list of numbers, e.g. [[1, 1.4], [1.4, 1]]";
+        if (!node.IsSequence() || node.size() == 0)
+          fail(line_of(node), key.path + " = " + node_text(node) + ": " + expected);
+        std::vector<std::vector<double>> rows(node.size());
+        for (std::size_t i = 0; i < node.size(); ++i)
+          {
+            const std::string row = key.path + "[" + std::to_string(i) + "]";
+            if (!node[i].IsSequence() || node[i].size() == 0)
+              fail(line_of(node[i]), row + " = " + node_text(node[i]) + ": " + expected);
+            for (std::size_t j = 0; j < node[i].size(); ++j)
+              rows[i].push_back(
+                  parse_double(node[i][j], row + "[" + std::to_string(j) + "]", "a ratio"));
+          }
+        return rows;
       }
 
       std::array<double, 3> parse_triple(const YAML::Node &node, const Key &key) const

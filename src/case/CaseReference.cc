@@ -51,6 +51,10 @@ namespace indentsim::io
           return "list of numbers";
         case ValueType::words:
           return "list of words";
+        case ValueType::matrix:
+          return "list of lists of numbers";
+        case ValueType::family_blocks:
+          return "map of numbers";
         }
       return {};
     }

@@ -14,6 +14,7 @@
 #include "mesh/MeshAdequacy.h"
 #include "mesh/MeshDesign.h"
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 #include <memory>
@@ -23,6 +24,11 @@ namespace indentsim::io
 {
   namespace
   {
+    // Why tau1 > 0 when theta0 > 0 (a crystal's common and per-family Voce parameters).
+    const std::string voce_needs_tau1 =
+        "the Voce law tau_c = tau0 + (tau1 + theta1 Gamma)(1 - exp(-theta0 Gamma / tau1)) divides "
+        "by tau1 (theta0 = 0 means no hardening at all: tau_c = tau0)";
+
     const std::array<const char *, 3> axis_names = {{"x", "y", "z"}};
 
     class CaseValidator
@@ -133,6 +139,8 @@ namespace indentsim::io
                        key.range_message + "; the " + axis_names[d] + " entry is not");
             break;
           case ValueType::words: // the allowed words depend on other keys: checked by hand
+          case ValueType::matrix:
+          case ValueType::family_blocks:
             break;
           case ValueType::list:
             for (std::size_t i = 0; i < key.list(c).size(); ++i)
@@ -249,6 +257,7 @@ namespace indentsim::io
         const auto &m = checked.material;
 
         check_lattice();
+        check_family_hardening();
         // Cubic stiffness positive definite: eigenvalues C11 + 2 C12 (dilatation), C11 - C12
         // (tetragonal shear) and C44 (shear). The hexagonal one: check_lattice.
         const std::string constants = "(C11 = " + format_number(m.C11) +
@@ -285,9 +294,7 @@ namespace indentsim::io
                    "tau1 must be > 0 when theta0 > 0 (here " +
                        (tau1 ? "theta0 = " + format_number(m.theta0)
                              : "tau1 = " + format_number(m.tau1)) +
-                       " GPa): the Voce law tau_c = tau0 + (tau1 + theta1 Gamma)(1 - exp(-theta0 "
-                       "Gamma / tau1)) divides by tau1 (for linear hardening set theta0 = 0 and "
-                       "use theta1)");
+                       " GPa): " + voce_needs_tau1);
           }
 
         const auto &o = m.orientation;
@@ -296,7 +303,7 @@ namespace indentsim::io
                               choice_words<OrientationKind>(true));
         try
           {
-            materials::create_orientation(o);
+            materials::create_orientation(m);
           }
         catch (const std::invalid_argument &error)
           {
@@ -305,10 +312,10 @@ namespace indentsim::io
               reject("material.orientation.euler_bunge_deg", format_triple(o.euler_bunge_deg),
                      what);
             else if (what.rfind("reference_direction", 0) == 0)
-              reject("material.orientation.reference_direction",
-                     format_triple(o.reference_direction), what);
+              reject("material.orientation.reference_direction", format_list(o.reference_direction),
+                     what);
             else
-              reject("material.orientation.surface_normal", format_triple(o.surface_normal), what);
+              reject("material.orientation.surface_normal", format_list(o.surface_normal), what);
           }
       }
 
@@ -522,6 +529,73 @@ namespace indentsim::io
           }
       }
 
+      // The per-family Voce blocks and the latent matrix: for the crystal model only, each
+      // block a family of the case, the matrix one row and column per family.
+      void check_family_hardening() const
+      {
+        const auto &m = checked.material;
+        if (m.family_hardening.empty() && m.latent_matrix.empty())
+          return;
+        const bool crystal = m.model == ModelKind::crystal;
+        for (const FamilyHardening &block : m.family_hardening)
+          {
+            const std::string path = "material.hardening." + block.family;
+            if (!crystal)
+              reject(path, format_family_block(block),
+                     "a slip family's hardening is for model: crystal (here model: " +
+                         m.model.word() + ")");
+          }
+        if (!crystal && !m.latent_matrix.empty())
+          reject("material.latent_hardening.matrix", format_matrix(m.latent_matrix),
+                 "latent hardening is for model: crystal (here model: " + m.model.word() + ")");
+        if (!m.lattice.known())
+          return;
+        const std::vector<std::string> families =
+            materials::slip_systems(m.lattice.word(), designed.material.slip_families,
+                                    m.lattice == Lattice::hcp ? m.c_over_a : 0.0)
+                .families;
+        const std::string listed = "material.slip_families = " + format_words(families);
+        for (const FamilyHardening &block : m.family_hardening)
+          {
+            const std::string path = "material.hardening." + block.family;
+            if (std::find(families.begin(), families.end(), block.family) == families.end())
+              reject(path, format_family_block(block),
+                     "not a slip family of this crystal (" + listed +
+                         "); name one of them, quoted, e.g. \"" + families.front() +
+                         "\": {tau0: " + format_number(m.tau0) + "}");
+            if (!(block.tau0 > 0.))
+              reject(path + ".tau0", format_number(block.tau0),
+                     "the initial critical resolved shear stress tau0 must be > 0 GPa");
+            for (const auto &[name, value] : {std::pair{"tau1", block.tau1},
+                                              {"theta0", block.theta0},
+                                              {"theta1", block.theta1}})
+              if (!(value >= 0.) || !std::isfinite(value))
+                reject(path + "." + name, format_number(value), "must be >= 0 GPa and finite");
+            if (block.theta0 > 0. && !(block.tau1 > 0.))
+              reject(path + ".tau1", format_number(block.tau1),
+                     "tau1 must be > 0 when theta0 > 0 (here theta0 = " +
+                         format_number(block.theta0) + " GPa): " + voce_needs_tau1);
+          }
+        if (m.latent_matrix.empty())
+          return;
+        const std::size_t n = families.size();
+        const std::string matrix_path = "material.latent_hardening.matrix";
+        bool              square = m.latent_matrix.size() == n;
+        for (const auto &row : m.latent_matrix)
+          square = square && row.size() == n;
+        if (!square)
+          reject(matrix_path, format_matrix(m.latent_matrix),
+                 "needs " + std::to_string(n) + " rows of " + std::to_string(n) +
+                     " ratios, one per slip family in the order of " + listed);
+        for (std::size_t f = 0; f < n; ++f)
+          for (std::size_t g = 0; g < n; ++g)
+            if (!(m.latent_matrix[f][g] >= 0.) || !std::isfinite(m.latent_matrix[f][g]))
+              reject(matrix_path, format_matrix(m.latent_matrix),
+                     "the latent ratios must be >= 0 and finite; row " + std::to_string(f) +
+                         ", column " + std::to_string(g) + " (" +
+                         format_number(m.latent_matrix[f][g]) + ") is not");
+      }
+
       std::string given_or_first(std::initializer_list<std::string> paths) const
       {
         if (value_origins != nullptr)
@@ -584,7 +658,7 @@ namespace indentsim::io
       void check_quarter_symmetry_of_the_lattice() const
       {
         const auto                &o = checked.material.orientation;
-        const dealii::Tensor<2, 3> g = materials::create_orientation(o);
+        const dealii::Tensor<2, 3> g = materials::create_orientation(checked.material);
         const dealii::Tensor<1, 3> e_x({1., 0., 0.}), e_y({0., 1., 0.});
         const std::string          lattice = checked.material.lattice.word();
         const bool                 x_mirror = materials::is_mirror_plane(lattice, g, e_x);
@@ -593,8 +667,8 @@ namespace indentsim::io
           return;
         const std::string orientation =
             o.kind == OrientationKind::surface_normal
-                ? "material.orientation: surface_normal " + format_triple(o.surface_normal) +
-                      ", reference_direction " + format_triple(o.reference_direction)
+                ? "material.orientation: surface_normal " + format_list(o.surface_normal) +
+                      ", reference_direction " + format_list(o.reference_direction)
                 : "material.orientation: euler_bunge_deg " + format_triple(o.euler_bunge_deg);
         reject("specimen.symmetry", to_string(checked.specimen.symmetry),
                "the quarter model needs the sample planes x = 0 and y = 0 to be mirror planes "

@@ -97,6 +97,16 @@ namespace indentsim::io
                        group != nullptr ? group->comment : "");
             open_group = parent;
           }
+        if (key.type == ValueType::family_blocks)
+          {
+            // One line per family, named by the family in place of the key's placeholder.
+            for (const FamilyHardening &block : key.family_blocks(const_cast<Case &>(c)))
+              write_line(out,
+                         indentation(key.path) + quoted(block.family) + ": " +
+                             format_family_block(block),
+                         key.comment);
+            continue;
+          }
         const std::string value =
             key.type == ValueType::text ? quoted(key.value_text(c)) : key.value_text(c);
         write_line(out, indentation(key.path) + key.name() + ": " + value, key.comment);

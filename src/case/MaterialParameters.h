@@ -92,10 +92,25 @@ namespace indentsim::io
   {
     Choice<OrientationKind> kind = OrientationKind::euler_bunge_deg;
     std::array<double, 3>   euler_bunge_deg = {{0., 0., 0.}}; // (phi1, Phi, phi2) [deg]
-    std::array<double, 3>   surface_normal = {{0., 0., 1.}};  // Miller indices [hkl] of the plane
-    std::array<double, 3>   reference_direction = {{1., 0., 0.}}; // [uvw] along sample x
+    // Miller indices: cubic [hkl], [uvw]; hcp three-index (hkl), [UVW] or four-index
+    // Miller-Bravais (hkil), [uvtw] (crystal/SlipSystems.h converts them).
+    std::vector<double> surface_normal = {0., 0., 1.};      // the indented plane
+    std::vector<double> reference_direction = {1., 0., 0.}; // the direction along sample x
 
     bool operator==(const OrientationParameters &) const = default;
+  };
+
+  // One slip family's own extended Voce parameters (material.hardening."{112}<111>": {...});
+  // the keys a block leaves out take the common values (material.hardening.tau0, ...) when read.
+  struct FamilyHardening
+  {
+    std::string family;     // a name of SlipSystems.h, one of slip_families
+    double      tau0 = 0;   // [GPa]
+    double      tau1 = 0;   // [GPa]
+    double      theta0 = 0; // [GPa]
+    double      theta1 = 0; // [GPa]
+
+    bool operator==(const FamilyHardening &) const = default;
   };
 
   struct MaterialParameters
@@ -129,6 +144,10 @@ namespace indentsim::io
     double                   theta0 = 0.1;         // initial hardening rate [GPa]
     double                   theta1 = 0.006;       // asymptotic hardening rate [GPa]
     double                   q = 1.4;              // latent hardening ratio [-]
+    std::vector<FamilyHardening> family_hardening; // blocks given per family, in file order
+    // Latent ratios q_fg between families f and g (rows and columns in slip_families order);
+    // empty: q for every pair of distinct systems.
+    std::vector<std::vector<double>> latent_matrix;
     double yield_exponent_n = 10; // n of the regularized Schmid law (exponent 2n), eq. 14
     OrientationParameters orientation;
 

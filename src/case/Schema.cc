@@ -93,6 +93,19 @@ namespace indentsim::io
       return c.material.lattice != Lattice::fcc;
     }
 
+    bool family_hardening_given(const Case &c)
+    {
+      return !c.material.family_hardening.empty();
+    }
+    bool latent_matrix_given(const Case &c)
+    {
+      return !c.material.latent_matrix.empty();
+    }
+    // An alternative spelling of a key that the resolved case writes under another path.
+    bool never_written(const Case &)
+    {
+      return false;
+    }
     bool orientation_by_normal(const Case &c)
     {
       return c.material.orientation.kind == OrientationKind::surface_normal;
@@ -324,7 +337,34 @@ namespace indentsim::io
               .range(at_least(0),
                      "the latent hardening ratio q must be >= 0 (1: isotropic hardening)")
               .comment("latent hardening ratio [-]")
-              .describe("latent hardening ratio (1: isotropic hardening) (crystal)"),
+              .describe("latent hardening ratio q, h_rs = q for r ≠ s, 1 for r = s (1: "
+                        "isotropic hardening); or `latent_hardening: {q: ...}`, never both "
+                        "(crystal)"),
+          D::at<&C::material, &M::family_hardening>("material.hardening.<family>")
+              .written_if(&family_hardening_given)
+              .default_is("– (every family: the keys above)")
+              .allowed_is("a family of `slip_families`, each once; keys `tau0`, `tau1`, "
+                          "`theta0`, `theta1` as above")
+              .comment("[GPa]")
+              .describe("one slip family's own Voce parameters, e.g. `\"{112}<111>\": {tau0: "
+                        "0.42, tau1: 0.1, theta0: 1, theta1: 0.01}`; the keys a block leaves out "
+                        "take the values above, families without a block take them all (crystal)"),
+          D::at<&C::material, &M::q>("material.latent_hardening.q")
+              .expect("the latent hardening ratio q")
+              .written_if(&never_written)
+              .default_is("`hardening.q`")
+              .allowed_is("≥ 0")
+              .comment("latent hardening ratio [-]")
+              .describe("the latent hardening ratio q, the same as `hardening.q` (give one); the "
+                        "resolved case writes it as `hardening.q` (crystal)"),
+          D::at<&C::material, &M::latent_matrix>("material.latent_hardening.matrix")
+              .written_if(&latent_matrix_given)
+              .default_is("– (q for every pair)")
+              .allowed_is("n×n numbers ≥ 0, n the number of `slip_families`")
+              .comment("q_fg between families, in slip_families order [-]")
+              .describe("latent ratios q_fg between the families f and g, rows and columns in "
+                        "the order of `slip_families`: h_rs = q_f(r)f(s) for r ≠ s, 1 for r = s; "
+                        "replaces q (crystal)"),
           D::at<&C::material, &M::yield_exponent_n>("material.yield_exponent_n")
               .expect("the exponent n of eq. 14")
               .range(between(1, true, max_yield_exponent, true),
@@ -344,20 +384,24 @@ namespace indentsim::io
                         "(crystal)"),
           D::at<&C::material, &M::orientation, &OP::surface_normal>(
               "material.orientation.surface_normal")
-              .entries("[h, k, l], a crystal direction", "a Miller index")
+              .entries("[h, k, l], or [h, k, i, l] for hcp", "a Miller index")
               .written_if(&orientation_by_normal)
               .default_is("–")
-              .comment("crystal direction [hkl] along sample z")
-              .describe("[h, k, l]: the crystal direction along sample z (the indented plane's "
-                        "normal); needs `reference_direction` (crystal)"),
+              .allowed_is("3 numbers, not all 0; hcp also 4 with i = −(h + k)")
+              .comment("indented plane (hkl) or (hkil), normal along sample z")
+              .describe("the indented plane, whose normal lies along sample z: cubic (hkl), "
+                        "the normal is the direction [hkl]; hcp (hkl) or Miller–Bravais (hkil); "
+                        "needs `reference_direction` (crystal)"),
           D::at<&C::material, &M::orientation, &OP::reference_direction>(
               "material.orientation.reference_direction")
-              .entries("[u, v, w], a crystal direction", "a Miller index")
+              .entries("[u, v, w], or [u, v, t, w] for hcp", "a Miller index")
               .written_if(&orientation_by_normal)
               .default_is("–")
-              .comment("crystal direction [uvw] along sample x")
-              .describe("[u, v, w]: the crystal direction along sample x, perpendicular to "
-                        "`surface_normal` (not guessed) (crystal)"),
+              .allowed_is("3 numbers, not all 0; hcp also 4 with t = −(u + v); in the plane")
+              .comment("crystal direction [uvw] or [uvtw] along sample x")
+              .describe("the crystal direction along sample x, in the indented plane (not "
+                        "guessed): cubic [uvw]; hcp [uvw] = u a1 + v a2 + w c or Miller–Bravais "
+                        "[uvtw] (crystal)"),
       };
     }
 
@@ -753,6 +797,9 @@ namespace indentsim::io
            "The hardening law: for `j2` the law σy(εp) (`law` and its keys; without `law`, "
            "linear with `hardening_modulus`), for `crystal` the extended Voce law (`tau0` to "
            "`q`)."},
+          {"material.latent_hardening", "latent hardening (crystal)",
+           "Latent hardening between slip systems (crystal): the ratio `q`, or a matrix between "
+           "the slip families."},
           {"material.orientation", "Bunge, passive: v_crystal = g v_sample (crystal)",
            "Crystal orientation: `euler_bunge_deg`, or `surface_normal` with "
            "`reference_direction`."},
@@ -830,6 +877,10 @@ namespace indentsim::io
         return format_list(list(readable));
       case ValueType::words:
         return format_words(words(readable));
+      case ValueType::matrix:
+        return format_matrix(matrix(readable));
+      case ValueType::family_blocks:
+        return format_family_blocks(family_blocks(readable));
       }
     return {};
   }
@@ -925,6 +976,29 @@ namespace indentsim::io
     for (std::size_t i = 0; i < values.size(); ++i)
       text += (i == 0 ? "\"" : ", \"") + values[i] + "\"";
     return text + "]";
+  }
+
+  std::string format_matrix(const std::vector<std::vector<double>> &rows)
+  {
+    std::string text = "[";
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      text += (i == 0 ? "" : ", ") + format_list(rows[i]);
+    return text + "]";
+  }
+
+  std::string format_family_block(const FamilyHardening &block)
+  {
+    return "{tau0: " + format_number(block.tau0) + ", tau1: " + format_number(block.tau1) +
+           ", theta0: " + format_number(block.theta0) + ", theta1: " + format_number(block.theta1) +
+           "}";
+  }
+
+  std::string format_family_blocks(const std::vector<FamilyHardening> &blocks)
+  {
+    std::string text = "{";
+    for (std::size_t i = 0; i < blocks.size(); ++i)
+      text += (i == 0 ? "\"" : ", \"") + blocks[i].family + "\": " + format_family_block(blocks[i]);
+    return text + "}";
   }
 
   std::string format_bool(const bool value)

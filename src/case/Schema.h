@@ -24,11 +24,14 @@ namespace indentsim::io
     number,       // double
     whole_number, // unsigned int
     boolean,
-    choice, // Choice<E>: a word of its table
-    text,   // a string the user chooses freely (a path)
-    triple, // three numbers
-    list,   // one or more numbers (std::vector<double>)
-    words   // one or more words (std::vector<std::string>)
+    choice,       // Choice<E>: a word of its table
+    text,         // a string the user chooses freely (a path)
+    triple,       // three numbers
+    list,         // one or more numbers (std::vector<double>)
+    words,        // one or more words (std::vector<std::string>)
+    matrix,       // a square list of lists of numbers (std::vector<std::vector<double>>)
+    family_blocks // maps named by slip families, under the key's parent map
+                  // (std::vector<FamilyHardening>; the key's name is a placeholder)
   };
 
   // Admissible values: an interval, open or closed at each end (infinite ends exclude infinity),
@@ -87,6 +90,8 @@ namespace indentsim::io
     std::array<double, 3> &(*triple)(Case &) = nullptr;
     std::vector<double> &(*list)(Case &) = nullptr;
     std::vector<std::string> &(*words)(Case &) = nullptr;
+    std::vector<std::vector<double>> &(*matrix)(Case &) = nullptr;
+    std::vector<FamilyHardening> &(*family_blocks)(Case &) = nullptr;
     ChoiceAccess choice;
 
     // "C11" for "material.elastic.C11"; the map holding it: "material.elastic" ("" on top).
@@ -120,6 +125,11 @@ namespace indentsim::io
   std::string format_number(double value);
   std::string format_triple(const std::array<double, 3> &values);
   std::string format_list(const std::vector<double> &values);
-  std::string format_words(const std::vector<std::string> &values); // ["a", "b"], quoted
+  std::string format_words(const std::vector<std::string> &values);        // ["a", "b"], quoted
+  std::string format_matrix(const std::vector<std::vector<double>> &rows); // [[1, 2], [3, 4]]
+  // {tau0: 0.4, tau1: 0.1, theta0: 1, theta1: 0.01}
+  std::string format_family_block(const FamilyHardening &block);
+  // {"{110}<111>": {tau0: ...}, "{112}<111>": {...}}
+  std::string format_family_blocks(const std::vector<FamilyHardening> &blocks);
   std::string format_bool(bool value);
 } // namespace indentsim::io

@@ -110,6 +110,16 @@ namespace indentsim::io::schema_builder
           k.type = ValueType::words;
           k.words = &stored<Members...>;
         }
+      else if constexpr (std::is_same_v<T, std::vector<std::vector<double>>>)
+        {
+          k.type = ValueType::matrix;
+          k.matrix = &stored<Members...>;
+        }
+      else if constexpr (std::is_same_v<T, std::vector<FamilyHardening>>)
+        {
+          k.type = ValueType::family_blocks;
+          k.family_blocks = &stored<Members...>;
+        }
       else
         {
           using Enum = typename ChoiceEnum<T>::type;

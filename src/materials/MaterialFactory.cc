@@ -3,11 +3,40 @@
 #include "materials/J2Plasticity.h"
 #include "materials/NeoHookean.h"
 #include "materials/crystal/Orientation.h"
+#include "materials/crystal/SlipSystems.h"
 
+#include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace indentsim::materials
 {
+  namespace
+  {
+    // One extended Voce law per slip family: the family's block where the case file gives one,
+    // the common parameters otherwise; the latent ratio q or the matrix between families.
+    FamilyVoceHardening crystal_hardening(const io::MaterialParameters &p,
+                                          const SlipSystems            &systems)
+    {
+      const ExtendedVoceHardening common{p.tau0, p.tau1, p.theta0, p.theta1, p.q};
+      if (p.family_hardening.empty() && p.latent_matrix.empty())
+        return FamilyVoceHardening(common);
+      std::vector<ExtendedVoceHardening> laws(systems.families.size(), common);
+      for (const io::FamilyHardening &block : p.family_hardening)
+        {
+          const auto found =
+              std::find(systems.families.begin(), systems.families.end(), block.family);
+          if (found == systems.families.end())
+            throw std::invalid_argument("material.hardening.\"" + block.family +
+                                        "\": not one of the slip families");
+          laws[found - systems.families.begin()] = {block.tau0, block.tau1, block.theta0,
+                                                    block.theta1, p.q};
+        }
+      return FamilyVoceHardening(laws, systems.family, p.q, p.latent_matrix);
+    }
+  } // namespace
+
   std::unique_ptr<MaterialModel> create_material(const io::MaterialParameters &parameters)
   {
     if (parameters.model == io::ModelKind::neo_hookean)
@@ -30,13 +59,14 @@ namespace indentsim::materials
 
     if (parameters.model == io::ModelKind::crystal)
       {
-        const auto &p = parameters;
+        const auto       &p = parameters;
+        const SlipSystems systems = slip_systems(to_string(p.lattice), p.slip_families, p.c_over_a);
         return std::make_unique<CrystalPlasticity>(
-            slip_systems(to_string(p.lattice), p.slip_families, p.c_over_a),
+            systems,
             p.lattice == io::Lattice::hcp
                 ? LatticeElasticity::hexagonal(p.C11, p.C12, p.C13, p.C33, p.C44)
                 : LatticeElasticity::cubic(p.C11, p.C12, p.C44),
-            ExtendedVoceHardening{p.tau0, p.tau1, p.theta0, p.theta1, p.q}, p.yield_exponent_n);
+            crystal_hardening(p, systems), p.yield_exponent_n);
       }
 
     throw std::invalid_argument("material.model = \"" + to_string(parameters.model) +
@@ -59,14 +89,101 @@ namespace indentsim::materials
                                 "\" is not supported; allowed: linear, power, voce, table");
   }
 
-  dealii::Tensor<2, 3> create_orientation(const io::OrientationParameters &orientation)
+  namespace
   {
+    std::string indices_text(const std::vector<double> &indices)
+    {
+      std::ostringstream text;
+      text << '[';
+      for (std::size_t i = 0; i < indices.size(); ++i)
+        text << (i == 0 ? "" : ", ") << indices[i];
+      text << ']';
+      return text.str();
+    }
+
+    // The indices of material.orientation.<key> as a crystal-frame vector (SlipSystems.h's
+    // frames): cubic [hkl] as they are (the plane (hkl) has the normal [hkl]); hcp planes (hkl)
+    // = (h k -(h+k) l) through the reciprocal basis, directions [UVW] = U a1 + V a2 + W c, whose
+    // Miller-Bravais form is [uvtw] = [(2U - V)/3, (2V - U)/3, -(u + v), W].
+    std::array<double, 3> crystal_vector(const io::MaterialParameters &material,
+                                         const std::string &key, const bool plane)
+    {
+      const auto                &o = material.orientation;
+      const std::vector<double> &indices = plane ? o.surface_normal : o.reference_direction;
+      const bool                 hcp = material.lattice == io::Lattice::hcp;
+      const std::string          shown = key + " " + indices_text(indices) + ": ";
+      const std::string          letters = plane ? "[h, k, l]" : "[u, v, w]";
+      if (indices.size() == 4 && !hcp)
+        throw std::invalid_argument(shown + "four Miller-Bravais indices are for hcp only; give " +
+                                    letters);
+      if (indices.size() != 3 && indices.size() != 4)
+        throw std::invalid_argument(shown + "expected 3 indices " + letters +
+                                    (hcp ? " or 4 Miller-Bravais indices" : ""));
+      if (!hcp)
+        return {{indices[0], indices[1], indices[2]}};
+
+      std::array<double, 4> four;
+      if (indices.size() == 4)
+        {
+          const double third = -(indices[0] + indices[1]);
+          if (std::abs(indices[2] - third) > 1e-9 * (1 + std::abs(third)))
+            {
+              std::ostringstream message;
+              message << shown << "the third Miller-Bravais index must be "
+                      << (plane ? "i = -(h + k) = " : "t = -(u + v) = ") << third << ", not "
+                      << indices[2];
+              throw std::invalid_argument(message.str());
+            }
+          four = {{indices[0], indices[1], indices[2], indices[3]}};
+        }
+      else if (plane)
+        four = {{indices[0], indices[1], -(indices[0] + indices[1]), indices[2]}};
+      else
+        {
+          const double u = (2 * indices[0] - indices[1]) / 3, v = (2 * indices[1] - indices[0]) / 3;
+          four = {{u, v, -(u + v), indices[2]}};
+        }
+      const dealii::Tensor<1, 3> vector = plane
+                                              ? miller_bravais_plane_normal(four, material.c_over_a)
+                                              : miller_bravais_direction(four, material.c_over_a);
+      return {{vector[0], vector[1], vector[2]}};
+    }
+  } // namespace
+
+  dealii::Tensor<2, 3> create_orientation(const io::MaterialParameters &material)
+  {
+    const io::OrientationParameters &orientation = material.orientation;
     if (orientation.kind == io::OrientationKind::euler_bunge_deg)
       return bunge_rotation(orientation.euler_bunge_deg);
-    if (orientation.kind == io::OrientationKind::surface_normal)
-      return rotation_from_surface_normal(orientation.surface_normal,
-                                          orientation.reference_direction);
-    throw std::invalid_argument("material.orientation: kind \"" + to_string(orientation.kind) +
-                                "\" is not supported; allowed: euler_bunge_deg, surface_normal");
+    if (orientation.kind != io::OrientationKind::surface_normal)
+      throw std::invalid_argument("material.orientation: kind \"" + to_string(orientation.kind) +
+                                  "\" is not supported; allowed: euler_bunge_deg, surface_normal");
+    const std::array<double, 3> normal = crystal_vector(material, "surface_normal", true);
+    const std::array<double, 3> reference = crystal_vector(material, "reference_direction", false);
+    if (material.lattice != io::Lattice::hcp)
+      return rotation_from_surface_normal(normal, reference);
+    try
+      {
+        return rotation_from_surface_normal(normal, reference);
+      }
+    catch (const std::invalid_argument &error)
+      {
+        // The message in the case file's indices, not the crystal-frame vectors.
+        const std::string what = error.what();
+        const std::string key = what.substr(0, what.find(' '));
+        if (key != "reference_direction")
+          throw std::invalid_argument("surface_normal " + indices_text(orientation.surface_normal) +
+                                      ": names no plane (all indices 0)");
+        if (reference[0] == 0 && reference[1] == 0 && reference[2] == 0)
+          throw std::invalid_argument("reference_direction " +
+                                      indices_text(orientation.reference_direction) +
+                                      ": names no direction (all indices 0)");
+        throw std::invalid_argument(
+            "reference_direction " + indices_text(orientation.reference_direction) +
+            " does not lie in the plane surface_normal " +
+            indices_text(orientation.surface_normal) +
+            " (hcp: u h + v k + t i + w l = 0 in Miller-Bravais indices, e.g. [2, -1, -1, 0] "
+            "in (0, 0, 0, 1))");
+      }
   }
 } // namespace indentsim::materials

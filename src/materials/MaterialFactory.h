@@ -24,7 +24,10 @@ namespace indentsim::materials
   // std::invalid_argument for an unknown law.
   IsotropicHardening create_hardening_law(const io::MaterialParameters &parameters);
 
-  // The lattice orientation g (v_crystal = g v_sample, see Orientation.h) of material.orientation.
-  // Throws std::invalid_argument for a zero or non-perpendicular normal/reference direction.
-  dealii::Tensor<2, 3> create_orientation(const io::OrientationParameters &orientation);
+  // The lattice orientation g (v_crystal = g v_sample, see Orientation.h) of material.orientation;
+  // the lattice (and c/a for hcp) says how its Miller or Miller-Bravais indices become
+  // crystal-frame vectors. Throws std::invalid_argument, the message starting with the key
+  // (surface_normal or reference_direction), for indices that name no plane or direction and
+  // for a reference direction outside the plane.
+  dealii::Tensor<2, 3> create_orientation(const io::MaterialParameters &material);
 } // namespace indentsim::materials

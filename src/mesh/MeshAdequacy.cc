@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -31,13 +32,28 @@ namespace indentsim::mesh
       return upper;
     }
 
+    // The smallest initial critical shear of the crystal's slip families: a family's own block
+    // where it has one, the common tau0 for the others [GPa].
+    double softest_critical_shear(const io::MaterialParameters &material)
+    {
+      const std::size_t n_families =
+          material.slip_families.empty() ? 1 : material.slip_families.size();
+      double smallest = material.family_hardening.size() < n_families
+                            ? material.tau0
+                            : std::numeric_limits<double>::infinity();
+      for (const io::FamilyHardening &block : material.family_hardening)
+        smallest = std::min(smallest, block.tau0);
+      return smallest;
+    }
+
     // The hardness of H = 3 sigma_y, or 0 where the model has no yield stress.
     double estimated_hardness(const io::MaterialParameters &material)
     {
       if (material.model == io::ModelKind::j2)
         return guard::constraint_factor * material.yield_stress;
       if (material.model == io::ModelKind::crystal)
-        return guard::constraint_factor * guard::fcc_taylor_factor * material.tau0;
+        return guard::constraint_factor * guard::fcc_taylor_factor *
+               softest_critical_shear(material);
       return 0;
     }
 

@@ -39,7 +39,10 @@ namespace indentsim::mesh
     // The plastic zone: equivalent plastic strain above 0.2 % (the offset yield strain).
     inline constexpr double plastic_strain_threshold = 2e-3;
     // Force control: the hardness H = 3 sigma_y (Tabor's constraint factor; crystal:
-    // sigma_y = 3.06 tau0, the Taylor factor of FCC polycrystals) gives the contact area F/H.
+    // sigma_y = 3.06 tau0, the Taylor factor of FCC polycrystals, which BCC {110}<111> shares:
+    // its Schmid tensors' symmetric parts are FCC's with m and n swapped) gives the contact area
+    // F/H. With several families, tau0 of the softest: the hardness is then underestimated and
+    // the predicted contact overestimated, on the safe side of the guards.
     inline constexpr double constraint_factor = 3;
     inline constexpr double fcc_taylor_factor = 3.06;
   } // namespace guard

@@ -196,8 +196,7 @@ namespace indentsim::problems
     history_.reinit(solid_.triangulation.n_active_cells(), 1u << dim,
                     material_->n_state_variables());
     // A single crystal: one lattice orientation everywhere (isotropic models ignore it).
-    const dealii::Tensor<2, 3> orientation =
-        materials::create_orientation(case_.material.orientation);
+    const dealii::Tensor<2, 3> orientation = materials::create_orientation(case_.material);
     for (std::size_t i = 0; i < history_.n_points(); ++i)
       material_->oriented_initial_state(history_.converged_point(i), orientation);
     history_.converged_changed();

@@ -125,9 +125,8 @@ namespace indentsim::problems
     const bool                      per_element = (specimen.grains == io::Grains::per_element);
     const unsigned int              n_cells_total = n_per_side_ * n_per_side_ * n_per_side_;
     const std::vector<Tensor<2, 3>> orientations =
-        per_element
-            ? materials::random_orientations(n_cells_total, specimen.seed)
-            : std::vector<Tensor<2, 3>>{materials::create_orientation(case_.material.orientation)};
+        per_element ? materials::random_orientations(n_cells_total, specimen.seed)
+                    : std::vector<Tensor<2, 3>>{materials::create_orientation(case_.material)};
 
     history_.reinit(solid_.triangulation.n_active_cells(), 8, material_->n_state_variables());
     const unsigned int n_q_points = history_.n_q_points(), n_state = history_.n_state();

@@ -610,9 +610,11 @@ namespace indentsim::study
         const StudyCase &c = study_.cases[i];
         const io::Case  &resolved = c.resolved;
         const auto      &orientation = resolved.material.orientation;
-        const auto       triple = [](const std::array<double, 3> &v) {
-          return "[" + json_number_text(v[0]) + ", " + json_number_text(v[1]) + ", " +
-                 json_number_text(v[2]) + "]";
+        const auto       numbers = [](const auto &values) {
+          std::string text = "[";
+          for (std::size_t k = 0; k < values.size(); ++k)
+            text += (k == 0 ? "" : ", ") + json_number_text(values[k]);
+          return text + "]";
         };
         out << "    {\"name\": " << json_string(c.name) << ", \"label\": " << json_string(c.label)
             << ", \"groups\": " << json_string_list(c.groups) << ",\n"
@@ -627,17 +629,17 @@ namespace indentsim::study
             << ", \"model\": " << json_string(io::to_string(resolved.material.model))
             << ", \"compare_j2\": " << (resolved.compare_j2 ? "true" : "false")
             << ", \"contact_elements\": " << resolved.specimen.contact_elements
-            << ", \"refined_region_um\": " << triple(resolved.specimen.refined_region)
+            << ", \"refined_region_um\": " << numbers(resolved.specimen.refined_region)
             << ", \"symmetry\": " << json_string(io::to_string(resolved.specimen.symmetry))
             << ", \"indenter\": " << json_string(io::to_string(resolved.indenter.shape))
             << ", \"control\": " << json_string(io::to_string(resolved.loading.control))
             << ", \"max_depth_um\": " << json_number_text(resolved.loading.max_depth) << ",\n"
             << "     \"orientation\": "
             << (orientation.kind == io::OrientationKind::surface_normal
-                    ? "{\"surface_normal\": " + triple(orientation.surface_normal) +
-                          ", \"reference_direction\": " + triple(orientation.reference_direction) +
+                    ? "{\"surface_normal\": " + numbers(orientation.surface_normal) +
+                          ", \"reference_direction\": " + numbers(orientation.reference_direction) +
                           "}"
-                    : "{\"euler_bunge_deg\": " + triple(orientation.euler_bunge_deg) + "}")
+                    : "{\"euler_bunge_deg\": " + numbers(orientation.euler_bunge_deg) + "}")
             << ", \"grains\": " << json_string(io::to_string(resolved.specimen.grains))
             << ", \"seed\": " << resolved.specimen.seed
             << ", \"elements_per_side\": " << resolved.specimen.elements_per_side

@@ -210,8 +210,8 @@ TEST(CaseFile, ResolvedCaseRoundTrips)
   Case normal;
   normal.material.model = "crystal";
   normal.material.orientation.kind = "surface_normal";
-  normal.material.orientation.surface_normal = {{1., 1., 1.}};
-  normal.material.orientation.reference_direction = {{1., -1., 0.}};
+  normal.material.orientation.surface_normal = {1., 1., 1.};
+  normal.material.orientation.reference_direction = {1., -1., 0.};
   validate_case(normal);
   const std::string text = resolved_case_yaml(normal);
   EXPECT_NE(text.find("surface_normal: [1, 1, 1]"), std::string::npos) << text;
@@ -271,8 +271,8 @@ TEST(CaseFile, CrystalAndTensileKeysAreParsed)
                                  "    reference_direction: [0, 0, 1]\n",
                                  "normal.yaml");
   EXPECT_EQ(n.material.orientation.kind, "surface_normal");
-  EXPECT_EQ(n.material.orientation.surface_normal, (std::array<double, 3>{{1., 1., 0.}}));
-  EXPECT_EQ(n.material.orientation.reference_direction, (std::array<double, 3>{{0., 0., 1.}}));
+  EXPECT_EQ(n.material.orientation.surface_normal, (std::vector<double>{1., 1., 0.}));
+  EXPECT_EQ(n.material.orientation.reference_direction, (std::vector<double>{0., 0., 1.}));
 
   // Without any crystal key the crystal model takes the paper's Table 2 and the (001) plane.
   const Case d = parse_case_yaml("test: tensile\nmaterial:\n  model: crystal\n", "d.yaml");
@@ -298,8 +298,8 @@ TEST(CaseFile, LatticesAndSlipFamilies)
   const std::string crystal = "test: indentation\nmaterial:\n  model: crystal\n";
   const auto        crystal_with = [&](const std::string &extra) { return crystal + extra; };
   const Case        bcc = parse_case_yaml(
-      crystal_with("  lattice: bcc\n  slip_families: [\"{110}<111>\", \"{112}<111>\"]\n"),
-      "bcc.yaml");
+             crystal_with("  lattice: bcc\n  slip_families: [\"{110}<111>\", \"{112}<111>\"]\n"),
+             "bcc.yaml");
   EXPECT_EQ(bcc.material.slip_families, (std::vector<std::string>{"{110}<111>", "{112}<111>"}));
   const Case hcp = parse_case_yaml(
       crystal_with("  lattice: hcp\n  c_over_a: 1.587\n  elastic: {C11: 160, C12: 90, C13: 66, "
@@ -327,6 +327,77 @@ TEST(CaseFile, LatticesAndSlipFamilies)
   expect_rejected(crystal_with("  lattice: hcp\n  c_over_a: 1.6\n  elastic: {C13: 200, C33: "
                                "100}\n"),
                   {"material.elastic.C13", "hexagonal stiffness not positive definite"});
+}
+
+// Per-family Voce blocks (the keys a block leaves out take the common values), the latent
+// ratio's two spellings and the latent matrix; the resolved case reads back to the same case.
+TEST(CaseFile, FamilyHardeningAndLatentMatrix)
+{
+  const std::string bcc = "test: indentation\nmaterial:\n  model: crystal\n  lattice: bcc\n"
+                          "  slip_families: [\"{110}<111>\", \"{112}<111>\"]\n";
+  const Case        c = parse_case_yaml(bcc + "  hardening:\n    tau0: 0.3\n    theta1: 0.02\n"
+                                                     "    \"{112}<111>\": {tau0: 0.42, theta0: 1.5}\n"
+                                                     "  latent_hardening: {matrix: [[1, 1.4], [1.3, 1]]}\n",
+                                        "bcc.yaml");
+  ASSERT_EQ(c.material.family_hardening.size(), 1u);
+  EXPECT_EQ(c.material.family_hardening[0],
+            (FamilyHardening{"{112}<111>", 0.42, Case().material.tau1, 1.5, 0.02}));
+  EXPECT_EQ(c.material.tau0, 0.3);
+  EXPECT_EQ(c.material.latent_matrix, (std::vector<std::vector<double>>{{1, 1.4}, {1.3, 1}}));
+  const Case again = parse_case_yaml(resolved_case_yaml(c), "resolved.yaml");
+  EXPECT_EQ(again.material, c.material);
+  EXPECT_EQ(parse_case_yaml(bcc + "  latent_hardening: {q: 1.2}\n", "q.yaml").material.q, 1.2);
+
+  expect_rejected(bcc + "  hardening: {q: 1.3}\n  latent_hardening: {q: 1.2}\n",
+                  {"material.latent_hardening.q = 1.2", "material.hardening.q", "give it once"});
+  expect_rejected(bcc + "  hardening: {\"{123}<111>\": {tau0: 0.4}}\n",
+                  {"material.hardening.{123}<111> = {tau0: 0.4",
+                   "not a slip family of this crystal", "[\"{110}<111>\", \"{112}<111>\"]"});
+  expect_rejected(
+      bcc + "  hardening: {\"{112}<111>\": {tau2: 0.4}}\n",
+      {"unknown key 'material.hardening.{112}<111>.tau2'", "tau0, tau1, theta0, theta1"});
+  expect_rejected(bcc + "  hardening: {\"{112}<111>\": {tau0: 0}}\n",
+                  {"material.hardening.{112}<111>.tau0 = 0", "> 0 GPa"});
+  expect_rejected(bcc + "  hardening: {\"{112}<111>\": {tau1: 0, theta0: 1}}\n",
+                  {"material.hardening.{112}<111>.tau1 = 0", "theta0 = 1", "divides by tau1"});
+  expect_rejected(bcc + "  hardening: {\"{112}<111>\": {tau0: fast}}\n",
+                  {"material.hardening.{112}<111>.tau0", "fast", "expected a number"});
+  expect_rejected(bcc + "  latent_hardening: {matrix: [[1.4]]}\n",
+                  {"material.latent_hardening.matrix = [[1.4]]", "needs 2 rows of 2",
+                   "order of material.slip_families"});
+  expect_rejected(bcc + "  latent_hardening: {matrix: [[1, 1.4], [-1, 1]]}\n",
+                  {"material.latent_hardening.matrix", ">= 0", "row 1, column 0 (-1)"});
+  expect_rejected(bcc + "  latent_hardening: {matrix: [1, 1.4]}\n",
+                  {"material.latent_hardening.matrix[0] = 1", "expected a list of rows"});
+  expect_rejected("test: indentation\nmaterial:\n  model: j2\n  hardening: {\"{110}<111>\": "
+                  "{tau0: 0.4}}\n",
+                  {"material.hardening.{110}<111>", "for model: crystal (here model: j2)"});
+}
+
+// Miller-Bravais orientations of hcp and the messages for indices that name nothing.
+TEST(CaseFile, MillerBravaisOrientationIsChecked)
+{
+  const std::string hcp = "test: indentation\nmaterial:\n  model: crystal\n  lattice: hcp\n"
+                          "  c_over_a: 1.587\n  elastic: {C11: 160, C12: 90, C13: 66, C33: 181.7, "
+                          "C44: 46.5}\n";
+  const Case        c = parse_case_yaml(
+             hcp + "  orientation: {surface_normal: [1, 0, -1, 0], reference_direction: [-1, 2, -1, 0]}\n",
+             "hcp.yaml");
+  EXPECT_EQ(c.material.orientation.surface_normal, (std::vector<double>{1, 0, -1, 0}));
+  EXPECT_EQ(parse_case_yaml(resolved_case_yaml(c), "resolved.yaml").material, c.material);
+  expect_rejected(hcp + "  orientation: {surface_normal: [1, 0, 0, 0], reference_direction: "
+                        "[-1, 2, -1, 0]}\n",
+                  {"material.orientation.surface_normal = [1, 0, 0, 0]", "i = -(h + k) = -1"});
+  expect_rejected(hcp + "  orientation: {surface_normal: [0, 0, 0, 1], reference_direction: "
+                        "[0, 0, 0, 1]}\n",
+                  {"material.orientation.reference_direction = [0, 0, 0, 1]",
+                   "does not lie in the plane surface_normal [0, 0, 0, 1]"});
+  expect_rejected(hcp + "  orientation: {surface_normal: [0, 0, 1, 1, 0], reference_direction: "
+                        "[1, 0, 0]}\n",
+                  {"material.orientation.surface_normal", "expected 3 indices [h, k, l] or 4"});
+  expect_rejected("test: indentation\nmaterial:\n  model: crystal\n  orientation: "
+                  "{surface_normal: [0, 0, 0, 1], reference_direction: [1, 0, 0]}\n",
+                  {"material.orientation.surface_normal = [0, 0, 0, 1]", "for hcp only"});
 }
 
 // Crystal parameters outside their admissible range are rejected with key path, value and rule.
@@ -357,7 +428,7 @@ TEST(CaseFile, CrystalRangesAreChecked)
   expect_rejected(crystal_with("  hardening: {tau1: 0}\n"),
                   {"material.hardening.tau1 = 0: ", "(here theta0 = 0.1 GPa)", "divides by tau1"});
   EXPECT_EQ(error_of(crystal_with("  hardening: {tau1: 0, theta0: 0}\n")), "")
-      << "linear hardening (theta0 = 0) needs no tau1";
+      << "no hardening (theta0 = 0) needs no tau1";
   expect_rejected(crystal_with("  yield_exponent_n: 0.5\n"),
                   {"material.yield_exponent_n = 0.5", "1 <= n <= 50"});
   expect_rejected(crystal_with("  yield_exponent_n: 60\n"),
@@ -1219,10 +1290,15 @@ TEST(CaseFile, EveryKeyIsDocumentedAndWritten)
   Case automatic; // writes specimen.elements_per_radius
   automatic.specimen.contact_elements = automatic_contact_elements;
   written += resolved_case_yaml(automatic);
+  Case families; // writes a family's block (named by the family) and the latent matrix
+  families.material.family_hardening = {{"{111}<110>", 0.1, 0.02, 0.1, 0.006}};
+  families.material.latent_matrix = {{1.4}};
+  written += resolved_case_yaml(families);
   for (const auto &key : case_keys())
     {
       EXPECT_NE(reference.find("| `" + key.path + "` |"), std::string::npos) << key.path;
-      EXPECT_NE(written.find(key.name() + ": "), std::string::npos) << key.path;
+      const std::string name = key.type == ValueType::family_blocks ? "\"{111}<110>\"" : key.name();
+      EXPECT_NE(written.find(name + ": "), std::string::npos) << key.path;
       EXPECT_FALSE(key.description.empty()) << key.path;
     }
 }

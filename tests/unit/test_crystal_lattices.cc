@@ -5,6 +5,8 @@
 // hexagonal elasticity against the closed form for transversely isotropic media, and the
 // consistent tangent with several families active. Units: GPa.
 #include "materials/CrystalPlasticity.h"
+#include "materials/MaterialFactory.h"
+#include "materials/crystal/Orientation.h"
 #include "materials/crystal/SlipSystems.h"
 
 #include "material_test_utilities.h"
@@ -156,6 +158,47 @@ namespace
     EXPECT_FALSE(is_mirror_plane("bcc", g111, e_x) && is_mirror_plane("bcc", g111, e_y));
   }
 
+  // hcp orientations from Miller-Bravais indices: the indented plane (hkil) contains every
+  // direction [uvtw] of its zone (u h + v k + t i + w l = 0), so the sample z axis is
+  // perpendicular to them; (0001) with [2 -1 -1 0] is the crystal frame itself; three-index
+  // (hkl) and [UVW] = [u - t, v - t, w] name the same orientation.
+  TEST(CrystalLattices, MillerBravaisOrientationsFollowTheZoneLaw)
+  {
+    indentsim::io::MaterialParameters m;
+    m.lattice = indentsim::io::Lattice::hcp;
+    m.c_over_a = 1.587;
+    m.orientation.kind = indentsim::io::OrientationKind::surface_normal;
+    const auto orientation = [&](const std::vector<double> &plane,
+                                 const std::vector<double> &direction) {
+      m.orientation.surface_normal = plane;
+      m.orientation.reference_direction = direction;
+      return create_orientation(m);
+    };
+    EXPECT_LT((orientation({0, 0, 0, 1}, {2, -1, -1, 0}) - identity()).norm(), 1e-12);
+    struct Case
+    {
+      std::vector<double>   plane, direction, plane3, direction3;
+      std::array<double, 4> zone; // a second direction in the plane
+    };
+    for (const Case &c :
+         {Case{{1, 0, -1, 0}, {-1, 2, -1, 0}, {1, 0, 0}, {0, 3, 0}, {0, 0, 0, 1}},
+          Case{{1, 0, -1, 1}, {-1, 2, -1, 0}, {1, 0, 1}, {0, 3, 0}, {-2, 1, 1, 3}},
+          Case{{1, 1, -2, 2}, {1, -1, 0, 0}, {1, 1, 2}, {2, -2, 0}, {-1, -1, 2, 3}}})
+      {
+        const Tensor<2, 3> g = orientation(c.plane, c.direction);
+        const Tensor<1, 3> z = g * Tensor<1, 3>({0., 0., 1.}); // sample z in the crystal frame
+        const Tensor<1, 3> x = g * Tensor<1, 3>({1., 0., 0.});
+        const std::array<double, 4> direction{
+            {c.direction[0], c.direction[1], c.direction[2], c.direction[3]}};
+        const Tensor<1, 3> d = miller_bravais_direction(direction, m.c_over_a);
+        const Tensor<1, 3> zone = miller_bravais_direction(c.zone, m.c_over_a);
+        EXPECT_NEAR(z * zone / zone.norm(), 0.0, 1e-12) << c.plane[0] << c.plane[1] << c.plane[3];
+        EXPECT_NEAR(z * d / d.norm(), 0.0, 1e-12);
+        EXPECT_NEAR(x * d / d.norm(), 1.0, 1e-12); // the reference direction along sample x
+        EXPECT_LT((orientation(c.plane3, c.direction3) - g).norm(), 1e-12);
+      }
+  }
+
   // The largest Schmid factor and the sum of |S|^20 of each family along the script's loading
   // directions: invariants of the family, whatever the numbering and signs.
   TEST(CrystalLattices, SchmidFactorsMatchTheIndependentScript)
@@ -303,41 +346,103 @@ namespace
   // The consistent tangent against central differences with every BCC family (48 systems) and
   // every HCP family (30), each family with its own hardening law (so the families' critical
   // shears differ), at plastic states of random orientations and deformations.
+  // The same with a latent matrix between the families (not symmetric), where each family's
+  // slip enters the hardening rows on its own.
   TEST(CrystalLattices, TangentMatchesFiniteDifferencesWithSeveralFamilies)
   {
     for (const std::string lattice : {"bcc", "hcp"})
-      {
-        const auto                         families = known_slip_families(lattice);
-        const SlipSystems                  systems = slip_systems(lattice, families, 1.587);
-        std::vector<ExtendedVoceHardening> laws;
-        for (unsigned int f = 0; f < families.size(); ++f)
-          laws.push_back({0.10 + 0.02 * f, 0.05 + 0.01 * f, 1.0 + 0.2 * f, 0.01, 1.4});
-        const LatticeElasticity elasticity =
-            lattice == "hcp" ? LatticeElasticity::hexagonal(162.4, 92.0, 69.0, 180.7, 46.7)
-                             : LatticeElasticity::cubic(231.4, 134.7, 116.4);
-        const CrystalPlasticity model(systems, elasticity,
-                                      FamilyVoceHardening(laws, systems.family, 1.4), 10.0);
-        std::mt19937            generator(5);
-        for (unsigned int sample = 0; sample < 4; ++sample)
-          {
-            std::vector<double> state(model.n_state_variables());
-            model.oriented_initial_state(state, random_rotation(generator));
-            const Tensor<2, 3>    F_target = random_deformation(generator, 0.02);
-            MaterialPointResponse response;
-            for (unsigned int step = 1; step <= 4; ++step)
+      for (const bool matrix : {false, true})
+        {
+          const auto                         families = known_slip_families(lattice);
+          const SlipSystems                  systems = slip_systems(lattice, families, 1.587);
+          std::vector<ExtendedVoceHardening> laws;
+          for (unsigned int f = 0; f < families.size(); ++f)
+            laws.push_back({0.10 + 0.02 * f, 0.05 + 0.01 * f, 1.0 + 0.2 * f, 0.01, 1.4});
+          std::vector<std::vector<double>> latent;
+          if (matrix)
+            for (unsigned int f = 0; f < families.size(); ++f)
               {
-                const Tensor<2, 3>  F = identity() + (F_target - identity()) * (step / 5.0);
-                std::vector<double> state_new(state.size());
-                ASSERT_EQ(model.update(F, state, response, state_new, false),
-                          UpdateStatus::success);
-                state = state_new;
+                latent.emplace_back();
+                for (unsigned int g = 0; g < families.size(); ++g)
+                  latent.back().push_back(f == g ? 1.0 + 0.1 * f : 1.2 + 0.1 * f + 0.05 * g);
               }
-            ASSERT_GT(model.equivalent_plastic_strain(state), 0.0);
-            const double error = tangent_error(model, F_target, state, 1e-7);
-            if (sample == 0)
-              report(lattice + " plastic tangent FD error", error);
-            EXPECT_LT(error, 1e-5) << lattice << " sample " << sample;
-          }
+          const LatticeElasticity elasticity =
+              lattice == "hcp" ? LatticeElasticity::hexagonal(162.4, 92.0, 69.0, 180.7, 46.7)
+                               : LatticeElasticity::cubic(231.4, 134.7, 116.4);
+          const CrystalPlasticity model(
+              systems, elasticity, FamilyVoceHardening(laws, systems.family, 1.4, latent), 10.0);
+          const std::string variant = lattice + (matrix ? " with latent matrix" : "");
+          std::mt19937      generator(5);
+          for (unsigned int sample = 0; sample < 4; ++sample)
+            {
+              std::vector<double> state(model.n_state_variables());
+              model.oriented_initial_state(state, random_rotation(generator));
+              const Tensor<2, 3>    F_target = random_deformation(generator, 0.02);
+              MaterialPointResponse response;
+              for (unsigned int step = 1; step <= 4; ++step)
+                {
+                  const Tensor<2, 3>  F = identity() + (F_target - identity()) * (step / 5.0);
+                  std::vector<double> state_new(state.size());
+                  ASSERT_EQ(model.update(F, state, response, state_new, false),
+                            UpdateStatus::success);
+                  state = state_new;
+                }
+              ASSERT_GT(model.equivalent_plastic_strain(state), 0.0);
+              const double error = tangent_error(model, F_target, state, 1e-7);
+              if (sample == 0)
+                report(variant + " plastic tangent FD error", error);
+              EXPECT_LT(error, 1e-5) << variant << " sample " << sample;
+            }
+        }
+  }
+
+  // The latent matrix's meaning, in closed form. BCC tension along [001]: the 8 {110}<111>
+  // systems with Schmid factor 0.41 slip; {112}<111> (tau0 = 10 GPa) never does. All slip is
+  // family A's, so the secants of family B's law over the increments add up to its Voce law,
+  //   tau_c^r = tau0_B + q_BA (tau_c,B(Gamma) - tau0_B)   (row B = {112}, column A = {110}),
+  // and the {110} systems without slip harden by q_AA (tau_c,A(Gamma) - tau0_A). A matrix whose
+  // entries all equal q gives the scalar q's state to round-off.
+  TEST(CrystalLattices, LatentMatrixRowsHardenTheirFamily)
+  {
+    const SlipSystems systems = slip_systems("bcc", {"{110}<111>", "{112}<111>"});
+    const std::vector<ExtendedVoceHardening> laws = {{0.06, 0.1, 0.5, 0.02, 1.0},
+                                                     {10.0, 0.2, 1.0, 0.05, 1.0}};
+    const auto voce = [](const ExtendedVoceHardening &law, const double Gamma) {
+      return law.tau0 +
+             (law.tau1 + law.theta1 * Gamma) * (1 - std::exp(-law.theta0 * Gamma / law.tau1));
+    };
+    const double q_AA = 1.1, q_AB = 1.2, q_BA = 1.7, q_BB = 1.3;
+    const auto   strained = [&](const FamilyVoceHardening &hardening) {
+      const CrystalPlasticity model(systems, LatticeElasticity::cubic(232.1, 135.9, 117.0),
+                                      hardening, 10.0);
+      std::vector<double>     state(model.n_state_variables());
+      model.oriented_initial_state(state, identity());
+      UniaxialDriver driver{model, state};
+      for (unsigned int step = 1; step <= 10; ++step)
+        driver.load_to(std::exp(0.002 * step));
+      return driver.state;
+    };
+    const std::vector<double> state =
+        strained(FamilyVoceHardening(laws, systems.family, 1.4, {{q_AA, q_AB}, {q_BA, q_BB}}));
+    const unsigned int n = systems.size();
+    const double       Gamma = state[9 + n];
+    ASSERT_GT(Gamma, 0.01);
+    unsigned int idle_A = 0;
+    for (unsigned int r = 0; r < n; ++r)
+      {
+        const double tau_c = state[9 + r];
+        if (systems.family[r] == 1)
+          EXPECT_NEAR(tau_c, 10.0 + q_BA * (voce(laws[1], Gamma) - 10.0), 1e-10) << "system " << r;
+        else if (std::abs(tau_c - (0.06 + q_AA * (voce(laws[0], Gamma) - 0.06))) < 1e-10)
+          ++idle_A; // the 4 {110} systems with Schmid factor 0
       }
+    EXPECT_EQ(idle_A, 4u);
+    report("bcc [001] Gamma at 2 % strain", Gamma);
+
+    const std::vector<double> scalar = strained(FamilyVoceHardening(laws, systems.family, 1.4));
+    const std::vector<double> uniform =
+        strained(FamilyVoceHardening(laws, systems.family, 1.4, {{1.4, 1.4}, {1.4, 1.4}}));
+    for (std::size_t i = 0; i < scalar.size(); ++i)
+      EXPECT_NEAR(uniform[i], scalar[i], 1e-12 * (1 + std::abs(scalar[i]))) << "state " << i;
   }
 } // namespace

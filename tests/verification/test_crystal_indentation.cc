@@ -104,8 +104,8 @@ TEST(CrystalIndentation, SurfaceUnderSharpTipFollowsTheApexFor111)
 {
   io::Case c = tiny_crystal_case("full", {{0., 0., 0.}});
   c.material.orientation.kind = "surface_normal";
-  c.material.orientation.surface_normal = {{1., 1., 1.}};
-  c.material.orientation.reference_direction = {{1., -1., 0.}};
+  c.material.orientation.surface_normal = {1., 1., 1.};
+  c.material.orientation.reference_direction = {1., -1., 0.};
   const double depth = 0.4;
   c.loading.max_depth = depth;
   c.loading.steps = 4;

@@ -189,8 +189,8 @@ TEST(Tensile, SingleCrystalOrientationIsApplied)
   c.material.orientation.euler_bunge_deg = {{90., 0., 0.}};
   const auto rotated = run_tensile(c);
   c.material.orientation.kind = "surface_normal";
-  c.material.orientation.surface_normal = {{1., 1., 1.}};
-  c.material.orientation.reference_direction = {{1., -1., 0.}};
+  c.material.orientation.surface_normal = {1., 1., 1.};
+  c.material.orientation.reference_direction = {1., -1., 0.};
   const auto   along_111 = run_tensile(c);
   const double last_001 = along_001.back().true_stress;
   EXPECT_NEAR(rotated.back().true_stress, last_001, 1e-9 * last_001);

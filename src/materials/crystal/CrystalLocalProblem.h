@@ -17,7 +17,8 @@
 // with dA/dX (X = -Delta L_p) from exp_matrix_and_derivative. The critical shears are
 // eliminated from each Newton system (solve_linearized): dDelta gamma/dtau_c is diagonal plus
 // rank one (each system's own tau_c, and all of them through Phi), and the hardening increment
-// depends on the total slip and the system's own, so dR_tc/dtau_c is diagonal plus rank two.
+// depends on the total slip and the system's own, so dR_tc/dtau_c is diagonal plus rank two
+// (plus one per slip family with a latent matrix between families).
 #pragma once
 
 #include "materials/ImplicitLocalProblem.h"
@@ -27,6 +28,7 @@
 
 #include <array>
 #include <cmath>
+#include <utility>
 
 namespace indentsim::materials::crystal
 {
@@ -94,9 +96,12 @@ namespace indentsim::materials::crystal
     Matrix                                             A;     // exp(-Delta L_p)
     std::array<Matrix, 9>                              dA_dX; // dA/dX_ab, row-major ab
     std::array<std::array<double, n_unknowns>, n_slip> ddelta_gamma_dx;
-    // dR_tc/dtau_c = diag(tau_c_diagonal) - low_rank_P low_rank_Q^T (see solve_linearized).
-    std::array<double, n_slip>                tau_c_diagonal;
-    std::array<std::array<double, 2>, n_slip> low_rank_P, low_rank_Q;
+    // dR_tc/dtau_c = diag(tau_c_diagonal) - low_rank_P low_rank_Q^T (see solve_linearized), of
+    // rank 2 plus one per family with a latent matrix.
+    static constexpr int                             max_rank = 2 + max_slip_families;
+    int                                              rank = 2;
+    std::array<double, n_slip>                       tau_c_diagonal;
+    std::array<std::array<double, max_rank>, n_slip> low_rank_P, low_rank_Q;
 
     // X = -Delta L_p = -sum_r Delta gamma^r m_0^r (x) n_0^r (eq. 13)
     Matrix minus_delta_L_p() const
@@ -257,53 +262,82 @@ namespace indentsim::materials::crystal
       assemble_hardening_rows(D, u, v, hardening, J);
     }
 
-    // R_tc rows: dDelta tau_c^r = a_r dDelta Gamma + b_r d|Delta gamma^r| (the hardening law),
-    // dR_tc^r/dtau_c^s = delta_rs (tau_ref - b_r s_r D_r)/C - (a_r e_s + b_r s_r u_r v_s)/C,
-    // s_r = sign(Delta gamma^r), e = dDelta Gamma/dtau_c, C the stiffness scale: diagonal minus
-    // rank 2, kept for solve_linearized.
+    // R_tc rows: dDelta tau_c^r = a_r dDelta Gamma + sum_g c_rg dDelta Gamma_g
+    // + b_r d|Delta gamma^r| (the hardening law, HardeningIncrement), so
+    // dR_tc^r/dtau_c^s = delta_rs (tau_ref - b_r s_r D_r)/C
+    //                    - (a_r e_s + sum_g c_rg e_gs + b_r s_r u_r v_s)/C,
+    // s_r = sign(Delta gamma^r), e = dDelta Gamma/dtau_c, e_g = dDelta Gamma_g/dtau_c, C the
+    // stiffness scale: diagonal minus rank 2 (plus one per family), kept for solve_linearized.
     void assemble_hardening_rows(const std::array<double, n_slip> &D,
                                  const std::array<double, n_slip> &u,
                                  const std::array<double, n_slip> &v,
                                  const HardeningIncrement<n_slip> &hardening, Jacobian &J)
     {
-      const double                   C = laws.stiffness_scale;
-      std::array<double, n_unknowns> ddelta_Gamma_dx{};
-      double                         sign_u = 0.0;
-      std::array<double, n_slip>     sign;
+      const double C = laws.stiffness_scale;
+      const int    n_families = static_cast<int>(hardening.n_families);
+      rank = 2 + n_families;
+      // Column k of dDelta Gamma/dx (k = 0) and dDelta Gamma_g/dx (k = 2 + g) on the unknowns
+      // before the critical shears; their tau_c columns go to low_rank_Q.
+      std::array<std::array<double, tau_c_index>, max_rank> dslip_dx{};
+      std::array<double, max_rank>                          sign_u{};
+      std::array<double, n_slip>                            sign;
       for (int r = 0; r < n_slip; ++r)
         {
           sign[r] = slip.flow.delta_gamma[r] >= 0 ? 1.0 : -1.0;
+          const int g = n_families > 0 ? 2 + int(hardening.family_of_system[r]) : 0;
           for (int j = 0; j < tau_c_index; ++j)
-            ddelta_Gamma_dx[j] += sign[r] * ddelta_gamma_dx[r][j];
-          sign_u += sign[r] * u[r];
+            {
+              dslip_dx[0][j] += sign[r] * ddelta_gamma_dx[r][j];
+              if (g > 0)
+                dslip_dx[g][j] += sign[r] * ddelta_gamma_dx[r][j];
+            }
+          sign_u[0] += sign[r] * u[r];
+          if (g > 0)
+            sign_u[g] += sign[r] * u[r];
         }
-      for (int s = 0; s < n_slip; ++s)
-        ddelta_Gamma_dx[tau_c_index + s] = sign[s] * D[s] + sign_u * v[s];
       for (int r = 0; r < n_slip; ++r)
         {
           const double a = hardening.total_rate[r];
           const double b = hardening.own_rate[r] * sign[r];
           tau_c_diagonal[r] = (laws.stress_scale - b * D[r]) / C;
-          low_rank_P[r] = {{a / C, b * u[r] / C}};
-          low_rank_Q[r] = {{ddelta_Gamma_dx[tau_c_index + r], v[r]}};
+          auto &P = low_rank_P[r];
+          auto &Q = low_rank_Q[r];
+          P[0] = a / C;
+          Q[0] = sign[r] * D[r] + sign_u[0] * v[r];
+          P[1] = b * u[r] / C;
+          Q[1] = v[r];
+          for (int g = 0; g < n_families; ++g)
+            {
+              const bool own_family = int(hardening.family_of_system[r]) == g;
+              P[2 + g] = hardening.family_rate[r][g] / C;
+              Q[2 + g] = (own_family ? sign[r] * D[r] : 0.0) + sign_u[2 + g] * v[r];
+            }
           auto &row = J[tau_c_index + r];
           for (int j = 0; j < tau_c_index; ++j)
-            row[j] = -(low_rank_P[r][0] * C * ddelta_Gamma_dx[j] + b * ddelta_gamma_dx[r][j]) / C;
+            {
+              double sum = P[0] * dslip_dx[0][j] + b * ddelta_gamma_dx[r][j] / C;
+              for (int g = 0; g < n_families; ++g)
+                sum += P[2 + g] * dslip_dx[2 + g][j];
+              row[j] = -sum;
+            }
         }
       for (int r = 0; r < n_slip; ++r)
         for (int s = 0; s < n_slip; ++s)
-          J[tau_c_index + r][tau_c_index + s] =
-              -(low_rank_P[r][0] * low_rank_Q[s][0] + low_rank_P[r][1] * low_rank_Q[s][1]) +
-              (r == s ? tau_c_diagonal[r] : 0.0);
+          {
+            double product = 0.0;
+            for (int k = 0; k < rank; ++k)
+              product += low_rank_P[r][k] * low_rank_Q[s][k];
+            J[tau_c_index + r][tau_c_index + s] = -product + (r == s ? tau_c_diagonal[r] : 0.0);
+          }
     }
 
     // Solves J X = B, J from the last evaluation with a Jacobian, by eliminating the critical
     // shears: with y = (E_e, Delta lambda), t = tau_c,
     //   Z = J_tt^-1 [J_ty | B_t],  (J_yy - J_yt Z_y) X_y = B_y - J_yt Z_B,  X_t = Z_B - Z_y X_y,
-    // where J_tt = D - P Q^T (diagonal plus rank 2, the latent hardening and the shared Phi)
+    // where J_tt = D - P Q^T (diagonal plus low rank: the latent hardening and the shared Phi)
     // is inverted by the Sherman-Morrison-Woodbury formula
     //   J_tt^-1 = D^-1 + D^-1 P (I - Q^T D^-1 P)^-1 Q^T D^-1.
-    // That needs D and the 2x2 capacitance away from singular: for large increments with
+    // That needs D and the small capacitance away from singular: for large increments with
     // q > 1, D_r = (tau_ref - b_r D_r)/C can approach zero while J itself is regular, so those
     // cases fall back to the dense LU of J.
     template <int n_rhs>
@@ -319,45 +353,73 @@ namespace indentsim::materials::crystal
       for (int r = 0; r < n_slip; ++r)
         if (!(std::abs(tau_c_diagonal[r]) >= diagonal_floor))
           return dense();
-      std::array<double, 2> capacitance_rows[2] = {{{1.0, 0.0}}, {{0.0, 1.0}}};
+      // The capacitance I - Q^T D^-1 P (rank x rank) in LU with partial pivoting.
+      std::array<std::array<double, max_rank>, max_rank> capacitance{};
+      for (int i = 0; i < rank; ++i)
+        capacitance[i][i] = 1.0;
       for (int r = 0; r < n_slip; ++r)
-        for (unsigned int i = 0; i < 2; ++i)
-          for (unsigned int j = 0; j < 2; ++j)
-            capacitance_rows[i][j] -= low_rank_Q[r][i] * low_rank_P[r][j] / tau_c_diagonal[r];
-      const double determinant = capacitance_rows[0][0] * capacitance_rows[1][1] -
-                                 capacitance_rows[0][1] * capacitance_rows[1][0];
+        for (int i = 0; i < rank; ++i)
+          for (int j = 0; j < rank; ++j)
+            capacitance[i][j] -= low_rank_Q[r][i] * low_rank_P[r][j] / tau_c_diagonal[r];
+      std::array<int, max_rank> pivot_row;
+      double                    determinant = 1.0;
+      for (int k = 0; k < rank; ++k)
+        {
+          int pivot = k;
+          for (int i = k + 1; i < rank; ++i)
+            if (std::abs(capacitance[i][k]) > std::abs(capacitance[pivot][k]))
+              pivot = i;
+          pivot_row[k] = pivot;
+          std::swap(capacitance[k], capacitance[pivot]);
+          determinant *= capacitance[k][k];
+          if (capacitance[k][k] == 0.0)
+            break;
+          for (int i = k + 1; i < rank; ++i)
+            {
+              capacitance[i][k] /= capacitance[k][k];
+              for (int j = k + 1; j < rank; ++j)
+                capacitance[i][j] -= capacitance[i][k] * capacitance[k][j];
+            }
+        }
       if (!(std::abs(determinant) >= 1e-3))
         return dense();
 
       // Z = J_tt^-1 [J_ty | B_t]
-      std::array<std::array<double, n_columns>, n_slip> Z;
-      std::array<double, n_columns>                     W0{}, W1{};
+      std::array<std::array<double, n_columns>, n_slip>   Z;
+      std::array<std::array<double, n_columns>, max_rank> W{};
       for (int r = 0; r < n_slip; ++r)
         {
           const double inverse_diagonal = 1.0 / tau_c_diagonal[r];
           for (int c = 0; c < n_columns; ++c)
             {
               Z[r][c] = (c < n_y ? J[n_y + r][c] : B[n_y + r][c - n_y]) * inverse_diagonal;
-              W0[c] += low_rank_Q[r][0] * Z[r][c];
-              W1[c] += low_rank_Q[r][1] * Z[r][c];
+              for (int k = 0; k < rank; ++k)
+                W[k][c] += low_rank_Q[r][k] * Z[r][c];
             }
         }
-      for (int c = 0; c < n_columns; ++c)
+      // W := capacitance^-1 W (the LU's row swaps, then forward and back substitution).
+      for (int k = 0; k < rank; ++k)
         {
-          const double k0 =
-              (capacitance_rows[1][1] * W0[c] - capacitance_rows[0][1] * W1[c]) / determinant;
-          const double k1 =
-              (capacitance_rows[0][0] * W1[c] - capacitance_rows[1][0] * W0[c]) / determinant;
-          W0[c] = k0;
-          W1[c] = k1;
+          std::swap(W[k], W[pivot_row[k]]);
+          for (int i = k + 1; i < rank; ++i)
+            for (int c = 0; c < n_columns; ++c)
+              W[i][c] -= capacitance[i][k] * W[k][c];
         }
+      for (int k = rank - 1; k >= 0; --k)
+        for (int c = 0; c < n_columns; ++c)
+          {
+            double sum = W[k][c];
+            for (int j = k + 1; j < rank; ++j)
+              sum -= capacitance[k][j] * W[j][c];
+            W[k][c] = sum / capacitance[k][k];
+          }
       for (int r = 0; r < n_slip; ++r)
-        {
-          const double p0 = low_rank_P[r][0] / tau_c_diagonal[r],
-                       p1 = low_rank_P[r][1] / tau_c_diagonal[r];
-          for (int c = 0; c < n_columns; ++c)
-            Z[r][c] += p0 * W0[c] + p1 * W1[c];
-        }
+        for (int k = 0; k < rank; ++k)
+          {
+            const double p = low_rank_P[r][k] / tau_c_diagonal[r];
+            for (int c = 0; c < n_columns; ++c)
+              Z[r][c] += p * W[k][c];
+          }
 
       // Schur complement on y.
       std::array<std::array<double, n_y>, n_y>   schur;

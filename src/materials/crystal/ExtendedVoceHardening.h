@@ -19,12 +19,21 @@
 
 namespace indentsim::materials
 {
+  // The most slip families a hardening law may distinguish (the largest lattice has 5).
+  inline constexpr unsigned int max_slip_families = 8;
+
+  // The hardening increment and its derivative, in the form
+  //   dDelta tau_c^r = a_r dDelta Gamma + sum_g c_rg dDelta Gamma_g + b_r d|Delta gamma^r|,
+  // Delta Gamma_g the slip of family g's systems (the c_rg part only with n_families > 0).
   template <int n_slip>
   struct HardeningIncrement
   {
-    std::array<double, n_slip> value;      // Delta tau_c^r [GPa]
-    std::array<double, n_slip> total_rate; // a_r = dDelta tau_c^r / dDelta Gamma [GPa]
-    std::array<double, n_slip> own_rate;   // b_r = dDelta tau_c^r / d|Delta gamma^r| [GPa]
+    std::array<double, n_slip> value;          // Delta tau_c^r [GPa]
+    std::array<double, n_slip> total_rate;     // a_r = dDelta tau_c^r / dDelta Gamma [GPa]
+    std::array<double, n_slip> own_rate;       // b_r = dDelta tau_c^r / d|Delta gamma^r| [GPa]
+    unsigned int               n_families = 0; // 0: no c_rg part
+    const unsigned int        *family_of_system = nullptr; // g of each system (n_families > 0)
+    std::array<std::array<double, max_slip_families>, n_slip> family_rate; // c_rg [GPa]
   };
 
   struct ExtendedVoceHardening

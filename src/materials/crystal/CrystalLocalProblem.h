@@ -276,24 +276,29 @@ namespace indentsim::materials::crystal
       const double C = laws.stiffness_scale;
       const int    n_families = static_cast<int>(hardening.n_families);
       rank = 2 + n_families;
-      // Column k of dDelta Gamma/dx (k = 0) and dDelta Gamma_g/dx (k = 2 + g) on the unknowns
+      // Row k of dDelta Gamma/dx (k = 0) and dDelta Gamma_g/dx (k = 2 + g) on the unknowns
       // before the critical shears; their tau_c columns go to low_rank_Q.
-      std::array<std::array<double, tau_c_index>, max_rank> dslip_dx{};
-      std::array<double, max_rank>                          sign_u{};
+      std::array<std::array<double, tau_c_index>, max_rank> dslip_dx;
+      std::array<double, max_rank>                          sign_u;
       std::array<double, n_slip>                            sign;
+      for (int k = 0; k < rank; ++k)
+        {
+          dslip_dx[k].fill(0.0);
+          sign_u[k] = 0.0;
+        }
       for (int r = 0; r < n_slip; ++r)
         {
           sign[r] = slip.flow.delta_gamma[r] >= 0 ? 1.0 : -1.0;
-          const int g = n_families > 0 ? 2 + int(hardening.family_of_system[r]) : 0;
           for (int j = 0; j < tau_c_index; ++j)
-            {
-              dslip_dx[0][j] += sign[r] * ddelta_gamma_dx[r][j];
-              if (g > 0)
-                dslip_dx[g][j] += sign[r] * ddelta_gamma_dx[r][j];
-            }
+            dslip_dx[0][j] += sign[r] * ddelta_gamma_dx[r][j];
           sign_u[0] += sign[r] * u[r];
-          if (g > 0)
-            sign_u[g] += sign[r] * u[r];
+        }
+      for (int r = 0; r < n_slip && n_families > 0; ++r)
+        {
+          const int g = 2 + int(hardening.family_of_system[r]);
+          for (int j = 0; j < tau_c_index; ++j)
+            dslip_dx[g][j] += sign[r] * ddelta_gamma_dx[r][j];
+          sign_u[g] += sign[r] * u[r];
         }
       for (int r = 0; r < n_slip; ++r)
         {
@@ -321,11 +326,27 @@ namespace indentsim::materials::crystal
               row[j] = -sum;
             }
         }
+      if (rank == 2)
+        assemble_tau_c_block<2>(J);
+      else
+        {
+          for (int r = 0; r < n_slip; ++r) // the unused columns take part as zeros
+            for (int k = rank; k < max_rank; ++k)
+              low_rank_P[r][k] = low_rank_Q[r][k] = 0.0;
+          assemble_tau_c_block<max_rank>(J);
+        }
+    }
+
+    // J_tt = diag(tau_c_diagonal) - P Q^T with R columns of P and Q (a compile-time R keeps the
+    // common rank 2 as fast as a hand-written one).
+    template <int R>
+    void assemble_tau_c_block(Jacobian &J) const
+    {
       for (int r = 0; r < n_slip; ++r)
         for (int s = 0; s < n_slip; ++s)
           {
             double product = 0.0;
-            for (int k = 0; k < rank; ++k)
+            for (int k = 0; k < R; ++k)
               product += low_rank_P[r][k] * low_rank_Q[s][k];
             J[tau_c_index + r][tau_c_index + s] = -product + (r == s ? tau_c_diagonal[r] : 0.0);
           }
@@ -353,73 +374,11 @@ namespace indentsim::materials::crystal
       for (int r = 0; r < n_slip; ++r)
         if (!(std::abs(tau_c_diagonal[r]) >= diagonal_floor))
           return dense();
-      // The capacitance I - Q^T D^-1 P (rank x rank) in LU with partial pivoting.
-      std::array<std::array<double, max_rank>, max_rank> capacitance{};
-      for (int i = 0; i < rank; ++i)
-        capacitance[i][i] = 1.0;
-      for (int r = 0; r < n_slip; ++r)
-        for (int i = 0; i < rank; ++i)
-          for (int j = 0; j < rank; ++j)
-            capacitance[i][j] -= low_rank_Q[r][i] * low_rank_P[r][j] / tau_c_diagonal[r];
-      std::array<int, max_rank> pivot_row;
-      double                    determinant = 1.0;
-      for (int k = 0; k < rank; ++k)
-        {
-          int pivot = k;
-          for (int i = k + 1; i < rank; ++i)
-            if (std::abs(capacitance[i][k]) > std::abs(capacitance[pivot][k]))
-              pivot = i;
-          pivot_row[k] = pivot;
-          std::swap(capacitance[k], capacitance[pivot]);
-          determinant *= capacitance[k][k];
-          if (capacitance[k][k] == 0.0)
-            break;
-          for (int i = k + 1; i < rank; ++i)
-            {
-              capacitance[i][k] /= capacitance[k][k];
-              for (int j = k + 1; j < rank; ++j)
-                capacitance[i][j] -= capacitance[i][k] * capacitance[k][j];
-            }
-        }
-      if (!(std::abs(determinant) >= 1e-3))
-        return dense();
-
       // Z = J_tt^-1 [J_ty | B_t]
-      std::array<std::array<double, n_columns>, n_slip>   Z;
-      std::array<std::array<double, n_columns>, max_rank> W{};
-      for (int r = 0; r < n_slip; ++r)
-        {
-          const double inverse_diagonal = 1.0 / tau_c_diagonal[r];
-          for (int c = 0; c < n_columns; ++c)
-            {
-              Z[r][c] = (c < n_y ? J[n_y + r][c] : B[n_y + r][c - n_y]) * inverse_diagonal;
-              for (int k = 0; k < rank; ++k)
-                W[k][c] += low_rank_Q[r][k] * Z[r][c];
-            }
-        }
-      // W := capacitance^-1 W (the LU's row swaps, then forward and back substitution).
-      for (int k = 0; k < rank; ++k)
-        {
-          std::swap(W[k], W[pivot_row[k]]);
-          for (int i = k + 1; i < rank; ++i)
-            for (int c = 0; c < n_columns; ++c)
-              W[i][c] -= capacitance[i][k] * W[k][c];
-        }
-      for (int k = rank - 1; k >= 0; --k)
-        for (int c = 0; c < n_columns; ++c)
-          {
-            double sum = W[k][c];
-            for (int j = k + 1; j < rank; ++j)
-              sum -= capacitance[k][j] * W[j][c];
-            W[k][c] = sum / capacitance[k][k];
-          }
-      for (int r = 0; r < n_slip; ++r)
-        for (int k = 0; k < rank; ++k)
-          {
-            const double p = low_rank_P[r][k] / tau_c_diagonal[r];
-            for (int c = 0; c < n_columns; ++c)
-              Z[r][c] += p * W[k][c];
-          }
+      std::array<std::array<double, n_columns>, n_slip> Z;
+      if (!(rank == 2 ? woodbury_solve<2, n_rhs>(J, B, Z)
+                      : woodbury_solve<max_rank, n_rhs>(J, B, Z)))
+        return dense();
 
       // Schur complement on y.
       std::array<std::array<double, n_y>, n_y>   schur;
@@ -451,6 +410,83 @@ namespace indentsim::materials::crystal
           }
       for (int i = 0; i < n_y; ++i)
         B[i] = X_y[i];
+      return true;
+    }
+
+    // Z = J_tt^-1 [J_ty | B_t] by the Sherman-Morrison-Woodbury formula with R columns of P and
+    // Q; false if the capacitance is near singular.
+    template <int R, int n_rhs>
+    bool woodbury_solve(const Jacobian                                              &J,
+                        const std::array<std::array<double, n_rhs>, n_unknowns>     &B,
+                        std::array<std::array<double, tau_c_index + n_rhs>, n_slip> &Z) const
+    {
+      constexpr int n_y = tau_c_index, n_columns = n_y + n_rhs;
+      // The capacitance I - Q^T D^-1 P (R x R) in LU with partial pivoting.
+      std::array<std::array<double, R>, R> capacitance{};
+      for (int i = 0; i < R; ++i)
+        capacitance[i][i] = 1.0;
+      for (int r = 0; r < n_slip; ++r)
+        for (int i = 0; i < R; ++i)
+          for (int j = 0; j < R; ++j)
+            capacitance[i][j] -= low_rank_Q[r][i] * low_rank_P[r][j] / tau_c_diagonal[r];
+      std::array<int, R> pivot_row;
+      double             determinant = 1.0;
+      for (int k = 0; k < R; ++k)
+        {
+          int pivot = k;
+          for (int i = k + 1; i < R; ++i)
+            if (std::abs(capacitance[i][k]) > std::abs(capacitance[pivot][k]))
+              pivot = i;
+          pivot_row[k] = pivot;
+          std::swap(capacitance[k], capacitance[pivot]);
+          determinant *= capacitance[k][k];
+          if (capacitance[k][k] == 0.0)
+            break;
+          for (int i = k + 1; i < R; ++i)
+            {
+              capacitance[i][k] /= capacitance[k][k];
+              for (int j = k + 1; j < R; ++j)
+                capacitance[i][j] -= capacitance[i][k] * capacitance[k][j];
+            }
+        }
+      if (!(std::abs(determinant) >= 1e-3))
+        return false;
+
+      std::array<std::array<double, n_columns>, R> W{};
+      for (int r = 0; r < n_slip; ++r)
+        {
+          const double inverse_diagonal = 1.0 / tau_c_diagonal[r];
+          for (int c = 0; c < n_columns; ++c)
+            {
+              Z[r][c] = (c < n_y ? J[n_y + r][c] : B[n_y + r][c - n_y]) * inverse_diagonal;
+              for (int k = 0; k < R; ++k)
+                W[k][c] += low_rank_Q[r][k] * Z[r][c];
+            }
+        }
+      // W := capacitance^-1 W (the LU's row swaps, then forward and back substitution).
+      for (int k = 0; k < R; ++k)
+        {
+          std::swap(W[k], W[pivot_row[k]]);
+          for (int i = k + 1; i < R; ++i)
+            for (int c = 0; c < n_columns; ++c)
+              W[i][c] -= capacitance[i][k] * W[k][c];
+        }
+      for (int k = R - 1; k >= 0; --k)
+        for (int c = 0; c < n_columns; ++c)
+          {
+            double sum = W[k][c];
+            for (int j = k + 1; j < R; ++j)
+              sum -= capacitance[k][j] * W[j][c];
+            W[k][c] = sum / capacitance[k][k];
+          }
+      for (int r = 0; r < n_slip; ++r)
+        for (int k = 0; k < R; ++k)
+          {
+            const double p = low_rank_P[r][k] / tau_c_diagonal[r];
+            for (int c = 0; c < n_columns; ++c)
+              Z[r][c] += p * W[k][c];
+          }
+
       return true;
     }
   };

@@ -199,6 +199,44 @@ TEST(Tensile, SingleCrystalOrientationIsApplied)
   EXPECT_GT(along_111.back().true_stress, 1.2 * last_001);
 }
 
+// The hexagonal crystal of examples/titanium_hcp_0001_n24.yaml (a hardening block per family)
+// pulled along c: unchanged by a 60 degree rotation about c (the lattice's 6-fold axis), and
+// the same orientation in Miller-Bravais indices, (0001) with [2 -1 -1 0] along x, is the crystal
+// frame itself. Pulled along a1 (the plane (2 -1 -1 0) normal to the axis) the soft prismatic
+// systems slip (Schmid factor 0.43, tau0 = 0.15 GPa); along c only the hard pyramidal <c+a>
+// ones can (tau0 = 1.11 GPa), so the flow stress is several times higher.
+TEST(Tensile, HexagonalSingleCrystalFollowsItsSymmetry)
+{
+  io::Case c = tensile_case("crystal");
+  c.specimen.elements_per_side = 1;
+  c.loading.max_strain = 0.02;
+  c.loading.steps = 5;
+  c.solver.residual_tolerance = 1e-13;
+  io::MaterialParameters &m = c.material;
+  m.lattice = "hcp";
+  m.c_over_a = 1.587;
+  m.slip_families = {"basal", "prismatic", "pyramidal_ca"};
+  m.C11 = 160.0, m.C12 = 90.0, m.C13 = 66.0, m.C33 = 181.7, m.C44 = 46.5;
+  m.q = 1.0;
+  m.family_hardening = {{"basal", 0.3493, 0.2193, 0.0022313, 0.0},
+                        {"prismatic", 0.15, 1.3522, 0.0121539, 0.0},
+                        {"pyramidal_ca", 1.1079, 2.3122, 0.0068559, 0.0}};
+  m.orientation.euler_bunge_deg = {{0., 0., 0.}};
+  const double along_c = run_tensile(c).back().true_stress;
+  m.orientation.euler_bunge_deg = {{60., 0., 0.}};
+  EXPECT_NEAR(run_tensile(c).back().true_stress, along_c, 1e-9 * along_c);
+  m.orientation.kind = "surface_normal";
+  m.orientation.surface_normal = {0., 0., 0., 1.};
+  m.orientation.reference_direction = {2., -1., -1., 0.};
+  EXPECT_NEAR(run_tensile(c).back().true_stress, along_c, 1e-12 * along_c);
+  m.orientation.surface_normal = {2., -1., -1., 0.};
+  m.orientation.reference_direction = {0., 0., 0., 1.};
+  const double along_a = run_tensile(c).back().true_stress;
+  std::cout << "[ measured ] hcp single crystal at log strain 0.02: along c " << along_c
+            << " GPa, along a1 " << along_a << " GPa\n";
+  EXPECT_GT(along_c, 3 * along_a);
+}
+
 // One rank and all ranks of MPI_COMM_WORLD give the same polycrystal curve: the grains follow
 // the element positions, not the partition (runs under mpirun -np 2).
 TEST(MpiTensile, OneVersusManyRanksGiveTheSameCurve)

@@ -563,14 +563,14 @@ namespace indentsim::io
                      "not a slip family of this crystal (" + listed +
                          "); name one of them, quoted, e.g. \"" + families.front() +
                          "\": {tau0: " + format_number(m.tau0) + "}");
-            if (!(block.tau0 > 0.))
-              reject(path + ".tau0", format_number(block.tau0),
-                     "the initial critical resolved shear stress tau0 must be > 0 GPa");
-            for (const auto &[name, value] : {std::pair{"tau1", block.tau1},
+            // The common keys' ranges (the schema's) apply to each block's values.
+            for (const auto &[name, value] : {std::pair{"tau0", block.tau0},
+                                              {"tau1", block.tau1},
                                               {"theta0", block.theta0},
                                               {"theta1", block.theta1}})
-              if (!(value >= 0.) || !std::isfinite(value))
-                reject(path + "." + name, format_number(value), "must be >= 0 GPa and finite");
+              if (const Key &key = find_key(std::string("material.hardening.") + name);
+                  !key.range.contains(value))
+                reject(path + "." + name, format_number(value), key.range_message);
             if (block.theta0 > 0. && !(block.tau1 > 0.))
               reject(path + ".tau1", format_number(block.tau1),
                      "tau1 must be > 0 when theta0 > 0 (here theta0 = " +

@@ -121,6 +121,9 @@ namespace indentsim::materials
                                     (hcp ? " or 4 Miller-Bravais indices" : ""));
       if (!hcp)
         return {{indices[0], indices[1], indices[2]}};
+      if (std::all_of(indices.begin(), indices.end(), [](const double i) { return i == 0; }))
+        throw std::invalid_argument(shown + "names no " + (plane ? "plane" : "direction") +
+                                    " (all indices 0)");
 
       std::array<double, 4> four;
       if (indices.size() == 4)
@@ -166,18 +169,10 @@ namespace indentsim::materials
       {
         return rotation_from_surface_normal(normal, reference);
       }
-    catch (const std::invalid_argument &error)
+    catch (const std::invalid_argument &)
       {
-        // The message in the case file's indices, not the crystal-frame vectors.
-        const std::string what = error.what();
-        const std::string key = what.substr(0, what.find(' '));
-        if (key != "reference_direction")
-          throw std::invalid_argument("surface_normal " + indices_text(orientation.surface_normal) +
-                                      ": names no plane (all indices 0)");
-        if (reference[0] == 0 && reference[1] == 0 && reference[2] == 0)
-          throw std::invalid_argument("reference_direction " +
-                                      indices_text(orientation.reference_direction) +
-                                      ": names no direction (all indices 0)");
+        // Non-zero vectors (crystal_vector): the reference direction is out of the plane. The
+        // message in the case file's indices, not the crystal-frame vectors.
         throw std::invalid_argument(
             "reference_direction " + indices_text(orientation.reference_direction) +
             " does not lie in the plane surface_normal " +

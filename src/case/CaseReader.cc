@@ -238,8 +238,81 @@ namespace indentsim::io
             break;
           case ValueType::family_blocks: // read by read_family_blocks
             break;
+          case ValueType::layers:
+            key.layers(result) = parse_layers(node, key);
+            break;
           }
         return true;
+      }
+
+      // material.layers: a list of maps, each with its thickness; the other keys are kept as
+      // canonical flow YAML (numbers in shortest round-trip form) and checked as a material
+      // block by the validator (check_layers).
+      std::vector<MaterialLayer> parse_layers(const YAML::Node &node, const Key &key) const
+      {
+        const std::string expected =
+            "expected a list of layers from the surface down, each a map with `thickness` (um) "
+            "and the material keys it changes, e.g. [{thickness: 1.5, yield_stress: 0.6}]";
+        if (!node.IsSequence() || node.size() == 0)
+          fail(line_of(node), key.path + " = " + node_text(node) + ": " + expected);
+        std::vector<MaterialLayer> layers(node.size());
+        for (std::size_t i = 0; i < node.size(); ++i)
+          {
+            const std::string path = key.path + "[" + std::to_string(i) + "]";
+            const YAML::Node &entry = node[i];
+            if (!entry.IsMap())
+              fail(line_of(entry), path + " = " + node_text(entry) + ": " + expected);
+            if (!entry["thickness"].IsDefined())
+              fail(line_of(entry), path + " = " + node_text(entry) +
+                                       ": missing key 'thickness' (the layer's thickness in um)");
+            layers[i].thickness = parse_double(entry["thickness"], path + ".thickness",
+                                               "the layer's thickness in um");
+            YAML::Node overrides(YAML::NodeType::Map);
+            for (const auto &item : entry)
+              if (item.first.Scalar() != "thickness")
+                overrides[item.first.Scalar()] = item.second;
+            layers[i].overrides = canonical_text(overrides);
+          }
+        return layers;
+      }
+
+      // A word as it is, anything else (a slip family "{112}<111>", a path) in double quotes.
+      static std::string plain_or_quoted(const std::string &text)
+      {
+        const bool plain = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+          return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+        });
+        if (plain)
+          return text;
+        YAML::Emitter emitter;
+        emitter << YAML::DoubleQuoted << text;
+        return emitter.c_str();
+      }
+
+      // Flow YAML with numbers in shortest round-trip form, so that 0.60 and 0.6 give one
+      // resolved case and one fingerprint.
+      static std::string canonical_text(const YAML::Node &node)
+      {
+        if (node.IsScalar())
+          {
+            const std::optional<double> value = io::parse_yaml_number(node.Scalar());
+            return value ? format_number(*value) : plain_or_quoted(node.Scalar());
+          }
+        std::string text;
+        if (node.IsSequence())
+          {
+            for (std::size_t i = 0; i < node.size(); ++i)
+              text += (i == 0 ? "" : ", ") + canonical_text(node[i]);
+            return "[" + text + "]";
+          }
+        if (node.IsMap())
+          {
+            for (const auto &item : node)
+              text += (text.empty() ? "" : ", ") + plain_or_quoted(item.first.Scalar()) + ": " +
+                      canonical_text(item.second);
+            return "{" + text + "}";
+          }
+        return node_text(node);
       }
 
       // The maps under material.hardening named by slip families, in file order: each key a

@@ -55,6 +55,8 @@ namespace indentsim::io
           return "list of lists of numbers";
         case ValueType::family_blocks:
           return "map of numbers";
+        case ValueType::layers:
+          return "list of maps";
         }
       return {};
     }

@@ -3,6 +3,7 @@
 // hand below. Every message names the key path, the value and what is allowed, and, for a
 // case read from a file, the file and the line.
 #include "case/CaseReading.h"
+#include "case/MaterialLayers.h"
 #include "case/Schema.h"
 #include "indenter/IndenterFactory.h"
 #include "indenter/ProfileTable.h"
@@ -50,6 +51,7 @@ namespace indentsim::io
         check_section("material");
         check_hardening_law();
         check_crystal_parameters();
+        check_layers();
         check_section("indenter");
         std::unique_ptr<indenter::IndenterSurface> surface = check_indenter();
         check_section("specimen");
@@ -92,6 +94,30 @@ namespace indentsim::io
       }
 
       bool tensile() const { return checked.test == TestKind::tensile; }
+
+      // material.layers: for the indentation test, thicknesses finite and >= 0, and each
+      // layer's material admissible (read and checked as a material block, MaterialLayers.h).
+      void check_layers() const
+      {
+        const std::vector<MaterialLayer> &layers = checked.material.layers;
+        if (layers.empty())
+          return;
+        const std::string path = "material.layers";
+        if (tensile())
+          reject(path, format_layers(layers),
+                 "layers lie below an indented surface (test: indentation); the tensile test "
+                 "models a homogeneous polycrystal");
+        for (std::size_t i = 0; i < layers.size(); ++i)
+          if (!(layers[i].thickness >= 0) || !std::isfinite(layers[i].thickness))
+            reject(path, format_layers(layers),
+                   "the thickness of layer " + std::to_string(i) + " (" +
+                       format_number(layers[i].thickness) + ") must be a finite number >= 0 um");
+        std::string source = checked.source_file.empty() ? "case file" : checked.source_file;
+        if (value_origins != nullptr)
+          if (const auto origin = value_origins->find(path); origin != value_origins->end())
+            source += ":" + std::to_string(origin->second.line + 1);
+        layer_materials(checked.material, source);
+      }
 
       // The single-key checks of the schema for every key of one top-level section.
       void check_section(const std::string &section) const
@@ -141,6 +167,7 @@ namespace indentsim::io
           case ValueType::words: // the allowed words depend on other keys: checked by hand
           case ValueType::matrix:
           case ValueType::family_blocks:
+          case ValueType::layers: // check_layers
             break;
           case ValueType::list:
             for (std::size_t i = 0; i < key.list(c).size(); ++i)

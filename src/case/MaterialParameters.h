@@ -113,6 +113,18 @@ namespace indentsim::io
     bool operator==(const FamilyHardening &) const = default;
   };
 
+  // One layer of a depth-graded material (material.layers), from the surface down: its
+  // thickness and the material keys it gives its own values, as flow YAML. The layer's material
+  // is the material block as resolved (every key written out, as in resolved_case.yaml) with
+  // these keys replaced (case/MaterialLayers.h).
+  struct MaterialLayer
+  {
+    double      thickness = 0; // [um], >= 0
+    std::string overrides;     // e.g. "{yield_stress: 0.6}"
+
+    bool operator==(const MaterialLayer &) const = default;
+  };
+
   struct MaterialParameters
   {
     Choice<ModelKind>          model = ModelKind::j2;
@@ -150,6 +162,9 @@ namespace indentsim::io
     std::vector<std::vector<double>> latent_matrix;
     double yield_exponent_n = 10; // n of the regularized Schmid law (exponent 2n), eq. 14
     OrientationParameters orientation;
+    // Layers from the surface down; below the last one the parameters above hold (the
+    // substrate). Empty: a homogeneous specimen.
+    std::vector<MaterialLayer> layers;
 
     bool operator==(const MaterialParameters &) const = default;
   };

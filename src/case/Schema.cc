@@ -106,6 +106,10 @@ namespace indentsim::io
     {
       return false;
     }
+    bool layers_given(const Case &c)
+    {
+      return !c.material.layers.empty();
+    }
     bool orientation_by_normal(const Case &c)
     {
       return c.material.orientation.kind == OrientationKind::surface_normal;
@@ -402,6 +406,19 @@ namespace indentsim::io
               .describe("the crystal direction along sample x, in the indented plane (not "
                         "guessed): cubic [uvw]; hcp [uvw] = u a1 + v a2 + w c or Miller–Bravais "
                         "[uvtw] (crystal)"),
+          D::at<&C::material, &M::layers>("material.layers")
+              .written_if(&layers_given)
+              .default_is("– (homogeneous)")
+              .allowed_is("a list of maps, each `thickness` (µm, ≥ 0) and keys of `material` "
+                          "other than `model`, `lattice`, `slip_families`, `c_over_a`, "
+                          "`orientation`, `hardening.law` and `layers`")
+              .comment("from the surface down [um, GPa]")
+              .describe("a depth-graded specimen (indentation): layers from the surface down, "
+                        "e.g. `[{thickness: 1.5, yield_stress: 0.6}]`; each layer is the "
+                        "material block with the keys it gives replaced (nested maps key by "
+                        "key), the material block itself holds below the last layer (the "
+                        "substrate). A quadrature point takes the layer of its depth below the "
+                        "undeformed surface"),
       };
     }
 
@@ -881,6 +898,8 @@ namespace indentsim::io
         return format_matrix(matrix(readable));
       case ValueType::family_blocks:
         return format_family_blocks(family_blocks(readable));
+      case ValueType::layers:
+        return format_layers(layers(readable));
       }
     return {};
   }
@@ -999,6 +1018,19 @@ namespace indentsim::io
     for (std::size_t i = 0; i < blocks.size(); ++i)
       text += (i == 0 ? "\"" : ", \"") + blocks[i].family + "\": " + format_family_block(blocks[i]);
     return text + "}";
+  }
+
+  std::string format_layers(const std::vector<MaterialLayer> &layers)
+  {
+    std::string text = "[";
+    for (std::size_t i = 0; i < layers.size(); ++i)
+      {
+        const std::string &overrides = layers[i].overrides; // "{...}" or "{}"
+        const std::string  inner = overrides.substr(1, overrides.size() - 2);
+        text += (i == 0 ? "{thickness: " : ", {thickness: ") + format_number(layers[i].thickness) +
+                (inner.empty() ? "" : ", " + inner) + "}";
+      }
+    return text + "]";
   }
 
   std::string format_bool(const bool value)

@@ -24,14 +24,16 @@ namespace indentsim::io
     number,       // double
     whole_number, // unsigned int
     boolean,
-    choice,       // Choice<E>: a word of its table
-    text,         // a string the user chooses freely (a path)
-    triple,       // three numbers
-    list,         // one or more numbers (std::vector<double>)
-    words,        // one or more words (std::vector<std::string>)
-    matrix,       // a square list of lists of numbers (std::vector<std::vector<double>>)
-    family_blocks // maps named by slip families, under the key's parent map
-                  // (std::vector<FamilyHardening>; the key's name is a placeholder)
+    choice,        // Choice<E>: a word of its table
+    text,          // a string the user chooses freely (a path)
+    triple,        // three numbers
+    list,          // one or more numbers (std::vector<double>)
+    words,         // one or more words (std::vector<std::string>)
+    matrix,        // a square list of lists of numbers (std::vector<std::vector<double>>)
+    family_blocks, // maps named by slip families, under the key's parent map
+                   // (std::vector<FamilyHardening>; the key's name is a placeholder)
+    layers         // a list of maps, each a thickness and material keys
+                   // (std::vector<MaterialLayer>)
   };
 
   // Admissible values: an interval, open or closed at each end (infinite ends exclude infinity),
@@ -92,6 +94,7 @@ namespace indentsim::io
     std::vector<std::string> &(*words)(Case &) = nullptr;
     std::vector<std::vector<double>> &(*matrix)(Case &) = nullptr;
     std::vector<FamilyHardening> &(*family_blocks)(Case &) = nullptr;
+    std::vector<MaterialLayer> &(*layers)(Case &) = nullptr;
     ChoiceAccess choice;
 
     // "C11" for "material.elastic.C11"; the map holding it: "material.elastic" ("" on top).
@@ -132,4 +135,6 @@ namespace indentsim::io
   // {"{110}<111>": {tau0: ...}, "{112}<111>": {...}}
   std::string format_family_blocks(const std::vector<FamilyHardening> &blocks);
   std::string format_bool(bool value);
+  // [{thickness: 1.5, yield_stress: 0.6}, ...]
+  std::string format_layers(const std::vector<MaterialLayer> &layers);
 } // namespace indentsim::io

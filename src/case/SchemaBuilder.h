@@ -120,6 +120,11 @@ namespace indentsim::io::schema_builder
           k.type = ValueType::family_blocks;
           k.family_blocks = &stored<Members...>;
         }
+      else if constexpr (std::is_same_v<T, std::vector<MaterialLayer>>)
+        {
+          k.type = ValueType::layers;
+          k.layers = &stored<Members...>;
+        }
       else
         {
           using Enum = typename ChoiceEnum<T>::type;

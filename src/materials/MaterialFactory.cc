@@ -1,6 +1,8 @@
 #include "materials/MaterialFactory.h"
+#include "case/MaterialLayers.h"
 #include "materials/CrystalPlasticity.h"
 #include "materials/J2Plasticity.h"
+#include "materials/LayeredMaterial.h"
 #include "materials/NeoHookean.h"
 #include "materials/crystal/Orientation.h"
 #include "materials/crystal/SlipSystems.h"
@@ -37,41 +39,69 @@ namespace indentsim::materials
     }
   } // namespace
 
+  namespace
+  {
+    std::unique_ptr<MaterialModel>
+    create_homogeneous_material(const io::MaterialParameters &parameters);
+  }
+
   std::unique_ptr<MaterialModel> create_material(const io::MaterialParameters &parameters)
   {
-    if (parameters.model == io::ModelKind::neo_hookean)
-      return std::make_unique<NeoHookean>(parameters.young_modulus, parameters.poisson_ratio);
-
-    if (parameters.model == io::ModelKind::j2)
+    if (parameters.layers.empty())
+      return create_homogeneous_material(parameters);
+    // A depth-graded specimen: each layer's material block as the case validator read it.
+    std::vector<std::unique_ptr<MaterialModel>> layers;
+    std::vector<double>                         thicknesses;
+    const std::vector<io::MaterialParameters> blocks = io::layer_materials(parameters, "material");
+    for (std::size_t i = 0; i < blocks.size(); ++i)
       {
-        YieldStressMeasure measure;
-        if (parameters.yield_stress_measure == io::YieldStressMeasure::cauchy)
-          measure = YieldStressMeasure::cauchy;
-        else if (parameters.yield_stress_measure == io::YieldStressMeasure::kirchhoff)
-          measure = YieldStressMeasure::kirchhoff;
-        else
-          throw std::invalid_argument("material.yield_stress_measure = \"" +
-                                      to_string(parameters.yield_stress_measure) +
-                                      "\" is not supported; allowed: cauchy, kirchhoff");
-        return std::make_unique<J2Plasticity>(parameters.young_modulus, parameters.poisson_ratio,
-                                              create_hardening_law(parameters), measure);
+        layers.push_back(create_homogeneous_material(blocks[i]));
+        thicknesses.push_back(parameters.layers[i].thickness);
       }
-
-    if (parameters.model == io::ModelKind::crystal)
-      {
-        const auto       &p = parameters;
-        const SlipSystems systems = slip_systems(to_string(p.lattice), p.slip_families, p.c_over_a);
-        return std::make_unique<CrystalPlasticity>(
-            systems,
-            p.lattice == io::Lattice::hcp
-                ? LatticeElasticity::hexagonal(p.C11, p.C12, p.C13, p.C33, p.C44)
-                : LatticeElasticity::cubic(p.C11, p.C12, p.C44),
-            crystal_hardening(p, systems), p.yield_exponent_n);
-      }
-
-    throw std::invalid_argument("material.model = \"" + to_string(parameters.model) +
-                                "\" is not supported; allowed: neo_hookean, j2, crystal");
+    return std::make_unique<LayeredMaterial>(std::move(layers), std::move(thicknesses),
+                                             create_homogeneous_material(parameters));
   }
+
+  namespace
+  {
+    std::unique_ptr<MaterialModel>
+    create_homogeneous_material(const io::MaterialParameters &parameters)
+    {
+      if (parameters.model == io::ModelKind::neo_hookean)
+        return std::make_unique<NeoHookean>(parameters.young_modulus, parameters.poisson_ratio);
+
+      if (parameters.model == io::ModelKind::j2)
+        {
+          YieldStressMeasure measure;
+          if (parameters.yield_stress_measure == io::YieldStressMeasure::cauchy)
+            measure = YieldStressMeasure::cauchy;
+          else if (parameters.yield_stress_measure == io::YieldStressMeasure::kirchhoff)
+            measure = YieldStressMeasure::kirchhoff;
+          else
+            throw std::invalid_argument("material.yield_stress_measure = \"" +
+                                        to_string(parameters.yield_stress_measure) +
+                                        "\" is not supported; allowed: cauchy, kirchhoff");
+          return std::make_unique<J2Plasticity>(parameters.young_modulus, parameters.poisson_ratio,
+                                                create_hardening_law(parameters), measure);
+        }
+
+      if (parameters.model == io::ModelKind::crystal)
+        {
+          const auto       &p = parameters;
+          const SlipSystems systems =
+              slip_systems(to_string(p.lattice), p.slip_families, p.c_over_a);
+          return std::make_unique<CrystalPlasticity>(
+              systems,
+              p.lattice == io::Lattice::hcp
+                  ? LatticeElasticity::hexagonal(p.C11, p.C12, p.C13, p.C33, p.C44)
+                  : LatticeElasticity::cubic(p.C11, p.C12, p.C44),
+              crystal_hardening(p, systems), p.yield_exponent_n);
+        }
+
+      throw std::invalid_argument("material.model = \"" + to_string(parameters.model) +
+                                  "\" is not supported; allowed: neo_hookean, j2, crystal");
+    }
+  } // namespace
 
   IsotropicHardening create_hardening_law(const io::MaterialParameters &parameters)
   {

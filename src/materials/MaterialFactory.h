@@ -14,6 +14,8 @@ namespace indentsim::materials
   //                      yield_stress_measure cauchy (the paper's eq. 4) or kirchhoff.
   // model crystal     -> CrystalPlasticity (lattice, C11, C12, C44, tau0, tau1, theta0, theta1,
   //                      q, yield_exponent_n); the orientation enters each point's state.
+  // With material.layers: a LayeredMaterial of one such model per layer (io::layer_materials)
+  // over the model of the block itself (the substrate).
   // Throws std::invalid_argument naming the key, the value and what is allowed.
   std::unique_ptr<MaterialModel> create_material(const io::MaterialParameters &parameters);
 

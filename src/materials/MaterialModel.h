@@ -54,6 +54,16 @@ namespace indentsim::materials
       initial_state(state);
     }
 
+    // The same for a material point at the depth `depth` [um] below the undeformed indented
+    // surface: a depth-graded material (LayeredMaterial) picks the layer there; the others
+    // ignore the depth.
+    virtual void initial_state_at_depth(std::span<double> state, const Tensor<2, 3> &orientation,
+                                        double depth) const
+    {
+      (void)depth;
+      oriented_initial_state(state, orientation);
+    }
+
     // Stress and consistent tangent for deformation gradient F at the end of the increment,
     // starting from the converged state of the previous increment. `state_new` receives the
     // updated internal state. Inputs are never modified. On entry `state_new` may hold a hint:

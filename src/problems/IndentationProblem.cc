@@ -195,11 +195,7 @@ namespace indentsim::problems
     // 2 x 2 x 2 (hexahedra) or 2 x 2 (axisymmetric quadrilaterals) Gauss points per cell.
     history_.reinit(solid_.triangulation.n_active_cells(), 1u << dim,
                     material_->n_state_variables());
-    // A single crystal: one lattice orientation everywhere (isotropic models ignore it).
-    const dealii::Tensor<2, 3> orientation = materials::create_orientation(case_.material);
-    for (std::size_t i = 0; i < history_.n_points(); ++i)
-      material_->oriented_initial_state(history_.converged_point(i), orientation);
-    history_.converged_changed();
+    initialise_material_states();
 
     // contact.penalty: 0 (automatic) gives eps_i = 30 E / L_i on each node (L_i its faces' mean
     // edge): eps_i L_i / E sets the rate of the augmentation passes, alike on every node of a
@@ -232,6 +228,34 @@ namespace indentsim::problems
            << "Matrix assembly: " << std::fixed << std::setprecision(1)
            << 100 * scatter_.fast_fraction() << std::defaultfloat
            << " % of rank 0's cells by precomputed positions" << std::endl;
+  }
+
+  // A single crystal: one lattice orientation everywhere (isotropic models ignore it). A
+  // depth-graded material (material.layers) takes at each Gauss point the layer of its depth
+  // below the undeformed surface z = 0, the last coordinate in 3D and in the (r, z) section; the
+  // points are those of the element kernels (2 x 2 (x 2) Gauss points in deal.II's order).
+  template <int dim>
+  void IndentationProblem<dim>::initialise_material_states()
+  {
+    const dealii::Tensor<2, 3> orientation = materials::create_orientation(case_.material);
+    for (std::size_t i = 0; i < history_.n_points(); ++i)
+      material_->oriented_initial_state(history_.converged_point(i), orientation);
+    if (!case_.material.layers.empty())
+      {
+        const unsigned int    n_state = history_.n_state();
+        dealii::FEValues<dim> fe_values(solid_.fe, dealii::QGauss<dim>(2),
+                                        dealii::update_quadrature_points);
+        for (const auto &cell : solid_.dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              fe_values.reinit(cell);
+              const std::span<double> states = history_.converged(cell);
+              for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
+                material_->initial_state_at_depth(states.subspan(q * n_state, n_state), orientation,
+                                                  -fe_values.quadrature_point(q)[dim - 1]);
+            }
+      }
+    history_.converged_changed();
   }
 
   template <int dim>

@@ -174,6 +174,8 @@ namespace indentsim::problems
     // With several MPI ranks: repartitions the mesh with the expected plastic zone's cells
     // weighted by the material's relative plastic cost.
     void balance_plastic_zone();
+    // The material state of every Gauss point before the first increment.
+    void initialise_material_states();
     void make_constraints();
     void collect_reaction_weights();
 

@@ -4,6 +4,7 @@
 
 #include "case/CaseFile.h"
 #include "case/Fingerprint.h"
+#include "case/MaterialLayers.h"
 #include "io/TextNumber.h"
 
 #include <algorithm>
@@ -43,33 +44,6 @@ namespace indentsim::study
     bool contains(const std::vector<std::string> &words, const std::string &word)
     {
       return std::find(words.begin(), words.end(), word) != words.end();
-    }
-
-    void merge_into(YAML::Node target, const YAML::Node &source, const std::string &path)
-    {
-      for (const auto &entry : source)
-        {
-          if (!entry.first.IsScalar())
-            {
-              // Not a plain name: kept as given, for the case reader to reject with its message.
-              target[entry.first] = YAML::Clone(entry.second);
-              continue;
-            }
-          const std::string key = entry.first.Scalar();
-          const std::string child_path = path.empty() ? key : path + "." + key;
-          if (entry.second.IsNull())
-            {
-              target.remove(key);
-              continue;
-            }
-          const YAML::Node &read_only = target;
-          const YAML::Node  existing = read_only[key];
-          if (existing.IsDefined() && existing.IsMap() && entry.second.IsMap() &&
-              child_path != "material.orientation")
-            merge_into(target[key], entry.second, child_path);
-          else
-            target[key] = YAML::Clone(entry.second);
-        }
     }
 
     // The one YAML document of a study or base case file. Binary content, tabs in the
@@ -512,13 +486,7 @@ namespace indentsim::study
 
   YAML::Node merge_overrides(const YAML::Node &base, const YAML::Node &overrides)
   {
-    if (!overrides.IsDefined() || overrides.IsNull())
-      return YAML::Clone(base);
-    if (!base.IsDefined() || !base.IsMap() || !overrides.IsMap())
-      return YAML::Clone(overrides);
-    YAML::Node result = YAML::Clone(base);
-    merge_into(result, overrides, "");
-    return result;
+    return io::merge_overrides(base, overrides);
   }
 
   std::string canonical_case_text(const io::Case &resolved_case)

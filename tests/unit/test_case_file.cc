@@ -1294,6 +1294,9 @@ TEST(CaseFile, EveryKeyIsDocumentedAndWritten)
   families.material.family_hardening = {{"{111}<110>", 0.1, 0.02, 0.1, 0.006}};
   families.material.latent_matrix = {{1.4}};
   written += resolved_case_yaml(families);
+  Case layered; // writes material.layers
+  layered.material.layers = {{1.5, "{yield_stress: 0.6}"}};
+  written += resolved_case_yaml(layered);
   for (const auto &key : case_keys())
     {
       EXPECT_NE(reference.find("| `" + key.path + "` |"), std::string::npos) << key.path;

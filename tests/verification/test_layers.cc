@@ -1,0 +1,151 @@
+// Depth-graded specimens (material.layers) against their homogeneous limits: a layer with the
+// substrate's own parameters and a layer of zero thickness change nothing, a layer holding the
+// whole plastic zone behaves as the uniformly hardened material, and a thin hard layer lies
+// between the pristine and the hardened curves. J2 in axisymmetric mode on the automatic mesh.
+// Units: um, mN, GPa.
+#include "case/Case.h"
+#include "indenter/IndenterFactory.h"
+#include "mesh/MeshDesign.h"
+#include "problems/IndentationProblem.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+using namespace indentsim;
+
+namespace
+{
+  // The paper's J2 block (sigma_y0 = 0.305 GPa) under its rounded cone to 1 um in 64 geometric
+  // steps, axisymmetric, on a coarse automatic mesh (6 elements per contact radius: 1 700 DOFs,
+  // a few seconds; the contact edge passing its nodes makes the force ripple by about 1.5 %);
+  // `layers` from the surface down.
+  io::Case layered_case(const std::vector<io::MaterialLayer> &layers, const double yield_stress)
+  {
+    io::Case c;
+    c.material.model = "j2";
+    c.material.yield_stress = yield_stress;
+    c.material.layers = layers;
+    c.indenter.a = 2.48;
+    c.indenter.delta = 0.005;
+    c.specimen.symmetry = "axisymmetric";
+    c.specimen.contact_elements = io::automatic_contact_elements;
+    c.specimen.elements_per_radius = 6;
+    c.loading.max_depth = 1.0;
+    c.loading.steps = 64;
+    c.loading.spacing = "geometric";
+    c.loading.unload = false;
+    c.contact.penetration_tolerance = 1e-5;
+    mesh::design_mesh(c, *indenter::create_indenter(c.indenter), /*size_given=*/false);
+    return c;
+  }
+
+  struct Curve
+  {
+    std::vector<double> depth, force;
+  };
+
+  Curve run(const io::Case &c)
+  {
+    problems::IndentationProblem<2> problem(c, MPI_COMM_WORLD, false);
+    problem.setup();
+    problem.run("");
+    Curve curve;
+    for (const auto &record : problem.records())
+      {
+        curve.depth.push_back(record.depth);
+        curve.force.push_back(record.force);
+      }
+    return curve;
+  }
+
+  // The force of `curve` at the depth h, linear between its records.
+  double force_at(const Curve &curve, const double h)
+  {
+    const auto upper = std::lower_bound(curve.depth.begin(), curve.depth.end(), h);
+    if (upper == curve.depth.begin())
+      return curve.force.front();
+    if (upper == curve.depth.end())
+      return curve.force.back();
+    const std::size_t i = upper - curve.depth.begin();
+    const double      t = (h - curve.depth[i - 1]) / (curve.depth[i] - curve.depth[i - 1]);
+    return (1 - t) * curve.force[i - 1] + t * curve.force[i];
+  }
+
+  const io::MaterialLayer hard_layer(const double thickness)
+  {
+    return {thickness, "{yield_stress: 0.61}"};
+  }
+
+  // The homogeneous curves, run once for both tests.
+  const Curve &homogeneous(const double yield_stress)
+  {
+    static std::map<double, Curve> curves;
+    if (curves.count(yield_stress) == 0)
+      curves[yield_stress] = run(layered_case({}, yield_stress));
+    return curves.at(yield_stress);
+  }
+} // namespace
+
+// The layer model may not change a homogeneous specimen: a layer that repeats the substrate's
+// parameters, and a hard layer of zero thickness (it holds no point), give the pristine curve
+// to round-off (the same increments, the same Newton iterations).
+TEST(Layers, SubstrateParametersAndZeroThicknessGiveTheHomogeneousCurve)
+{
+  const Curve &pristine = homogeneous(0.305);
+  const Curve  same = run(layered_case({{0.5, "{yield_stress: 0.305}"}}, 0.305));
+  const Curve  empty = run(layered_case({hard_layer(0)}, 0.305));
+  ASSERT_EQ(same.depth.size(), pristine.depth.size());
+  ASSERT_EQ(empty.depth.size(), pristine.depth.size());
+  const double scale = pristine.force.back();
+  for (std::size_t i = 0; i < pristine.depth.size(); ++i)
+    {
+      EXPECT_EQ(same.depth[i], pristine.depth[i]);
+      EXPECT_NEAR(same.force[i], pristine.force[i], 1e-10 * scale) << "h = " << pristine.depth[i];
+      EXPECT_NEAR(empty.force[i], pristine.force[i], 1e-10 * scale) << "h = " << pristine.depth[i];
+    }
+}
+
+// A hard layer (sigma_y0 doubled) of 10 um holds the plastic zone of a 1 um indent (its depth is
+// about 2.5 contact radii, 6 um): the curve is the uniformly hardened one within 1 %. And a
+// layer of 0.3 um lies between the two homogeneous curves at every depth, with the hardened
+// curve's force while the indent is shallow against the layer and moving toward the pristine one
+// as the indent passes through it. "Between" holds to the mesh's force ripple (3 %): at 1 um
+// the layer adds less than the ripple.
+TEST(Layers, HardLayerLiesBetweenPristineAndUniformlyHardened)
+{
+  const Curve &pristine = homogeneous(0.305);
+  const Curve &hardened = homogeneous(0.61);
+  const Curve  thick = run(layered_case({hard_layer(10)}, 0.305));
+  const Curve  thin = run(layered_case({hard_layer(0.3)}, 0.305));
+  double       largest_thick_difference = 0;
+  for (const double h : {0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0})
+    {
+      const double p = force_at(pristine, h), H = force_at(hardened, h);
+      const double t = force_at(thin, h);
+      std::cout << "[ layers ] h = " << h << " um: pristine " << p << " mN, 0.3 um layer " << t
+                << " mN, 10 um layer " << force_at(thick, h) << " mN, hardened " << H << " mN"
+                << std::endl;
+      largest_thick_difference =
+          std::max(largest_thick_difference, std::abs(force_at(thick, h) / H - 1));
+      EXPECT_GT(t, p * (1 - 0.03)) << "h = " << h;
+      EXPECT_LT(t, H * (1 + 0.03)) << "h = " << h;
+    }
+  EXPECT_LT(largest_thick_difference, 0.01);
+  // Shallow: the contact and much of the plastic zone lie in the layer.
+  EXPECT_NEAR(force_at(thin, 0.05) / force_at(hardened, 0.05), 1., 0.05);
+  // Deep: the layer's share of the force falls as the indent passes through it.
+  const double share_shallow = (force_at(thin, 0.1) - force_at(pristine, 0.1)) /
+                               (force_at(hardened, 0.1) - force_at(pristine, 0.1));
+  const double share_deep = (force_at(thin, 1.0) - force_at(pristine, 1.0)) /
+                            (force_at(hardened, 1.0) - force_at(pristine, 1.0));
+  std::cout << "[ layers ] the 0.3 um layer's share of the hardening: " << share_shallow
+            << " at 0.1 um, " << share_deep << " at 1 um; 10 um layer within "
+            << 100 * largest_thick_difference << " % of the hardened curve" << std::endl;
+  EXPECT_LT(share_deep, share_shallow);
+}

@@ -112,6 +112,8 @@ namespace indentsim::io
     double       far_elements_per_radius = 0; // beyond rho_p
     double       surface_radius = 0;          // the contact nodes' reach on the top face
     unsigned int surface_halvings = 0;        // m: top-face cells there: edge s(rho) / 2^m
+    double       layered_depth = 0; // depth of the last layer's bottom (material.layers) [um]
+    double       layer_element = 0; // edge across the layers in the near field; 0: none [um]
 
     bool operator==(const MeshGrading &) const = default;
   };

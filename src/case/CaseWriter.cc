@@ -62,8 +62,11 @@ namespace indentsim::io
            << g.contact_radius << " um; element edge max(h_min, rho/n), h_min = " << g.min_element
            << " um, n = " << g.elements_per_radius << " for rho <= " << g.graded_radius
            << " um, rho/" << g.far_elements_per_radius << " beyond, halved " << g.surface_halvings
-           << " more time(s) on the top face for rho <= " << g.surface_radius << " um;\n"
-           << "  # contact nodes and guards on refined_region = [" << s.refined_region[0] << ", "
+           << " more time(s) on the top face for rho <= " << g.surface_radius << " um;\n";
+      if (g.layer_element > 0)
+        text << "  # at most " << g.layer_element << " um across the layers (to the depth "
+             << g.layered_depth << " um) for rho <= " << g.graded_radius << " um;\n";
+      text << "  # contact nodes and guards on refined_region = [" << s.refined_region[0] << ", "
            << s.refined_region[1] << ", " << s.refined_region[2] << "] um\n";
       out << text.str();
     }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace indentsim::mesh
@@ -70,6 +71,17 @@ namespace indentsim::mesh
     const double contact_half = round_up(design::contact_region_radii * std::max(a_d, reach));
     g.surface_radius = contact_half;
     g.surface_halvings = axisymmetric ? design::surface_halvings_2d : design::surface_halvings_3d;
+    g.layered_depth = 0;
+    g.layer_element = 0;
+    double thinnest = std::numeric_limits<double>::infinity();
+    for (const io::MaterialLayer &layer : the_case.material.layers)
+      if (layer.thickness > 0)
+        {
+          g.layered_depth += layer.thickness;
+          thinnest = std::min(thinnest, layer.thickness);
+        }
+    if (g.layered_depth > 0)
+      g.layer_element = thinnest / design::elements_per_layer;
     s.refined_region = {{std::min(2 * contact_half, s.size[0]),
                          std::min(2 * contact_half, s.size[1]),
                          std::min(round_up(g.graded_radius), s.size[2])}};
@@ -123,6 +135,10 @@ namespace indentsim::mesh
     // The top face is z = 0 (the last coordinate's upper bound).
     if (upper[dim - 1] >= 0 && rho <= grading.surface_radius)
       target = std::ldexp(target, -static_cast<int>(grading.surface_halvings));
+    // Across the layers of a depth-graded specimen, in the near field.
+    if (grading.layer_element > 0 && rho <= grading.graded_radius &&
+        -upper[dim - 1] < grading.layered_depth)
+      target = std::min(target, grading.layer_element);
     return edge > target * (1 + 1e-9);
   }
 } // namespace indentsim::mesh

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <numbers>
 #include <string>
 
@@ -89,14 +90,15 @@ namespace
     EXPECT_LE(smallest, surface_factor * g.min_element);
 
     // The contact radius at h (the cross-section at 1.2 h) spans 2^m n to 2^(m+1) n surface
-    // elements from h_max/8 on.
+    // elements from h_max/8 on (more across the layers of a depth-graded specimen).
     const auto indenter = indenter::create_indenter(c.indenter);
     for (const double h : {0.75, 1.5, 3.0, 6.0})
       {
         const double a = std::sqrt(indenter->projected_area(1.2 * h) / M_PI);
         const double elements = a / surface_edge_at(triangulation, a);
         EXPECT_GE(elements, g.elements_per_radius / surface_factor * (1 - 1e-9)) << "h = " << h;
-        EXPECT_LE(elements, 2 * g.elements_per_radius / surface_factor) << "h = " << h;
+        if (g.layer_element == 0)
+          EXPECT_LE(elements, 2 * g.elements_per_radius / surface_factor) << "h = " << h;
       }
 
     // The estimate counts the unbalanced octree: the balance adds a few per cent.
@@ -247,4 +249,41 @@ TEST(MeshDesign, CaseFileRefusals)
   expect_rejected("test: indentation\nmaterial: {model: j2}\n"
                   "specimen: {contact_elements: auto, elements_per_radius: 1}\n",
                   {"specimen.elements_per_radius = 1", "2 <= n <= 64"});
+}
+
+// A depth-graded specimen: four elements across its thinnest layer wherever the near field
+// reaches above the last layer's bottom, the rest of the design unchanged (and followed).
+TEST(MeshDesign, LayersGetFourElementsAcrossTheThinnest)
+{
+  io::Case              c = designed_paper_case("axisymmetric");
+  const io::MeshGrading plain = c.specimen.grading;
+  c.material.layers = {{0.6, "{yield_stress: 0.6}"}, {0, "{}"}, {0.9, "{yield_stress: 0.4}"}};
+  mesh::design_mesh(c, *indenter::create_indenter(c.indenter), /*size_given=*/false);
+  const io::MeshGrading &g = c.specimen.grading;
+  EXPECT_DOUBLE_EQ(g.layered_depth, 1.5);
+  EXPECT_DOUBLE_EQ(g.layer_element, 0.6 / mesh::design::elements_per_layer);
+  EXPECT_EQ(g.min_element, plain.min_element);
+  EXPECT_EQ(g.graded_radius, plain.graded_radius);
+  check_rule<2>(c);
+
+  dealii::parallel::distributed::Triangulation<2> triangulation(MPI_COMM_WORLD);
+  mesh::build_indentation_mesh(triangulation, c.specimen);
+  double largest_in_layers = 0, largest_below = 0;
+  for (const auto &cell : triangulation.active_cell_iterators())
+    {
+      const dealii::BoundingBox<2> box = cell->bounding_box();
+      const double rho = std::hypot(box.lower_bound(0), std::min(0., box.upper_bound(1)));
+      const double edge = box.upper_bound(0) - box.lower_bound(0);
+      if (rho > g.graded_radius)
+        continue;
+      if (-box.upper_bound(1) < g.layered_depth)
+        largest_in_layers = std::max(largest_in_layers, edge);
+      else if (-box.upper_bound(1) > 2 * g.layered_depth && box.lower_bound(0) > 10)
+        largest_below = std::max(largest_below, edge);
+    }
+  EXPECT_LE(largest_in_layers, g.layer_element * (1 + 1e-9));
+  EXPECT_GT(largest_below, 2 * g.layer_element); // the refinement stays in the layers
+  std::cout << "[ layers ] near field: largest edge " << largest_in_layers
+            << " um across the layers, " << largest_below << " um below them; "
+            << triangulation.n_active_cells() << " cells" << std::endl;
 }

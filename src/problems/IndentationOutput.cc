@@ -207,7 +207,7 @@ namespace indentsim::problems
               surface.push_back(quad);
             }
           else
-            revolve_edge({c[0], c[1], c[2]}, {c[3], c[4], c[5]}, surface);
+            revolve_edge({{c[0], c[1], c[2]}}, {{c[3], c[4], c[5]}}, surface);
         }
     return mesh_info_.quarter ? pileup::mirror_quarter(surface) : surface;
   }

@@ -89,14 +89,15 @@ namespace indentsim::io
     for (std::size_t i = 0; i < material.layers.size(); ++i)
       {
         const MaterialLayer &layer = material.layers[i];
-        const std::string    where = "material.layers[" + std::to_string(i) +
-                                  "] = " + format_layers({layer}).substr(1, std::string::npos);
+        const std::string    listed = format_layers({layer}); // "[{thickness: ...}]"
+        const std::string    where =
+            "material.layers[" + std::to_string(i) + "] = " + listed.substr(1, listed.size() - 2);
         const YAML::Node overrides = YAML::Load(layer.overrides);
         if (const std::string key = structural_key(overrides); !key.empty())
-          throw CaseFileError(
-              source + ": " + where.substr(0, where.size() - 1) +
-              ": a layer may not give material." + key + " (every layer shares the substrate's " +
-              join(structural_layer_keys()) + "); give only the parameters that change with depth");
+          throw CaseFileError(source + ": " + where + ": a layer may not give material." + key +
+                              " (every layer shares the substrate's " +
+                              join(structural_layer_keys()) +
+                              "); give only the parameters that change with depth");
         YAML::Node wrapped;
         wrapped["material"] = overrides;
         try
@@ -109,8 +110,7 @@ namespace indentsim::io
             // "layer:LINE: message": the line is that of the merged text, not of the case file.
             std::string message = error.what();
             message = message.substr(std::min(message.find(": "), message.size() - 2) + 2);
-            throw CaseFileError(source + ": " + where.substr(0, where.size() - 1) +
-                                ": in this layer, " + message);
+            throw CaseFileError(source + ": " + where + ": in this layer, " + message);
           }
       }
     return result;

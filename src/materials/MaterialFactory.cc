@@ -37,33 +37,7 @@ namespace indentsim::materials
         }
       return FamilyVoceHardening(laws, systems.family, p.q, p.latent_matrix);
     }
-  } // namespace
 
-  namespace
-  {
-    std::unique_ptr<MaterialModel>
-    create_homogeneous_material(const io::MaterialParameters &parameters);
-  }
-
-  std::unique_ptr<MaterialModel> create_material(const io::MaterialParameters &parameters)
-  {
-    if (parameters.layers.empty())
-      return create_homogeneous_material(parameters);
-    // A depth-graded specimen: each layer's material block as the case validator read it.
-    std::vector<std::unique_ptr<MaterialModel>> layers;
-    std::vector<double>                         thicknesses;
-    const std::vector<io::MaterialParameters> blocks = io::layer_materials(parameters, "material");
-    for (std::size_t i = 0; i < blocks.size(); ++i)
-      {
-        layers.push_back(create_homogeneous_material(blocks[i]));
-        thicknesses.push_back(parameters.layers[i].thickness);
-      }
-    return std::make_unique<LayeredMaterial>(std::move(layers), std::move(thicknesses),
-                                             create_homogeneous_material(parameters));
-  }
-
-  namespace
-  {
     std::unique_ptr<MaterialModel>
     create_homogeneous_material(const io::MaterialParameters &parameters)
     {
@@ -102,6 +76,23 @@ namespace indentsim::materials
                                   "\" is not supported; allowed: neo_hookean, j2, crystal");
     }
   } // namespace
+
+  std::unique_ptr<MaterialModel> create_material(const io::MaterialParameters &parameters)
+  {
+    if (parameters.layers.empty())
+      return create_homogeneous_material(parameters);
+    // A depth-graded specimen: each layer's material block as the case validator read it.
+    std::vector<std::unique_ptr<MaterialModel>> layers;
+    std::vector<double>                         thicknesses;
+    const std::vector<io::MaterialParameters> blocks = io::layer_materials(parameters, "material");
+    for (std::size_t i = 0; i < blocks.size(); ++i)
+      {
+        layers.push_back(create_homogeneous_material(blocks[i]));
+        thicknesses.push_back(parameters.layers[i].thickness);
+      }
+    return std::make_unique<LayeredMaterial>(std::move(layers), std::move(thicknesses),
+                                             create_homogeneous_material(parameters));
+  }
 
   IsotropicHardening create_hardening_law(const io::MaterialParameters &parameters)
   {

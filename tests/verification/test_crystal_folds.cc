@@ -5,6 +5,7 @@
 // 24 x 24 mesh, 3 um deep. Units: um, mN, GPa.
 #include "../test_files.h"
 #include "case/Case.h"
+#include "case/CaseFile.h"
 #include "problems/IndentationProblem.h"
 
 #include <gtest/gtest.h>
@@ -21,17 +22,9 @@ namespace
                         const std::string &symmetry)
   {
     io::Case c;
-    c.material.model = "crystal";
-    c.material.lattice = "bcc";
-    c.material.slip_families = {"{110}<111>"};
-    c.material.C11 = 232.1;
-    c.material.C12 = 135.9;
-    c.material.C44 = 117.0;
-    c.material.tau0 = 0.061;
-    c.material.tau1 = 0.216;
-    c.material.theta0 = 0.593;
-    c.material.theta1 = 0.0;
-    c.material.q = 1.4;
+    c.material =
+        io::read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/ferrite_bcc_001_n12.yaml")
+            .material;
     c.material.orientation.kind = "surface_normal";
     c.material.orientation.surface_normal = normal;
     c.material.orientation.reference_direction = reference;

@@ -116,20 +116,25 @@ namespace
             curve.depth.push_back(record.depth);
             curve.force.push_back(record.force);
             curve.contact_area.push_back(record.contact_area);
+            curve.segment.push_back(record.segment);
           }
-        const bool compared =
-            !the_case.output.experimental_curve.empty() &&
-            analysis::compare_with_experiment(curve, directory, the_case.output.experimental_curve,
-                                              std::cout, std::cerr);
+        const bool compared = !the_case.output.experimental_curve.empty() &&
+                              analysis::compare_with_experiment(
+                                  analysis::without_partial_unloads(curve), directory,
+                                  the_case.output.experimental_curve, std::cout, std::cerr);
         plot_load_penetration(
             directory, compared ? directory + "/" + io::output_files::experimental_curve_csv : "");
         const bool oliver_pharr =
             the_case.loading.unload &&
             analysis::analyze_run(curve, the_case, problem.indenter(), std::cout, std::cerr);
+        const bool hardness_depth = the_case.loading.partial_unloads.enabled() &&
+                                    analysis::analyze_partial_unloads_of_run(
+                                        curve, the_case, problem.indenter(), std::cout, std::cerr);
         std::cout << "Results in " << directory
                   << ": load_penetration.csv (um, mN), load_penetration.png, specimen.pvd "
                      "(ParaView), pileup.json, pileup_*.csv/png (heights in um), "
                   << (oliver_pharr ? "oliver_pharr.json/png, " : "")
+                  << (hardness_depth ? "hardness_depth.csv/json/png, " : "")
                   << (compared ? "comparison_with_experiment.json, experimental_curve.csv, " : "")
                   << "resolved_case.yaml, run.log\n";
       }

@@ -1,6 +1,7 @@
 #include "analysis/AnalyzeCommand.h"
 
 #include "analysis/CurveComparison.h"
+#include "analysis/HardnessDepth.h"
 #include "analysis/OliverPharr.h"
 #include "case/CaseFile.h"
 #include "indenter/IndenterFactory.h"
@@ -144,9 +145,10 @@ namespace indentsim::analysis
       settings.indenter_modulus = *options.indenter_modulus;
     settings.indenter_poisson_ratio = options.indenter_poisson_ratio;
 
-    const LoadCurve curve =
+    // A run's partial unloads (its segment column) are not part of the full unloading.
+    const LoadCurve curve = without_partial_unloads(
         read_load_curve_csv(csv_path, options.depth_column, options.force_column,
-                            options.depth_unit, options.force_unit);
+                            options.depth_unit, options.force_unit));
     const std::string directory =
         output_directory ? *output_directory
         : run_directory  ? target.string()
@@ -159,6 +161,27 @@ namespace indentsim::analysis
     return json_path;
   }
 
+  namespace
+  {
+    // The Oliver-Pharr settings of a run's own analyses.
+    OliverPharrSettings run_settings(const io::Case &the_case)
+    {
+      OliverPharrSettings settings;
+      settings.epsilon = default_epsilon(to_string(the_case.indenter.shape));
+      if (the_case.material.model != io::ModelKind::crystal)
+        settings.sample_poisson_ratio = the_case.material.poisson_ratio;
+      // One contact element across the contact radius at the least: the refined region's h_e
+      // (mesh/IndentationMesh), or the automatic mesh's smallest edge h_min, beyond which its
+      // elements grow as rho/n (mesh/MeshDesign.h).
+      const io::SpecimenParameters &specimen = the_case.specimen;
+      const double                  element = specimen.automatic_mesh()
+                                                  ? specimen.grading.min_element
+                                                  : specimen.refined_region[0] / specimen.contact_elements;
+      settings.min_true_contact_area = std::numbers::pi * element * element;
+      return settings;
+    }
+  } // namespace
+
   bool analyze_run(const LoadCurve &curve, const io::Case &the_case,
                    const indenter::IndenterSurface &indenter, std::ostream &summary,
                    std::ostream &warnings)
@@ -166,20 +189,9 @@ namespace indentsim::analysis
     const std::string &run_directory = the_case.output.directory;
     try
       {
-        OliverPharrSettings settings;
-        settings.epsilon = default_epsilon(to_string(the_case.indenter.shape));
-        if (the_case.material.model != io::ModelKind::crystal)
-          settings.sample_poisson_ratio = the_case.material.poisson_ratio;
-        // One contact element across the contact radius at the least: the refined region's h_e
-        // (mesh/IndentationMesh), or the automatic mesh's smallest edge h_min, beyond which its
-        // elements grow as rho/n (mesh/MeshDesign.h).
-        const io::SpecimenParameters &specimen = the_case.specimen;
-        const double                  element = specimen.automatic_mesh()
-                                                    ? specimen.grading.min_element
-                                                    : specimen.refined_region[0] / specimen.contact_elements;
-        settings.min_true_contact_area = std::numbers::pi * element * element;
-        const OliverPharrResult result = analyze_and_write(curve, indenter, the_case.indenter,
-                                                           settings, run_directory, curve.source);
+        const OliverPharrResult result =
+            analyze_and_write(without_partial_unloads(curve), indenter, the_case.indenter,
+                              run_settings(the_case), run_directory, curve.source);
         print_summary(summary, result, run_directory + "/" + io::output_files::oliver_pharr_json);
         return true;
       }
@@ -193,6 +205,51 @@ namespace indentsim::analysis
                  << '\n';
         return false;
       }
+  }
+
+  bool analyze_partial_unloads_of_run(const LoadCurve &curve, const io::Case &the_case,
+                                      const indenter::IndenterSurface &indenter,
+                                      std::ostream &summary, std::ostream &warnings)
+  {
+    const std::string               &directory = the_case.output.directory;
+    std::vector<std::string>         skipped;
+    const std::vector<HardnessPoint> points = analyze_partial_unloads(
+        curve, [&](const double h) { return indenter.projected_area(h); }, run_settings(the_case),
+        skipped);
+    for (const std::string &why : skipped)
+      warnings << "warning: hardness-depth profile of " << directory << ": left out " << why
+               << '\n';
+    if (points.empty())
+      {
+        warnings << "warning: no hardness-depth profile of " << directory
+                 << ": no partial unload could be analysed\n";
+        return false;
+      }
+    std::vector<double> depth, hardness;
+    for (const HardnessPoint &p : points)
+      {
+        depth.push_back(p.depth);
+        hardness.push_back(p.estimate.hardness);
+      }
+    const std::optional<NixGaoFit> nix_gao = fit_nix_gao(depth, hardness);
+    const std::string json_path = directory + "/" + io::output_files::hardness_depth_json;
+    output::write_file(directory + "/" + io::output_files::hardness_depth_csv, to_csv(points));
+    output::write_file(json_path, to_json(points, nix_gao, skipped, curve.source));
+    const std::string script = indentsim::output::python_script("plot_hardness_depth.py");
+    const std::string command = "python3 \"" + script + "\" \"" + json_path + "\" -o \"" +
+                                directory + "/" + io::output_files::hardness_depth_png + "\"";
+    if (std::system(command.c_str()) != 0)
+      warnings << "warning: the plot " << directory << "/" << io::output_files::hardness_depth_png
+               << " could not be written (command: " << command << ")\n";
+    summary << std::setprecision(4) << "Hardness-depth profile (" << json_path
+            << "): " << points.size() << " partial unloads from " << points.front().depth << " to "
+            << points.back().depth << " um, H " << points.front().estimate.hardness << " to "
+            << points.back().estimate.hardness << " GPa";
+    if (nix_gao)
+      summary << "; Nix-Gao knee at " << nix_gao->knee_depth << " um, shallow branch H_0 "
+              << nix_gao->layer_hardness << " GPa";
+    summary << '\n';
+    return true;
   }
 
   bool compare_with_experiment(const LoadCurve &computed, const std::string &run_directory,

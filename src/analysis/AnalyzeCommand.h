@@ -1,6 +1,6 @@
 // `indentsim analyze` and the Oliver-Pharr step at the end of an indentation run: find the
 // curve and the indenter, run analysis/OliverPharr.h, write oliver_pharr.json and the plot
-// oliver_pharr.png. Units: um, mN, GPa (1 GPa*um^2 = 1 mN).
+// oliver_pharr.png; and the hardness-depth profile of a run's partial unloads. Units: um, mN, GPa (1 GPa*um^2 = 1 mN).
 #pragma once
 
 #include "analysis/OliverPharr.h"
@@ -28,6 +28,15 @@ namespace indentsim::analysis
   bool analyze_run(const LoadCurve &curve, const io::Case &the_case,
                    const indenter::IndenterSurface &indenter, std::ostream &summary,
                    std::ostream &warnings);
+
+  // The partial unloads of a finished indentation run's curve (loading.partial_unloads),
+  // analysed (analysis/HardnessDepth.h): writes hardness_depth.csv, hardness_depth.json and the
+  // plot hardness_depth.png into the case's output directory and prints a summary. Returns
+  // false (and says why on `warnings`) if no partial unload could be analysed; a partial unload
+  // left out is named on `warnings`.
+  bool analyze_partial_unloads_of_run(const LoadCurve &curve, const io::Case &the_case,
+                                      const indenter::IndenterSurface &indenter,
+                                      std::ostream &summary, std::ostream &warnings);
 
   // A finished run's curve against a measured curve (output.experimental_curve): writes
   // comparison_with_experiment.json and the measured curve in um and mN

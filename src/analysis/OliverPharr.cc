@@ -120,11 +120,7 @@ namespace indentsim::analysis
 
     std::string format(const double value)
     {
-      if (!std::isfinite(value))
-        return "null";
-      std::ostringstream out;
-      out << std::setprecision(10) << value;
-      return out.str();
+      return io::json_number(value);
     }
 
     std::string depth_at(const LoadCurve &curve, const std::size_t i)
@@ -364,6 +360,22 @@ namespace indentsim::analysis
     return 0.75;
   }
 
+  ContactEstimate contact_estimate(const double depth, const double force, const double stiffness,
+                                   const std::function<double(double)> &area_function,
+                                   const OliverPharrSettings           &settings)
+  {
+    ContactEstimate e;
+    e.contact_depth = depth - settings.epsilon * force / stiffness; // eq. 11 of 2004
+    e.contact_area = e.contact_depth > 0 ? area_function(e.contact_depth) : 0.0;
+    if (e.contact_area > 0)
+      {
+        e.hardness = force / e.contact_area;
+        e.reduced_modulus =
+            std::sqrt(M_PI) / (2.0 * settings.beta) * stiffness / std::sqrt(e.contact_area);
+      }
+    return e;
+  }
+
   OliverPharrResult analyze(const LoadCurve                     &curve,
                             const std::function<double(double)> &area_function,
                             const OliverPharrSettings           &settings)
@@ -405,17 +417,17 @@ namespace indentsim::analysis
     if (!(result.stiffness > 0))
       throw std::invalid_argument(where + ": the fitted unloading stiffness at h_max is " +
                                   format(result.stiffness) + " mN/um; it must be positive");
-    result.contact_depth =
-        result.max_depth - settings.epsilon * result.max_force / result.stiffness;
-    result.contact_area = result.contact_depth > 0 ? area_function(result.contact_depth) : 0.0;
+    const ContactEstimate estimate = contact_estimate(result.max_depth, result.max_force,
+                                                      result.stiffness, area_function, settings);
+    result.contact_depth = estimate.contact_depth;
+    result.contact_area = estimate.contact_area;
     if (!(result.contact_area > 0))
       throw std::invalid_argument(where +
                                   ": the contact depth h_c = " + format(result.contact_depth) +
                                   " um gives no contact area; the unloading is too soft for "
                                   "this indenter (check the units and --epsilon)");
-    result.hardness = result.max_force / result.contact_area;
-    result.reduced_modulus =
-        std::sqrt(M_PI) / (2.0 * settings.beta) * result.stiffness / std::sqrt(result.contact_area);
+    result.hardness = estimate.hardness;
+    result.reduced_modulus = estimate.reduced_modulus;
     if (settings.sample_poisson_ratio)
       {
         const double nu = *settings.sample_poisson_ratio;

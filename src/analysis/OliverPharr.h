@@ -32,6 +32,7 @@ namespace indentsim::analysis
   // curve too); they are used here under their analysis names.
   using io::LoadCurve;
   using io::read_load_curve_csv;
+  using io::without_partial_unloads;
 
   // The checks of analyze() on the curve and its results (user guide, "Oliver-Pharr analysis").
   // At least this many unloading points in the fit range: the fit has 3 parameters, and 2 more
@@ -105,6 +106,21 @@ namespace indentsim::analysis
     unsigned int          unloading_begin = 0; // index of h_max in the curve
     unsigned int          unloading_end = 0;   // one past the last unloading point
   };
+
+  // The contact depth, area, hardness and reduced modulus at a point (h, P) whose unloading
+  // stiffness S is known (eq. 11, 1 and 8 of the 2004 review): h_c = h - epsilon P / S,
+  // A = A(h_c), H = P / A, E_r = sqrt(pi) / (2 beta) S / sqrt(A). With h_c <= 0 the area and
+  // what follows from it stay 0 (the caller refuses it).
+  struct ContactEstimate
+  {
+    double contact_depth = 0;   // [um]
+    double contact_area = 0;    // [um^2]
+    double hardness = 0;        // [GPa]
+    double reduced_modulus = 0; // [GPa]
+  };
+  ContactEstimate contact_estimate(double depth, double force, double stiffness,
+                                   const std::function<double(double)> &area_function,
+                                   const OliverPharrSettings           &settings);
 
   // The unloading branch is the one that starts at the largest depth (the last cycle's
   // maximum; a hold ends there) and runs while the depth falls, until the force reaches zero

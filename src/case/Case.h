@@ -140,8 +140,24 @@ namespace indentsim::io
     bool operator==(const SpecimenParameters &) const = default;
   };
 
+  // Partial unloads on the way down (depth control): at every multiple of `every` below the
+  // maximum depth the force is lowered by `fraction` of its value in `points` force-paced steps,
+  // then the indenter returns to that depth and loading goes on. Each partial unload is
+  // analysed by Oliver-Pharr (analysis/HardnessDepth.h): a hardness-depth profile in one run,
+  // as continuous stiffness measurement gives in an experiment. Units: um.
+  struct PartialUnloads
+  {
+    double       every = 0;      // depth between partial unloads [um]; 0: none
+    double       fraction = 0.1; // of the force at the start of each partial unload [-]
+    unsigned int points = 4;     // force-paced unloading steps of each
+
+    bool enabled() const { return every > 0; }
+    bool operator==(const PartialUnloads &) const = default;
+  };
+
   // The loading programme: `cycles` times (load to the maximum in `steps` increments, hold it
-  // for `hold_steps` increments, unload), under depth or force control.
+  // for `hold_steps` increments, unload), under depth or force control; in the first cycle's
+  // loading, partial unloads if asked for.
   struct LoadingParameters
   {
     Choice<Control> control = Control::depth; // force: the indenter depth becomes an unknown
@@ -164,6 +180,7 @@ namespace indentsim::io
     // maximum, then each a constant ratio larger (increments proportional to depth or force).
     Choice<Spacing> spacing = Spacing::uniform;
     double          first_fraction = 1.0 / 64; // geometric: the first target / the maximum [-]
+    PartialUnloads  partial_unloads;
 
     bool operator==(const LoadingParameters &) const = default;
   };

@@ -443,6 +443,33 @@ namespace indentsim::io
         if (l.cycles > 1 && !l.unload)
           reject("loading.cycles", std::to_string(l.cycles),
                  "several load-unload cycles need loading.unload: true");
+        if (l.partial_unloads.enabled())
+          check_partial_unloads();
+      }
+
+      // Partial unloads are placed by depth: they need depth control and the indentation
+      // test, and at least one lies above the maximum depth.
+      void check_partial_unloads() const
+      {
+        const auto       &l = checked.loading;
+        const std::string key = "loading.partial_unloads.every";
+        const std::string every = format_number(l.partial_unloads.every);
+        if (tensile())
+          reject(key, every, "partial unloads are for the indentation test");
+        if (l.control == Control::force)
+          reject(key, every, "partial unloads are placed by depth and need loading.control: depth");
+        if (l.cycles > 1)
+          reject(key, every,
+                 "partial unloads are made in a single loading (loading.cycles: 1); the "
+                 "cycles repeat the whole load-unload programme");
+        if (!(l.partial_unloads.every < l.max_depth))
+          reject(key, every,
+                 "must be smaller than loading.max_depth = " + format_number(l.max_depth) +
+                     " um (a partial unload lies at every multiple of it below the maximum)");
+        if (l.max_depth / l.partial_unloads.every > 1000)
+          reject(key, every,
+                 "gives more than 1000 partial unloads to loading.max_depth = " +
+                     format_number(l.max_depth) + " um");
       }
 
       // The refined region must hold the contact predicted at the maximum of the loading

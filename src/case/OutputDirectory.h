@@ -30,6 +30,10 @@ namespace indentsim::io
     // Oliver-Pharr analysis of the unloading (analysis/OliverPharr.h).
     inline constexpr const char *oliver_pharr_json = "oliver_pharr.json";
     inline constexpr const char *oliver_pharr_png = "oliver_pharr.png";
+    // The partial unloads' hardness-depth profile and Nix-Gao fit (analysis/HardnessDepth.h).
+    inline constexpr const char *hardness_depth_csv = "hardness_depth.csv";
+    inline constexpr const char *hardness_depth_json = "hardness_depth.json";
+    inline constexpr const char *hardness_depth_png = "hardness_depth.png";
     // The measured curve (output.experimental_curve) converted, and the comparison with it.
     inline constexpr const char *experimental_curve_csv = "experimental_curve.csv";
     inline constexpr const char *experiment_comparison_json = "comparison_with_experiment.json";
@@ -40,12 +44,28 @@ namespace indentsim::io
     inline constexpr const char *paraview_basename = "specimen";
 
     // Exact names that mark an earlier run and are removed by --overwrite.
-    inline constexpr std::array<const char *, 19> known_names = {
-        {experimental_curve_csv, experiment_comparison_json, oliver_pharr_json, oliver_pharr_png,
-         load_penetration_csv, load_penetration_png, stress_strain_csv, stress_strain_j2_csv,
-         stress_strain_png, resolved_case, log, run_summary, pileup_json, pileup_max_depth_csv,
-         pileup_unloaded_csv, pileup_profiles_csv, pileup_max_depth_png, pileup_unloaded_png,
-         pileup_profiles_png}};
+    inline constexpr std::array<const char *, 22> known_names = {{experimental_curve_csv,
+                                                                  experiment_comparison_json,
+                                                                  oliver_pharr_json,
+                                                                  oliver_pharr_png,
+                                                                  hardness_depth_csv,
+                                                                  hardness_depth_json,
+                                                                  hardness_depth_png,
+                                                                  load_penetration_csv,
+                                                                  load_penetration_png,
+                                                                  stress_strain_csv,
+                                                                  stress_strain_j2_csv,
+                                                                  stress_strain_png,
+                                                                  resolved_case,
+                                                                  log,
+                                                                  run_summary,
+                                                                  pileup_json,
+                                                                  pileup_max_depth_csv,
+                                                                  pileup_unloaded_csv,
+                                                                  pileup_profiles_csv,
+                                                                  pileup_max_depth_png,
+                                                                  pileup_unloaded_png,
+                                                                  pileup_profiles_png}};
     // Files named paraview_basename* with these extensions are ours as well.
     inline constexpr std::array<const char *, 3> paraview_extensions = {{".pvd", ".vtu", ".pvtu"}};
   } // namespace output_files

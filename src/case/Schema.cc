@@ -42,6 +42,7 @@ namespace indentsim::io
     using I = IndenterParameters;
     using S = SpecimenParameters;
     using L = LoadingParameters;
+    using PU = PartialUnloads;
     using CP = ContactParameters;
     using SP = SolverParameters;
     using OU = OutputParameters;
@@ -70,6 +71,10 @@ namespace indentsim::io
     bool geometric_spacing(const Case &c)
     {
       return c.loading.spacing == Spacing::geometric;
+    }
+    bool partial_unloads_given(const Case &c)
+    {
+      return c.loading.partial_unloads.enabled();
     }
     bool voce_hardening(const Case &c)
     {
@@ -626,6 +631,33 @@ namespace indentsim::io
               .comment("geometric: first target / maximum [-]")
               .describe("`geometric` spacing: the first target as a fraction of the maximum "
                         "depth (force)"),
+          D::at<&C::loading, &L::partial_unloads, &PU::every>("loading.partial_unloads.every")
+              .unit("um")
+              .expect("a depth in um")
+              .range(finite_at_least(0), "must be a finite depth >= 0 um (0: no partial unloads)")
+              .allowed_is("0, or > 0 and < `max_depth` (depth control)")
+              .written_if(&partial_unloads_given)
+              .default_is("0 (none)")
+              .comment("[um] a partial unload at every multiple of this depth")
+              .describe("partial unloads on the way down (depth control, first cycle): at every "
+                        "multiple of this depth below `max_depth` the force is lowered by "
+                        "`fraction` of its value, the indenter returns to the depth and loading "
+                        "goes on; each is analysed by Oliver–Pharr into `hardness_depth.csv` "
+                        "(see the user guide); 0: none"),
+          D::at<&C::loading, &L::partial_unloads, &PU::fraction>("loading.partial_unloads.fraction")
+              .expect("a fraction of the force")
+              .range(between(0, false, 0.5, true), "must satisfy 0 < fraction <= 0.5")
+              .written_if(&partial_unloads_given)
+              .comment("of the force at each partial unload [-]")
+              .describe("how far each partial unload lowers the force, as a fraction of the "
+                        "force where it starts"),
+          D::at<&C::loading, &L::partial_unloads, &PU::points>("loading.partial_unloads.points")
+              .range(between(3, true, 100, true), "must satisfy 3 <= points <= 100")
+              .written_if(&partial_unloads_given)
+              .comment("force-paced steps of each partial unload")
+              .describe("unloading steps of each partial unload (equal force drops after a "
+                        "short first probe); with the starting point they are the points of its "
+                        "Oliver–Pharr fit"),
           D::at<&C::loading, &L::unload>("loading.unload")
               .comment("then back until the force vanishes (force control: to 1 % of max_force)")
               .describe("then back until the force vanishes (force control: to 1 % of "

@@ -2,12 +2,23 @@
 // writes (study index, Oliver-Pharr analysis, comparison with a measured curve).
 #pragma once
 
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 #include <string>
 
 namespace indentsim::io
 {
+  // A number for a JSON file: 10 significant digits; null if not finite (JSON has no NaN).
+  inline std::string json_number(const double value)
+  {
+    if (!std::isfinite(value))
+      return "null";
+    std::ostringstream out;
+    out << std::setprecision(10) << value;
+    return out.str();
+  }
+
   inline std::string json_string(const std::string &text)
   {
     std::ostringstream out;

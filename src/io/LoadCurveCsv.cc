@@ -105,6 +105,32 @@ namespace indentsim::io
                                : "point " + std::to_string(index + 1);
   }
 
+  bool LoadCurve::in_partial_unload(const std::size_t index) const
+  {
+    return index < segment.size() &&
+           (segment[index] == "partial_unload" || segment[index] == "reload");
+  }
+
+  LoadCurve without_partial_unloads(const LoadCurve &curve)
+  {
+    LoadCurve kept;
+    kept.source = curve.source;
+    for (std::size_t i = 0; i < curve.depth.size(); ++i)
+      {
+        if (curve.in_partial_unload(i))
+          continue;
+        kept.depth.push_back(curve.depth[i]);
+        kept.force.push_back(curve.force[i]);
+        if (i < curve.contact_area.size())
+          kept.contact_area.push_back(curve.contact_area[i]);
+        if (i < curve.segment.size())
+          kept.segment.push_back(curve.segment[i]);
+        // Messages name the row of the file, or else the point of the whole curve.
+        kept.line.push_back(i < curve.line.size() ? curve.line[i] : i + 1);
+      }
+    return kept;
+  }
+
   LoadCurve read_load_curve_csv(const std::string &path, const std::string &depth_column,
                                 const std::string &force_column, const std::string &depth_unit,
                                 const std::string &force_unit)
@@ -154,10 +180,14 @@ namespace indentsim::io
         depth_column, {"depth", "h_", "h ", "h(", "h[", "displacement", "penetration"}, "depth");
     const std::size_t force_index =
         find_column(force_column, {"force", "load", "p_", "p ", "p(", "p["}, "force");
-    std::size_t area_index = header.size();
+    std::size_t area_index = header.size(), segment_index = header.size();
     for (std::size_t c = 0; c < header.size(); ++c)
-      if (header[c] == "contact_area_um2")
-        area_index = c;
+      {
+        if (header[c] == "contact_area_um2")
+          area_index = c;
+        if (header[c] == "segment")
+          segment_index = c;
+      }
 
     const std::string d_unit = depth_unit.empty() ? unit_in_name(header[depth_index]) : depth_unit;
     const std::string f_unit = force_unit.empty() ? unit_in_name(header[force_index]) : force_unit;
@@ -199,9 +229,13 @@ namespace indentsim::io
         curve.line.push_back(line_number);
         if (area_index < header.size() && area_index < fields.size())
           curve.contact_area.push_back(number(fields, area_index));
+        if (segment_index < fields.size())
+          curve.segment.push_back(trim(fields[segment_index]));
       }
     if (curve.contact_area.size() != curve.depth.size())
       curve.contact_area.clear();
+    if (curve.segment.size() != curve.depth.size())
+      curve.segment.clear();
     return curve;
   }
 } // namespace indentsim::io

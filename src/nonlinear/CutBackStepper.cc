@@ -1,17 +1,20 @@
 #include "nonlinear/CutBackStepper.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
 namespace indentsim::nonlinear
 {
-  void IncrementControl::start_segment(const double nominal, const bool paced)
+  void IncrementControl::start_segment(const double nominal, const bool paced, const double probe)
   {
     increment = nominal;
     easy_steps = 0;
     segment_steps = 0;
-    paced_increment = paced ? nominal / 4 : std::numeric_limits<double>::infinity();
+    paced_increment = !paced      ? std::numeric_limits<double>::infinity()
+                      : probe > 0 ? probe
+                                  : nominal / 4;
   }
 
   double IncrementControl::step_size() const
@@ -22,10 +25,20 @@ namespace indentsim::nonlinear
   void IncrementControl::after_step(const bool easy, const bool paced, const double nominal_before,
                                     const double nominal_after, const double depth_before,
                                     const double depth_after, const double force_before,
-                                    const double force_after, const double pacing_force)
+                                    const double force_after, const double pacing_force,
+                                    const double remaining_drop)
   {
     if (paced && depth_before - depth_after > 0 && force_before - force_after > 0)
-      paced_increment = pacing_force * (depth_before - depth_after) / (force_before - force_after);
+      {
+        const double compliance = (depth_before - depth_after) / (force_before - force_after);
+        double       drop = pacing_force;
+        if (std::isfinite(remaining_drop))
+          {
+            const double steps_left = std::max(1.0, std::round(remaining_drop / pacing_force));
+            drop = remaining_drop / steps_left * (steps_left == 1 ? 1.05 : 1.0);
+          }
+        paced_increment = drop * compliance;
+      }
     // The increment keeps its fraction of the nominal one (2^-k after k outstanding cut-backs).
     if (nominal_before > 0)
       increment *= nominal_after / nominal_before;
@@ -51,7 +64,7 @@ namespace indentsim::nonlinear
     cutbacks = 0;
     while (true)
       {
-        if (segment.kind == SegmentKind::unload)
+        if (segment.kind == SegmentKind::unload || segment.kind == SegmentKind::partial_unload)
           target = std::max(segment.target, value - control.step_size());
         else if (!hold)
           target = std::min(segment.target, value + control.increment);

@@ -13,13 +13,15 @@
 // max_force / unload_points, with the depth increment from the last step's secant unloading
 // stiffness (the first step takes a quarter of the nominal increment); the elastic recovery
 // spans a small part of the depth, so uniform depth steps would leave the Oliver-Pharr fit a
-// handful of points.
+// handful of points. A partial unload is paced the same way to equal drops of its force,
+// after a small first probe of the stiffness, and lands on its target force.
 #pragma once
 
 #include "nonlinear/IncrementStatus.h"
 #include "nonlinear/LoadingProgramme.h"
 
 #include <functional>
+#include <limits>
 #include <string>
 
 namespace indentsim::nonlinear
@@ -32,16 +34,20 @@ namespace indentsim::nonlinear
     unsigned int easy_steps = 0;      // easy steps in a row since the last growth
     unsigned int segment_steps = 0;   // converged steps of this segment
 
-    // At the start of a segment of `nominal` increments.
-    void start_segment(double nominal, bool paced);
+    // At the start of a segment of `nominal` increments; a paced segment's first increment is
+    // `probe` if given (> 0), else a quarter of the nominal one.
+    void start_segment(double nominal, bool paced, double probe = 0);
     // The increment the next attempt takes.
     double step_size() const;
     // After a converged step: scales the increment with the nominal one (before and after the
     // step), doubles it after easy steps, and paces unloading from the step's secant (depth and
-    // force before and after, the largest force so far).
+    // force before and after) to force drops of `pacing_force`. With a finite `remaining_drop`
+    // (a partial unload's force still to shed) the drops are evened out to land on it, the
+    // last one 5 % beyond so that no sliver of a step is left.
     void after_step(bool easy, bool paced, double nominal_before, double nominal_after,
                     double depth_before, double depth_after, double force_before,
-                    double force_after, double pacing_force);
+                    double force_after, double pacing_force,
+                    double remaining_drop = std::numeric_limits<double>::infinity());
   };
 
   // What the stepper reports while it retries (for the console and run.log).

@@ -16,6 +16,19 @@ namespace indentsim::nonlinear
     {
       return loading.control == io::Control::force;
     }
+
+    // The depths of the partial unloads: every multiple of their spacing below the maximum
+    // depth (to 1e-9 of it: a partial unload at the maximum would repeat the full unload).
+    std::vector<double> partial_unload_depths(const io::LoadingParameters &loading)
+    {
+      std::vector<double> depths;
+      const double        every = loading.partial_unloads.every;
+      if (!loading.partial_unloads.enabled())
+        return depths;
+      for (unsigned int k = 1; k * every < loading.max_depth * (1 - 1e-9); ++k)
+        depths.push_back(k * every);
+      return depths;
+    }
   } // namespace
 
   const char *to_string(const SegmentKind kind)
@@ -28,6 +41,10 @@ namespace indentsim::nonlinear
         return "hold";
       case SegmentKind::unload:
         return "unload";
+      case SegmentKind::partial_unload:
+        return "partial_unload";
+      case SegmentKind::reload:
+        return "reload";
       }
     return "?";
   }
@@ -39,7 +56,9 @@ namespace indentsim::nonlinear
       unload_steps = !is_force_control(loading) && loading.unload_points > 0
                          ? loading.unload_points + 1
                          : uniform_unload_steps(loading);
-    return loading.cycles * (loading.steps + loading.hold_steps + unload_steps);
+    const auto partial = partial_unload_depths(loading).size();
+    return loading.cycles * (loading.steps + loading.hold_steps + unload_steps) +
+           partial * (loading.partial_unloads.points + 2);
   }
 
   LoadingProgramme::LoadingProgramme(const io::LoadingParameters &loading)
@@ -47,6 +66,8 @@ namespace indentsim::nonlinear
     , maximum(force_control ? loading.max_force : loading.max_depth)
     , expected_steps(nonlinear::expected_steps(loading))
     , unload_points_(loading.unload_points)
+    , partial_fraction_(loading.partial_unloads.fraction)
+    , partial_points_(loading.partial_unloads.points)
     , geometric_(loading.spacing == io::Spacing::geometric && loading.steps > 1)
     , first_fraction_(loading.first_fraction)
     , ratio_(geometric_ ? std::pow(1 / loading.first_fraction, 1.0 / (loading.steps - 1)) : 1.0)
@@ -56,6 +77,13 @@ namespace indentsim::nonlinear
     const double unload_target = force_control ? 0.01 * loading.max_force : 0.0;
     for (unsigned int cycle = 1; cycle <= loading.cycles; ++cycle)
       {
+        if (cycle == 1)
+          for (const double depth : partial_unload_depths(loading))
+            {
+              segments.push_back({SegmentKind::load, depth, loading.steps, cycle});
+              segments.push_back({SegmentKind::partial_unload, 0.0, partial_points_, cycle});
+              segments.push_back({SegmentKind::reload, depth, loading.steps, cycle});
+            }
         segments.push_back({SegmentKind::load, maximum, loading.steps, cycle});
         if (loading.hold_steps > 0)
           segments.push_back({SegmentKind::hold, maximum, loading.hold_steps, cycle});
@@ -67,7 +95,9 @@ namespace indentsim::nonlinear
 
   double LoadingProgramme::nominal_increment(const Segment &segment, const double value) const
   {
-    if (!geometric_ || segment.kind != SegmentKind::load)
+    // A reload takes the increments of the loading it returns to.
+    const bool loading = segment.kind == SegmentKind::load || segment.kind == SegmentKind::reload;
+    if (!geometric_ || !loading)
       return maximum / segment.steps;
     const double first = first_fraction_ * maximum;
     // Below the first target (to 1e-9 of it), the rest of the way there.
@@ -78,6 +108,34 @@ namespace indentsim::nonlinear
 
   bool LoadingProgramme::paced(const Segment &segment) const
   {
-    return segment.kind == SegmentKind::unload && !force_control && unload_points_ > 0;
+    return segment.kind == SegmentKind::partial_unload ||
+           (segment.kind == SegmentKind::unload && !force_control && unload_points_ > 0);
+  }
+
+  double LoadingProgramme::pacing_force(const Segment &segment, const double max_force,
+                                        const double start_force) const
+  {
+    if (segment.kind == SegmentKind::partial_unload)
+      return partial_fraction_ * start_force / partial_points_;
+    return unload_points_ > 0 ? max_force / unload_points_ : 0.0;
+  }
+
+  double LoadingProgramme::partial_unload_target(const double start_force) const
+  {
+    return (1 - partial_fraction_) * start_force;
+  }
+
+  bool LoadingProgramme::partial_unload_done(const double force, const double start_force) const
+  {
+    const double step_drop = partial_fraction_ * start_force / partial_points_;
+    return force <= partial_unload_target(start_force) + 0.05 * step_drop;
+  }
+
+  double LoadingProgramme::partial_unload_probe(const double start_depth) const
+  {
+    // The force falls by S dh; with S at most about 20 P / h for the unloading of a metal
+    // (m / (1 - h_f / h) with m <= 2 and h_f / h <= 0.9), this probe lowers it by at most
+    // 0.2 fraction P: well inside the partial unload.
+    return 0.01 * partial_fraction_ * start_depth;
   }
 } // namespace indentsim::nonlinear

@@ -238,7 +238,8 @@ namespace indentsim::problems
       nonlinear::IncrementControl control;
       unsigned int                step = 0, total_newton = 0, vtu_index = 0;
       double                      max_force = 0, contact_radius_at_max = 0, value_at_max = 0;
-      double wall_time = 0; // of the run so far, the parts before a resume included [s]
+      double partial_start_force = 0; // force where the current partial unload started [mN]
+      double wall_time = 0;           // of the run so far, the parts before a resume included [s]
     };
     // The run through the loading programme, in steps (IndentationRun.cc).
     struct RunContext;

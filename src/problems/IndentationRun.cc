@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -74,8 +75,12 @@ namespace indentsim::problems
         if (!loop.in_segment)
           {
             loop.in_segment = true;
+            const bool partial = segment.kind == SegmentKind::partial_unload;
+            loop.partial_start_force = partial ? records_.back().force : 0.0;
             loop.control.start_segment(context.programme.nominal_increment(segment, loop.value),
-                                       context.programme.paced(segment));
+                                       context.programme.paced(segment),
+                                       partial ? context.programme.partial_unload_probe(loop.depth)
+                                               : 0.0);
           }
         // Force control from a state that carries no load has no contact stiffness to steer
         // the depth: the first contact is made under depth control.
@@ -233,9 +238,11 @@ namespace indentsim::problems
     add_record(context, segment, record);
     loop.max_force = std::max(loop.max_force, record.force);
 
-    const bool reached = segment.kind == SegmentKind::hold
-                             ? loop.control.segment_steps >= segment.steps
-                             : std::abs(loop.value - segment.target) <= 1e-12 * programme.maximum;
+    const bool partial = segment.kind == SegmentKind::partial_unload;
+    const bool reached =
+        segment.kind == SegmentKind::hold ? loop.control.segment_steps >= segment.steps
+        : partial ? programme.partial_unload_done(record.force, loop.partial_start_force)
+                  : std::abs(loop.value - segment.target) <= 1e-12 * programme.maximum;
     // Depth-controlled unloading ends when contact is lost or the force has fallen below 0.1 %
     // of its maximum (the last node leaving the indenter makes the active set toggle; nothing
     // measurable happens below that force).
@@ -243,7 +250,9 @@ namespace indentsim::problems
         segment.kind == SegmentKind::unload && !programme.force_control &&
         (record.n_active_nodes == 0 || loop.depth <= 0 || record.force <= 1e-3 * loop.max_force);
     const bool segment_done = reached || lost;
-    const bool at_max = segment_done && segment.kind == SegmentKind::load;
+    // The loading's end (not the depth of a partial unload).
+    const bool at_max = segment_done && segment.kind == SegmentKind::load &&
+                        std::abs(segment.target - programme.maximum) <= 1e-12 * programme.maximum;
     const bool finished = segment_done && loop.segment + 1 == programme.segments.size();
     statistics_.steps = loop.step;
     statistics_.cutbacks += record.cutbacks;
@@ -290,7 +299,10 @@ namespace indentsim::problems
     loop.control.after_step(
         record.cutbacks == 0 && record.newton_iterations <= 6, programme.paced(segment),
         nominal_before, programme.nominal_increment(segment, loop.value), depth_before, loop.depth,
-        force_before, record.force, loop.max_force / case_.loading.unload_points);
+        force_before, record.force,
+        programme.pacing_force(segment, loop.max_force, loop.partial_start_force),
+        partial ? record.force - programme.partial_unload_target(loop.partial_start_force)
+                : std::numeric_limits<double>::infinity());
   }
 
   // Collective: a failed write of load_penetration.csv or run.log on rank 0 (kept by the

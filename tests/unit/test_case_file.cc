@@ -939,6 +939,25 @@ TEST(CaseFile, LoadingContactSolverRangesAreChecked)
   expect_rejected(with("loading:\n  cycles: 2\n  unload: false\n"),
                   {"loading.cycles = 2", "need loading.unload: true"});
   EXPECT_EQ(error_of(with("loading:\n  cycles: 3\n  hold_steps: 4\n")), "");
+  // Partial unloads: by depth, within the loading, in one cycle.
+  EXPECT_EQ(error_of(with("loading:\n  partial_unloads: {every: 0.5, fraction: 0.1}\n")), "");
+  expect_rejected(with("loading:\n  partial_unloads: {every: 6}\n"),
+                  {"loading.partial_unloads.every = 6", "smaller than loading.max_depth = 6"});
+  expect_rejected(with("loading:\n  partial_unloads: {every: -1}\n"),
+                  {"loading.partial_unloads.every = -1", ">= 0 um"});
+  expect_rejected(with("loading:\n  partial_unloads: {every: 0.5, fraction: 0.6}\n"),
+                  {"loading.partial_unloads.fraction = 0.6", "0 < fraction <= 0.5"});
+  expect_rejected(with("loading:\n  partial_unloads: {every: 0.5, points: 2}\n"),
+                  {"loading.partial_unloads.points = 2", "3 <= points <= 100"});
+  expect_rejected(with("loading:\n  control: force\n  max_force: 100\n  partial_unloads: "
+                       "{every: 0.5}\n"),
+                  {"loading.partial_unloads.every = 0.5", "loading.control: depth"});
+  expect_rejected(with("loading:\n  cycles: 2\n  partial_unloads: {every: 0.5}\n"),
+                  {"loading.partial_unloads.every = 0.5", "loading.cycles: 1"});
+  expect_rejected(with("loading:\n  partial_unloads: {every: 0.001}\n"),
+                  {"loading.partial_unloads.every = 0.001", "more than 1000"});
+  expect_rejected(with("loading:\n  partial_unloads: {evry: 0.5}\n"),
+                  {"loading.partial_unloads.evry"});
   expect_rejected(with("loading:\n  spacing: logarithmic\n"),
                   {"loading.spacing", "logarithmic", "uniform", "geometric"});
   expect_rejected(with("loading:\n  spacing: geometric\n  steps: 1\n"),

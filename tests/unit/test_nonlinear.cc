@@ -231,3 +231,61 @@ TEST(NewtonSteps, InexactNewtonToleranceAndResidualPrediction)
   EXPECT_EQ(reductions.at(5, 5), 0.25);
   EXPECT_EQ(reductions.at(0, 0), 0.0);
 }
+
+// Partial unloads: the first loading stops at every multiple of their spacing below the
+// maximum for a partial unload and a reload to the same depth; the full unload follows the
+// maximum as before. The force targets, the probe and the step count by hand.
+TEST(LoadingProgramme, PartialUnloadsAtEveryMultipleBelowTheMaximum)
+{
+  io::LoadingParameters loading;
+  loading.max_depth = 1.5;
+  loading.steps = 30;
+  loading.unload_points = 10;
+  loading.partial_unloads = {0.5, 0.2, 4};
+  const LoadingProgramme programme(loading);
+  // load 0.5, partial, reload 0.5, load 1.0, partial, reload 1.0, load 1.5, unload.
+  ASSERT_EQ(programme.segments.size(), 8u);
+  const SegmentKind kinds[8] = {SegmentKind::load, SegmentKind::partial_unload, SegmentKind::reload,
+                                SegmentKind::load, SegmentKind::partial_unload, SegmentKind::reload,
+                                SegmentKind::load, SegmentKind::unload};
+  const double      targets[8] = {0.5, 0.0, 0.5, 1.0, 0.0, 1.0, 1.5, 0.0};
+  for (unsigned int i = 0; i < 8; ++i)
+    {
+      EXPECT_EQ(programme.segments[i].kind, kinds[i]) << i;
+      EXPECT_DOUBLE_EQ(programme.segments[i].target, targets[i]) << i;
+    }
+  EXPECT_STREQ(to_string(SegmentKind::partial_unload), "partial_unload");
+  EXPECT_STREQ(to_string(SegmentKind::reload), "reload");
+  EXPECT_TRUE(programme.paced(programme.segments[1]));
+  EXPECT_FALSE(programme.paced(programme.segments[2]));
+  // Reloads take the loading's increments; a partial unload drops 20 % of 50 mN in 4 steps.
+  EXPECT_DOUBLE_EQ(programme.nominal_increment(programme.segments[2], 0.49), 0.05);
+  EXPECT_DOUBLE_EQ(programme.pacing_force(programme.segments[1], 80.0, 50.0), 2.5);
+  EXPECT_DOUBLE_EQ(programme.pacing_force(programme.segments[7], 80.0, 50.0), 8.0);
+  EXPECT_DOUBLE_EQ(programme.partial_unload_target(50.0), 40.0);
+  EXPECT_TRUE(programme.partial_unload_done(40.12, 50.0)); // within 5 % of a 2.5 mN step
+  EXPECT_FALSE(programme.partial_unload_done(40.13, 50.0));
+  EXPECT_DOUBLE_EQ(programme.partial_unload_probe(1.0), 0.002);
+  // 30 + 11 (paced unloading) + 2 (4 + 2).
+  EXPECT_EQ(programme.expected_steps, 53u);
+
+  // A spacing that divides the maximum puts no partial unload at the maximum itself.
+  loading.max_depth = 1.0;
+  EXPECT_EQ(LoadingProgramme(loading).segments.size(), 5u);
+}
+
+// A partial unload's pacing evens the remaining force drop out over whole steps and overshoots
+// the last by 5 %, from the secant compliance of the step before.
+TEST(CutBackStepper, PartialUnloadLandsOnItsTargetForce)
+{
+  IncrementControl control;
+  control.start_segment(0.05, true, 0.002);
+  EXPECT_DOUBLE_EQ(control.step_size(), 0.002);
+  // The probe lowered the force from 50 to 49 mN over 0.002 um: compliance 0.002 um/mN. With
+  // 9 mN to go in drops of 2.5 mN: 4 steps of 2.25 mN.
+  control.after_step(false, true, 0.05, 0.05, 1.0, 0.998, 50.0, 49.0, 2.5, 9.0);
+  EXPECT_NEAR(control.paced_increment, 2.25 * 0.002, 1e-15);
+  // 1.1 mN to go: one last step of 1.05 * 1.1 mN.
+  control.after_step(false, true, 0.05, 0.05, 0.998, 0.994, 49.0, 47.0, 2.5, 1.1);
+  EXPECT_NEAR(control.paced_increment, 1.05 * 1.1 * 0.002, 1e-15);
+}

@@ -101,6 +101,20 @@ CASES["j2_axi_auto"] = (
      "specimen": {"contact_elements": "auto", "symmetry": "axisymmetric"},
      "contact": {"friction_coefficient": 0.0, "penetration_tolerance": 1e-5},
      "loading": {"max_depth": 6.0, "steps": 192, "spacing": "geometric", "unload": True}})
+# The irradiated-versus-pristine pair with a hardness-depth profile: to 3 um with 19 partial
+# unloads (every 0.15 um, 10 % of the force) and the full unload, axisymmetric automatic mesh.
+CSM_LOADING = {"max_depth": 3.0, "steps": 128, "spacing": "geometric", "unload": True,
+               "partial_unloads": {"every": 0.15, "fraction": 0.1}}
+for name, layers, what in (("pristine", None, "pristine"),
+                           ("layer", [{"thickness": 1.5, "yield_stress": 0.6}],
+                            "under a 1.5 um layer of twice the yield stress")):
+    CASES[f"j2_axi_csm_{name}"] = (
+        f"J2 indentation (Table 1), {what}, axisymmetric automatic mesh, 128 geometric steps to "
+        "3 um with partial unloads every 0.15 um (the J2 pair of the irradiated-layer study)",
+        {**indentation({**J2, **({"layers": layers} if layers else {})}, "auto", "axisymmetric"),
+         "specimen": {"contact_elements": "auto", "symmetry": "axisymmetric"},
+         "contact": {"friction_coefficient": 0.0, "penetration_tolerance": 1e-5},
+         "loading": CSM_LOADING})
 CASES["tensile_27"] = (
     "tensile test of 27 random grains (crystal, 3x3x3 elements, 100 steps), no J2 comparison",
     {"test": "tensile", "material": {**J2, **CRYSTAL},
@@ -125,6 +139,8 @@ def render_yaml(value, indent=0):
             return "true" if item else "false"
         if isinstance(item, list):
             return "[" + ", ".join(scalar(element) for element in item) + "]"
+        if isinstance(item, dict):
+            return "{" + ", ".join(f"{k}: {scalar(v)}" for k, v in item.items()) + "}"
         return str(item)
 
     lines = []

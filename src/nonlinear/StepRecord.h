@@ -7,11 +7,16 @@
 
 namespace indentsim::nonlinear
 {
+  // The plastic zone's boundary: where plastic flow has begun, the boundary of Johnson's
+  // expanding-cavity model (1e-4 is 1/40 of the yield strain of the paper's J2 material; the
+  // zone is the same to 1 % with 1e-6).
+  inline constexpr double plastic_zone_threshold = 1e-4;
+
   struct StepRecord
   {
     unsigned int step = 0;
     unsigned int cycle = 0;          // load-unload cycle of the programme (0: initial state)
-    std::string  segment = "start";  // start | load | hold | unload
+    std::string  segment = "start";  // start | load | hold | unload | partial_unload | reload
     double       depth = 0;          // indenter apex depth [um]
     double       force = 0;          // indenter force [mN]
     double       contact_radius = 0; // largest radius of the interpolated perimeter [um]
@@ -25,6 +30,14 @@ namespace indentsim::nonlinear
     unsigned int cutbacks = 0;
     double       max_penetration = 0; // [um]
     double       bottom_reaction = 0; // [mN], whole indent
-    double       wall_time = 0;       // [s] since the start of the run
+    // The plastic zone (equivalent plastic strain above plastic_zone_threshold at a Gauss
+    // point; reference positions): its depth below the surface and radius from the axis [um],
+    // its volume [um^3] (whole indent) and the part of it within the layers of a depth-graded
+    // specimen [um^3].
+    double plastic_zone_depth = 0;
+    double plastic_zone_radius = 0;
+    double plastic_zone_volume = 0;
+    double plastic_zone_layer_volume = 0;
+    double wall_time = 0; // [s] since the start of the run
   };
 } // namespace indentsim::nonlinear

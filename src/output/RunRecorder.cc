@@ -22,7 +22,9 @@ namespace indentsim::output
     {
       out << "step,cycle,segment,depth_um,force_mN,contact_radius_um,contact_area_um2,"
              "n_active_nodes,n_stick_nodes,n_slip_nodes,max_pressure_GPa,max_penetration_um,"
-             "newton_iterations,augmentations,cutbacks,bottom_reaction_mN,wall_time_s\n";
+             "newton_iterations,augmentations,cutbacks,bottom_reaction_mN,plastic_zone_depth_um,"
+             "plastic_zone_radius_um,plastic_zone_volume_um3,plastic_zone_layer_fraction,"
+             "wall_time_s\n";
     }
 
     void write_csv_row(std::ostream &out, const nonlinear::StepRecord &r)
@@ -32,8 +34,11 @@ namespace indentsim::output
           << r.n_active_nodes << ',' << r.n_stick_nodes << ',' << r.n_slip_nodes << ','
           << r.max_pressure << ',' << std::setprecision(4) << r.max_penetration << ','
           << r.newton_iterations << ',' << r.augmentations << ',' << r.cutbacks << ','
-          << std::setprecision(10) << r.bottom_reaction << ',' << std::setprecision(4)
-          << r.wall_time << '\n';
+          << std::setprecision(10) << r.bottom_reaction << ',' << std::setprecision(6)
+          << r.plastic_zone_depth << ',' << r.plastic_zone_radius << ',' << r.plastic_zone_volume
+          << ','
+          << (r.plastic_zone_volume > 0 ? r.plastic_zone_layer_volume / r.plastic_zone_volume : 0.0)
+          << ',' << std::setprecision(4) << r.wall_time << '\n';
     }
 
     void write_log_header(std::ostream &out, const RunLogHeader &header)

@@ -174,6 +174,10 @@ namespace indentsim::problems
       visit(r.cutbacks);
       visit(r.max_penetration);
       visit(r.bottom_reaction);
+      visit(r.plastic_zone_depth);
+      visit(r.plastic_zone_radius);
+      visit(r.plastic_zone_volume);
+      visit(r.plastic_zone_layer_volume);
       visit(r.wall_time);
     }
   } // namespace

@@ -250,6 +250,9 @@ namespace indentsim::problems
     void complete_step(RunContext &context, const nonlinear::Segment &segment, StepRecord &record,
                        double nominal_before, double depth_before, double force_before);
     bool checkpoint_or_stop(RunContext &context);
+    void note_plastic_zone_in_substrate(RunContext &context);
+    // Collective: the plastic zone of the converged state into `record` (IndentationPlasticZone.cc).
+    void measure_plastic_zone(StepRecord &record);
     void check_records(RunContext &context);
     // The physics guards after an accepted step (IndentationGuards.cc, mesh/MeshAdequacy.h):
     // throws mesh::MeshOutgrownError (after noting it in run.log) when the contact nears the

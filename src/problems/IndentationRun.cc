@@ -277,6 +277,8 @@ namespace indentsim::problems
         }
     }
     accept_increment();
+    measure_plastic_zone(record);
+    records_.back() = record;
 
     // Progress: one line per step, with an ETA from the mean step time of this run.
     const double eta = record.wall_time / loop.step *
@@ -352,6 +354,31 @@ namespace indentsim::problems
     return true;
   }
 
+  // A depth-graded specimen: the indenter depth at which the plastic zone first reached below
+  // the last layer (console and run.log).
+  template <int dim>
+  void IndentationProblem<dim>::note_plastic_zone_in_substrate(RunContext &context)
+  {
+    double layered_depth = 0;
+    for (const io::MaterialLayer &layer : case_.material.layers)
+      layered_depth += layer.thickness;
+    if (!(layered_depth > 0))
+      return;
+    std::ostringstream note;
+    note << std::setprecision(4) << "the plastic zone ";
+    const auto reached = std::find_if(records_.begin(), records_.end(), [&](const StepRecord &r) {
+      return r.plastic_zone_depth > layered_depth;
+    });
+    if (reached == records_.end())
+      note << "stays within the layers (" << layered_depth << " um)";
+    else
+      note << "reaches the substrate below the layers (" << layered_depth
+           << " um) at the indenter depth " << reached->depth << " um (step " << reached->step
+           << ")";
+    pcout_ << "Depth-graded specimen: " << note.str() << std::endl;
+    context.recorder.log_note(note.str());
+  }
+
   // The end of a finished run: pile-up analysis, statistics, run_summary.json; the checkpoint
   // is removed.
   template <int dim>
@@ -368,6 +395,7 @@ namespace indentsim::problems
            << " Newton iterations, " << context.wall_time() << " s";
       context.recorder.log_note(note.str());
     }
+    note_plastic_zone_in_substrate(context);
     check_records(context);
     if (!output_directory_.empty())
       {

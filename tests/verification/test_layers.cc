@@ -47,7 +47,8 @@ namespace
 
   struct Curve
   {
-    std::vector<double> depth, force;
+    std::vector<double>               depth, force;
+    std::vector<problems::StepRecord> records;
   };
 
   Curve run(const io::Case &c)
@@ -61,6 +62,7 @@ namespace
         curve.depth.push_back(record.depth);
         curve.force.push_back(record.force);
       }
+    curve.records = problem.records();
     return curve;
   }
 
@@ -156,4 +158,58 @@ TEST(Layers, HardLayerLiesBetweenPristineAndUniformlyHardened)
             << " at 0.1 um, " << share_deep << " at 1 um; 10 um layer within "
             << 100 * largest_thick_difference << " % of the hardened curve" << std::endl;
   EXPECT_LT(share_deep, share_shallow);
+
+  // The plastic zone lies in the layer while it is shallower than the layer, and the layer's
+  // part of its volume falls once the zone reaches the substrate.
+  double reached = 0, last_fraction = 1;
+  for (const problems::StepRecord &r : thin.records)
+    {
+      if (!(r.plastic_zone_volume > 0))
+        continue;
+      const double fraction = r.plastic_zone_layer_volume / r.plastic_zone_volume;
+      if (r.plastic_zone_depth < 0.3)
+        EXPECT_DOUBLE_EQ(fraction, 1.) << "h = " << r.depth;
+      else if (reached == 0)
+        reached = r.depth;
+      last_fraction = fraction;
+    }
+  std::cout << "[ layers ] the plastic zone reaches the substrate at h = " << reached
+            << " um; at 1 um " << 100 * last_fraction << " % of it lies in the 0.3 um layer"
+            << std::endl;
+  EXPECT_GT(reached, 0.);
+  EXPECT_LT(reached, 0.3);
+  EXPECT_LT(last_fraction, 0.2);
+}
+
+// Johnson's expanding cavity (K.L. Johnson, J. Mech. Phys. Solids 18, 1970; Contact Mechanics,
+// 1985, sec. 6.3): under a cone of face angle beta the plastic zone is a hemisphere of radius c
+// about the contact of radius a, (c/a)^3 = E tan(beta) / (6 sigma_y (1 - nu)) + 2 (1 - 2 nu) /
+// (3 (1 - nu)). Below the tip, on the axis, the zone's depth is c within 15 % at every depth from
+// 0.3 um to 1 um, for the paper's sigma_y0 and twice it (c/a = 2.76 and 2.22); at the surface the
+// free surface and the pile-up pull the zone's boundary in (its radius is about 0.8 c there).
+TEST(PlasticZone, DepthFollowsJohnsonsExpandingCavity)
+{
+  for (const double yield_stress : {0.305, 0.61})
+    {
+      const io::Case c = layered_case({}, yield_stress);
+      const double   nu = c.material.poisson_ratio, tan_beta = 1 / c.indenter.a;
+      const double   johnson =
+          std::cbrt(c.material.young_modulus * tan_beta / (6 * yield_stress * (1 - nu)) +
+                    2 * (1 - 2 * nu) / (3 * (1 - nu)));
+      const Curve &curve = homogeneous(yield_stress);
+      double       lowest = 1e9, highest = 0, radius = 0;
+      for (const problems::StepRecord &r : curve.records)
+        {
+          if (r.depth < 0.3)
+            continue;
+          const double ratio = r.plastic_zone_depth / r.contact_radius;
+          lowest = std::min(lowest, ratio);
+          highest = std::max(highest, ratio);
+          radius = r.plastic_zone_radius / r.contact_radius;
+          EXPECT_NEAR(ratio / johnson, 1., 0.15) << "h = " << r.depth;
+        }
+      std::cout << "[ plastic zone ] sigma_y0 " << yield_stress << " GPa: depth / a " << lowest
+                << " ... " << highest << ", Johnson c/a " << johnson << "; radius / a at 1 um "
+                << radius << std::endl;
+    }
 }

@@ -84,8 +84,13 @@ def main():
     right.set_xlim(left=0)
     right.set_ylim(bottom=0)
     right.legend(fontsize=7)
-    right.set_title("Nix-Gao plot, bilinear fit" if fit else "Nix-Gao plot (too few points "
-                    "for the bilinear fit)", fontsize=10)
+    if not fit:
+        title = "Nix-Gao plot (too few points for the bilinear fit)"
+    elif fit.get("knee_significant"):
+        title = f"Nix-Gao plot, bilinear fit (F = {fit['f_statistic']:.3g})"
+    else:
+        title = f"Nix-Gao plot: no significant knee (F = {fit['f_statistic']:.3g})"
+    right.set_title(title, fontsize=10)
     for axes in (left, middle, right):
         axes.grid(alpha=0.3)
     figure.tight_layout()

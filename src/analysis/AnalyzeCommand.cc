@@ -245,9 +245,12 @@ namespace indentsim::analysis
             << "): " << points.size() << " partial unloads from " << points.front().depth << " to "
             << points.back().depth << " um, H " << points.front().estimate.hardness << " to "
             << points.back().estimate.hardness << " GPa";
-    if (nix_gao)
+    if (nix_gao && nix_gao->knee_significant())
       summary << "; Nix-Gao knee at " << nix_gao->knee_depth << " um, shallow branch H_0 "
               << nix_gao->layer_hardness << " GPa";
+    else if (nix_gao)
+      summary << "; Nix-Gao: no significant knee (F = " << nix_gao->f_statistic
+              << "): one straight line describes H^2(1/h)";
     summary << '\n';
     return true;
   }

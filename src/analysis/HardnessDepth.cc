@@ -186,7 +186,15 @@ namespace indentsim::analysis
     if (!std::isfinite(best_sse))
       return std::nullopt;
     best.rms = std::sqrt(best_sse / n);
+    const double single_sse = n * best.single_line_rms * best.single_line_rms;
+    best.f_statistic = best_sse > 0 ? (single_sse - best_sse) / 2 / (best_sse / (n - 4))
+                                    : std::numeric_limits<double>::infinity();
     return best;
+  }
+
+  bool NixGaoFit::knee_significant() const
+  {
+    return f_statistic > knee_f_threshold;
   }
 
   std::string to_csv(const std::vector<HardnessPoint> &points)
@@ -251,7 +259,9 @@ namespace indentsim::analysis
             << "], \"deep_intercept_GPa2\": " << json_number(f.deep_intercept)
             << ", \"deep_slope_GPa2_um\": " << json_number(f.deep_slope)
             << ", \"rms_GPa2\": " << json_number(f.rms)
-            << ", \"single_line_rms_GPa2\": " << json_number(f.single_line_rms) << "},\n";
+            << ", \"single_line_rms_GPa2\": " << json_number(f.single_line_rms)
+            << ", \"f_statistic\": " << json_number(f.f_statistic)
+            << ", \"knee_significant\": " << (f.knee_significant() ? "true" : "false") << "},\n";
       }
     else
       out << "null,\n";

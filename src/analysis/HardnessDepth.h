@@ -53,8 +53,16 @@ namespace indentsim::analysis
     double deep_range[2] = {0, 0};   // shallowest and deepest point of the deep branch [um]
     double rms = 0;                  // root-mean-square residual of H^2 [GPa^2]
     double single_line_rms = 0;      // the same of one straight line through all points
+    // F = ((SSE_1 - SSE_2) / 2) / (SSE_2 / (n - 4)): how much the knee (two more parameters)
+    // improves on one line. Above knee_f_threshold the knee is significant (about the 95 %
+    // point of F(2, n - 4) for n >= 10; the search over the knee makes it approximate); below
+    // it one line describes the points as well and the knee is arbitrary (a homogeneous
+    // material).
+    double f_statistic = 0;
+    bool   knee_significant() const;
   };
   inline constexpr unsigned int min_branch_points = 3;
+  inline constexpr double       knee_f_threshold = 4;
 
   // The partial unloads of `curve` (rows whose segment is partial_unload, each after the row
   // where it starts), analysed. A partial unload whose fit gives no positive stiffness or no

@@ -1,7 +1,7 @@
 // The loading programme of an indentation run: per cycle, load to the maximum, hold it, unload;
 // with partial unloads (io::PartialUnloads), the first loading stops at every multiple of their
-// depth spacing for a partial unload and a reload to that depth. The control value is the indenter depth [um] or, under force control, the indenter force [mN]
-// of the whole indent. Knows nothing of meshes: the stepper (IndentationRun.cc) walks it.
+// depth spacing for a partial unload and a reload to that depth. The control value is the
+// indenter depth [um] or, under force control, the indenter force [mN] of the whole indent. Knows nothing of meshes: the stepper (IndentationRun.cc) walks it.
 #pragma once
 
 #include "case/Case.h"

@@ -125,6 +125,14 @@ TEST(HardnessDepth, NixGaoBilinearFitRecoversKneeAndLayerHardness)
   EXPECT_NEAR(fit->deep_range[0], 1.4, 1e-12);
   EXPECT_LT(fit->rms, 0.01);
   EXPECT_GT(fit->single_line_rms, 10 * fit->rms);
+  EXPECT_TRUE(fit->knee_significant());
+  // Points on one line with a little scatter: the knee is not significant.
+  std::vector<double> scattered;
+  for (std::size_t i = 0; i < depth.size(); ++i)
+    scattered.push_back(std::sqrt(layer(1 / depth[i]) * (1 + (i % 2 ? 1e-3 : -1e-3))));
+  const auto flat = analysis::fit_nix_gao(depth, scattered);
+  ASSERT_TRUE(flat.has_value());
+  EXPECT_FALSE(flat->knee_significant()) << "F = " << flat->f_statistic;
   // Too few points for two branches of three: no fit.
   EXPECT_FALSE(analysis::fit_nix_gao({1, 2, 3, 4, 5}, {1, 1, 1, 1, 1}).has_value());
 }

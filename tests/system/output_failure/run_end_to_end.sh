@@ -88,7 +88,7 @@ expect_io_message "$out/vtu.txt" "$dir/specimen_0001.0.vtu"
 [[ -s "$dir/specimen_0000.0.vtu" ]] || fail "the earlier VTU is missing or empty"
 grep -qF "specimen_0000.pvtu" "$dir/specimen.pvd" || fail "specimen.pvd lost its earlier step"
 ! grep -qF "specimen_0001" "$dir/specimen.pvd" || fail "specimen.pvd names the missing step"
-awk -F, 'NF != 17 { exit 1 }' "$dir/load_penetration.csv" || fail "a cut row in load_penetration.csv"
+awk -F, 'NR == 1 { n = NF } NF != n { exit 1 }' "$dir/load_penetration.csv" || fail "a cut row in load_penetration.csv"
 no_temporary_files "$dir"
 
 # 2. With a checkpoint: the next checkpoint cannot be written; the previous one is kept intact

@@ -225,9 +225,6 @@ namespace indentsim::analysis
         text += (i ? ", " : "") + value(points[i]);
       return text + "]";
     };
-    const auto optional = [](const std::optional<double> &v) {
-      return v ? json_number(*v) : std::string("null");
-    };
     out << "{\n"
         << "  \"units\": \"depths um, forces mN, stiffness mN/um, areas um^2, hardness and "
            "moduli GPa\",\n"
@@ -245,7 +242,7 @@ namespace indentsim::analysis
         << "  \"reduced_modulus_GPa\": "
         << list([](const auto &p) { return json_number(p.estimate.reduced_modulus); }) << ",\n"
         << "  \"true_hardness_GPa\": "
-        << list([&](const auto &p) { return optional(p.true_hardness); }) << ",\n";
+        << list([&](const auto &p) { return json_number(p.true_hardness); }) << ",\n";
     out << "  \"nix_gao\": ";
     if (nix_gao)
       {

@@ -506,9 +506,6 @@ namespace indentsim::analysis
                       const LoadCurve *curve)
   {
     std::ostringstream out;
-    const auto         optional = [](const std::optional<double> &value) {
-      return value ? format(*value) : std::string("null");
-    };
     out << "{\n"
         << "  \"units\": \"depths um, forces mN, areas um^2, stiffness mN/um, hardness and moduli "
            "GPa, work mN*um (= nJ)\",\n"
@@ -533,17 +530,17 @@ namespace indentsim::analysis
         << "  \"contact_area_um2\": " << format(r.contact_area) << ",\n"
         << "  \"hardness_GPa\": " << format(r.hardness) << ",\n"
         << "  \"reduced_modulus_GPa\": " << format(r.reduced_modulus) << ",\n"
-        << "  \"sample_poisson_ratio\": " << optional(settings.sample_poisson_ratio) << ",\n"
-        << "  \"sample_modulus_GPa\": " << optional(r.sample_modulus) << ",\n"
+        << "  \"sample_poisson_ratio\": " << io::json_number(settings.sample_poisson_ratio) << ",\n"
+        << "  \"sample_modulus_GPa\": " << io::json_number(r.sample_modulus) << ",\n"
         << "  \"residual_depth_um\": " << format(r.residual_depth) << ",\n"
         << "  \"residual_depth_source\": \"" << r.residual_depth_source << "\",\n"
         << "  \"residual_depth_ratio\": " << format(r.residual_depth / r.max_depth) << ",\n"
         << "  \"total_work_mN_um\": " << format(r.total_work) << ",\n"
         << "  \"elastic_work_mN_um\": " << format(r.elastic_work) << ",\n"
         << "  \"plastic_work_ratio\": " << format(r.plastic_work_ratio) << ",\n"
-        << "  \"true_contact_area_um2\": " << optional(r.true_contact_area) << ",\n"
-        << "  \"true_hardness_GPa\": " << optional(r.true_hardness) << ",\n"
-        << "  \"area_error_percent\": " << optional(r.area_error_percent) << ",\n"
+        << "  \"true_contact_area_um2\": " << io::json_number(r.true_contact_area) << ",\n"
+        << "  \"true_hardness_GPa\": " << io::json_number(r.true_hardness) << ",\n"
+        << "  \"area_error_percent\": " << io::json_number(r.area_error_percent) << ",\n"
         << (r.true_area_note.empty()
                 ? std::string()
                 : "  \"true_area_note\": " + io::json_string(r.true_area_note) + ",\n")

@@ -125,6 +125,16 @@ namespace indentsim::io
     bool operator==(const MaterialLayer &) const = default;
   };
 
+  // The depth of the last layer's bottom below the original surface: the layers' total
+  // thickness [um] (0 without layers).
+  inline double layered_depth(const std::vector<MaterialLayer> &layers)
+  {
+    double depth = 0;
+    for (const MaterialLayer &layer : layers)
+      depth += layer.thickness;
+    return depth;
+  }
+
   struct MaterialParameters
   {
     Choice<ModelKind>          model = ModelKind::j2;

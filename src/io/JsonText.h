@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -17,6 +18,12 @@ namespace indentsim::io
     std::ostringstream out;
     out << std::setprecision(10) << value;
     return out.str();
+  }
+
+  // An optional number: null when absent.
+  inline std::string json_number(const std::optional<double> &value)
+  {
+    return value ? json_number(*value) : std::string("null");
   }
 
   inline std::string json_string(const std::string &text)

@@ -21,9 +21,7 @@ namespace indentsim::problems
   template <int dim>
   void IndentationProblem<dim>::measure_plastic_zone(StepRecord &record)
   {
-    double layered_depth = 0;
-    for (const io::MaterialLayer &layer : case_.material.layers)
-      layered_depth += layer.thickness;
+    const double       layered_depth = io::layered_depth(case_.material.layers);
     const unsigned int n_state = history_.n_state();
     FEValues<dim>      fe_values(solid_.fe, QGauss<dim>(2),
                                  update_quadrature_points | update_JxW_values);

@@ -359,9 +359,7 @@ namespace indentsim::problems
   template <int dim>
   void IndentationProblem<dim>::note_plastic_zone_in_substrate(RunContext &context)
   {
-    double layered_depth = 0;
-    for (const io::MaterialLayer &layer : case_.material.layers)
-      layered_depth += layer.thickness;
+    const double layered_depth = io::layered_depth(case_.material.layers);
     if (!(layered_depth > 0))
       return;
     std::ostringstream note;

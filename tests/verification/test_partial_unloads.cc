@@ -39,12 +39,19 @@ namespace
     return curve;
   }
 
+  // Oliver-Pharr with the indenter's epsilon, as a run analyses itself.
+  analysis::OliverPharrSettings settings_of(const io::Case &c)
+  {
+    analysis::OliverPharrSettings settings;
+    settings.epsilon = analysis::default_epsilon(io::to_string(c.indenter.shape));
+    return settings;
+  }
+
   std::vector<analysis::HardnessPoint> partial_unloads(const analysis::LoadCurve &curve,
                                                        const io::Case            &c)
   {
-    const auto                    indenter = indenter::create_indenter(c.indenter);
-    analysis::OliverPharrSettings settings;
-    settings.epsilon = analysis::default_epsilon(io::to_string(c.indenter.shape));
+    const auto               indenter = indenter::create_indenter(c.indenter);
+    const auto               settings = settings_of(c);
     std::vector<std::string> skipped;
     const auto               points = analysis::analyze_partial_unloads(
                       curve, [&](const double h) { return indenter->projected_area(h); }, settings, skipped);
@@ -111,9 +118,10 @@ TEST(PartialUnloads, ElasticStiffnessIsTwiceReducedModulusTimesContactRadius)
   EXPECT_NEAR(p.stiffness / hertz, 1., 0.01);
   EXPECT_NEAR(p.stiffness / (1.5 * p.force / p.depth), 1., 0.005);
   EXPECT_NEAR(p.estimate.reduced_modulus / e_star, 1., 0.01);
-  // The partial unload lowered the force by the fraction asked for, to within its last step's
-  // 5 % overshoot of one step's drop.
-  EXPECT_NEAR(p.unloaded_fraction, 0.1, 0.1 * 0.05 * 0.1 / 4 + 0.1 * 0.02);
+  // The partial unload lowered the force by the fraction asked for: it ends within 5 % of one
+  // step's drop (0.1 / 4) above the target, and its last step overshoots by 5 % of its own drop.
+  EXPECT_GE(p.unloaded_fraction, 0.1 - 0.05 * 0.1 / 4);
+  EXPECT_LE(p.unloaded_fraction, 0.102);
 }
 
 // The paper's J2 material to 1.1 um with partial unloads at 0.5 and 1.0 um, against the same
@@ -152,11 +160,9 @@ TEST(PartialUnloads, ElasticPlasticStiffnessAndLoadingCurveMatchAFullUnload)
   ASSERT_EQ(points.size(), 2u);
   const analysis::HardnessPoint &p = points.back();
   EXPECT_NEAR(p.depth, 1.0, 1e-12);
-  const auto                    indenter = indenter::create_indenter(full.indenter);
-  analysis::OliverPharrSettings settings;
-  settings.epsilon = analysis::default_epsilon(io::to_string(full.indenter.shape));
+  const auto indenter = indenter::create_indenter(full.indenter);
   const auto op = analysis::analyze(
-      full_curve, [&](const double h) { return indenter->projected_area(h); }, settings);
+      full_curve, [&](const double h) { return indenter->projected_area(h); }, settings_of(full));
   std::cout << "[ partial unload, J2 ] at 1 um: S " << p.stiffness << " mN/um (full unload "
             << op.stiffness << ", " << 100 * (p.stiffness / op.stiffness - 1) << " %), H "
             << p.estimate.hardness << " GPa (full " << op.hardness << "), loading curve within "

@@ -3,6 +3,7 @@
 // CaseValidator.cc. Every message names the file, the line, the key path and the value.
 #include "case/CaseReading.h"
 #include "case/Schema.h"
+#include "io/DamageProfileCsv.h"
 #include "io/HardeningTableCsv.h"
 #include "io/TextNumber.h"
 
@@ -26,7 +27,8 @@ namespace indentsim::io
     const std::string orientation_path = "material.orientation";
     // The map whose keys may also be slip families, each with its own block.
     const std::string              family_blocks_path = "material.hardening";
-    const std::vector<std::string> family_block_keys = {"tau0", "tau1", "theta0", "theta1"};
+    const std::vector<std::string> family_block_keys = {
+        "tau0", "tau1", "theta0", "theta1", "tau_irr", "softening_slip", "barrier_strength"};
 
     class CaseReader
     {
@@ -70,6 +72,7 @@ namespace indentsim::io
           }
 
         read_hardening_law(result.material);
+        read_damage_profile(result.material);
         given_once("material.hardening.q", "material.latent_hardening.q");
 
         // F-bar by default for plasticity (isochoric flow locks plain hexahedra) and for nearly
@@ -330,15 +333,17 @@ namespace indentsim::io
             const std::string path = key.parent() + "." + family;
             value_origins[path] = {line_of(entry.second), node_text(entry.second)};
             check_keys(entry.second, path, family_block_keys);
-            FamilyHardening block{family, m.tau0, m.tau1, m.theta0, m.theta1};
-            double         *values[] = {&block.tau0, &block.tau1, &block.theta0, &block.theta1};
+            FamilyHardening block{family,   m.tau0,    m.tau1,           m.theta0,
+                                  m.theta1, m.tau_irr, m.softening_slip, m.barrier_strength};
+            double         *values[] = {
+                        &block.tau0,    &block.tau1,           &block.theta0,          &block.theta1,
+                        &block.tau_irr, &block.softening_slip, &block.barrier_strength};
             for (std::size_t i = 0; i < family_block_keys.size(); ++i)
               {
                 const YAML::Node node = value_node(entry.second, path, family_block_keys[i]);
                 if (node.IsDefined())
-                  *values[i] =
-                      parse_double(node, path + "." + family_block_keys[i],
-                                   family_block_keys[i] + " in GPa for the family " + family);
+                  *values[i] = parse_double(node, path + "." + family_block_keys[i],
+                                            family_block_keys[i] + " for the family " + family);
               }
             key.family_blocks(result).push_back(block);
           }
@@ -513,6 +518,99 @@ namespace indentsim::io
                               : has_stress ? "plastic_strain"
                                            : "the table") +
                              "; " + either);
+      }
+
+      // material.damage_profile: the profile inline (depth with dpa) or a file read here into
+      // the two lists, and its law's form with the form's own keys, all required except the
+      // saturation exponent (default 1). The values are checked in CaseValidator.cc.
+      void read_damage_profile(MaterialParameters &material)
+      {
+        const std::string prefix = "material.damage_profile.";
+        const auto        given = [&](const std::string &name) {
+          return value_origins.count(prefix + name) > 0;
+        };
+        const auto line = [&](const std::string &name) {
+          const auto origin = value_origins.find(prefix + name);
+          return origin == value_origins.end() ? -1 : origin->second.line;
+        };
+        const auto shown = [&](const std::string &name) {
+          return prefix + name + " = " + value_origins.at(prefix + name).text;
+        };
+        const std::string either =
+            "give file: a CSV with the header depth_nm,dpa (or depth_um), or depth: [...] (um) "
+            "together with dpa: [...]";
+        DamageProfileParameters &profile = material.damage_profile;
+        if (!given("file") && !given("depth") && !given("dpa"))
+          {
+            for (const auto &[path, origin] : value_origins)
+              if (path.rfind(prefix, 0) == 0)
+                fail(origin.line, path + " = " + origin.text +
+                                      ": a key of a damage profile, given without the profile; " +
+                                      either);
+            return;
+          }
+        if (given("file") && (given("depth") || given("dpa")))
+          fail(line("file"),
+               shown("file") + ": the profile is given twice (file and lists); " + either);
+        if (!given("file") && !(given("depth") && given("dpa")))
+          fail(line(given("depth") ? "depth" : "dpa"), shown(given("depth") ? "depth" : "dpa") +
+                                                           ": the profile needs both lists; " +
+                                                           either);
+        if (given("file"))
+          {
+            try
+              {
+                DamageProfileTable table = read_damage_profile_csv(profile.file);
+                profile.depth = std::move(table.depth);
+                profile.dpa = std::move(table.dpa);
+              }
+            catch (const std::invalid_argument &error)
+              {
+                fail(line("file"), prefix + "file = \"" + profile.file + "\": " + error.what());
+              }
+          }
+
+        const std::vector<std::string> parameters = {
+            "saturation_increment", "saturation_dose", "exponent",       "dpa",
+            "delta_yield_stress",   "shear_modulus",   "burgers_vector", "defect_size",
+            "saturation_density"};
+        const std::string forms = join(choice_words<DamageLaw>(true), " | ");
+        if (!given("law.form"))
+          fail(line("law") >= 0 ? line("law") : line(given("file") ? "file" : "depth"),
+               "material.damage_profile needs law: {form: " + forms +
+                   ", ...} (the dose-to-strength law; user guide, \"Damage profiles\")");
+        if (!profile.law.known())
+          return; // named by the validator, with the allowed words
+        struct FormKeys
+        {
+          DamageLaw                law;
+          std::vector<std::string> required, optional;
+        };
+        const std::vector<FormKeys> form_keys = {
+            {DamageLaw::saturation, {"saturation_increment", "saturation_dose"}, {"exponent"}},
+            {DamageLaw::table, {"dpa", "delta_yield_stress"}, {}},
+            {DamageLaw::dispersed_barrier,
+             {"shear_modulus", "burgers_vector", "defect_size", "saturation_density",
+              "saturation_dose"},
+             {}},
+        };
+        const std::string form = profile.law.word();
+        for (const auto &keys : form_keys)
+          {
+            if (profile.law != keys.law)
+              continue;
+            std::vector<std::string> own = keys.required;
+            own.insert(own.end(), keys.optional.begin(), keys.optional.end());
+            for (const auto &name : parameters)
+              if (given("law." + name) && std::find(own.begin(), own.end(), name) == own.end())
+                fail(line("law." + name), shown("law." + name) + ": not a parameter of form: " +
+                                              form + " (its keys: " + join(own) + ")");
+            for (const auto &name : keys.required)
+              if (!given("law." + name))
+                fail(line("law.form"), "material.damage_profile.law: form: " + form + " needs " +
+                                           prefix + "law." + name + " (its keys: " + join(own) +
+                                           ")");
+          }
       }
 
       // A path given relative to the case file's directory, made absolute (the resolved case

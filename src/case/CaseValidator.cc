@@ -3,6 +3,7 @@
 // hand below. Every message names the key path, the value and what is allowed, and, for a
 // case read from a file, the file and the line.
 #include "case/CaseReading.h"
+#include "case/DamageProfile.h"
 #include "case/MaterialLayers.h"
 #include "case/Schema.h"
 #include "indenter/IndenterFactory.h"
@@ -32,6 +33,10 @@ namespace indentsim::io
 
     const std::array<const char *, 3> axis_names = {{"x", "y", "z"}};
 
+    // The most sampling slabs of a damage profile (case/DamageProfile.h): far above the 600 of
+    // a 3 um profile at the default resolution, low enough that a typo cannot exhaust memory.
+    constexpr std::size_t max_damage_slabs = 100000;
+
     class CaseValidator
     {
     public:
@@ -52,6 +57,7 @@ namespace indentsim::io
         check_hardening_law();
         check_crystal_parameters();
         check_layers();
+        check_damage_profile();
         check_section("indenter");
         std::unique_ptr<indenter::IndenterSurface> surface = check_indenter();
         check_section("specimen");
@@ -117,6 +123,109 @@ namespace indentsim::io
           if (const auto origin = value_origins->find(path); origin != value_origins->end())
             source += ":" + std::to_string(origin->second.line + 1);
         layer_materials(checked.material, source);
+      }
+
+      // material.damage_profile: for the indentation test and not with layers; the profile
+      // from >= 0 and strictly increasing with some damage; the law's form for the model
+      // (saturation or table for j2, dispersed_barrier for crystal) with its table in order, or
+      // a slip family that the defects harden.
+      void check_damage_profile() const
+      {
+        const MaterialParameters      &m = checked.material;
+        const DamageProfileParameters &p = m.damage_profile;
+        if (!p.given())
+          return;
+        const std::string where =
+            p.file.empty() ? "material.damage_profile.depth" : "material.damage_profile.file";
+        const std::string shown = p.file.empty() ? format_list(p.depth) : "\"" + p.file + "\"";
+        if (tensile())
+          reject(where, shown,
+                 "a damage profile lies below an indented surface (test: indentation); the "
+                 "tensile test models a homogeneous polycrystal");
+        if (!m.layers.empty())
+          reject(where, shown,
+                 "give layers or a damage profile, not both (material.layers is given)");
+        if (p.depth.size() != p.dpa.size())
+          reject("material.damage_profile.dpa", format_list(p.dpa),
+                 "one dose per depth (" + std::to_string(p.depth.size()) + " depths, " +
+                     std::to_string(p.dpa.size()) + " doses)");
+        if (p.depth.size() < 2)
+          reject(where, shown, "a profile needs at least 2 points");
+        for (std::size_t i = 0; i < p.depth.size(); ++i)
+          {
+            const std::string row = p.file.empty()
+                                        ? "point " + std::to_string(i + 1)
+                                        : "row " + std::to_string(i + 1) + " of the data";
+            if (!(p.depth[i] >= 0) || !std::isfinite(p.depth[i]) ||
+                (i > 0 && !(p.depth[i] > p.depth[i - 1])))
+              reject(where, shown,
+                     row + ": the depth " + format_number(p.depth[i]) +
+                         " um; the depths must be finite, >= 0 and strictly increasing");
+            if (!(p.dpa[i] >= 0) || !std::isfinite(p.dpa[i]))
+              reject(where, shown,
+                     row + ": the dose " + format_number(p.dpa[i]) +
+                         " dpa; the doses must be finite and >= 0");
+          }
+        if (!(peak_dose(p) > 0))
+          reject(where, shown, "every dose is 0: the profile would change nothing");
+        if (p.depth.back() / p.resolution > max_damage_slabs)
+          reject("material.damage_profile.resolution", format_number(p.resolution),
+                 "the profile's " + format_number(p.depth.back()) + " um would take more than " +
+                     std::to_string(max_damage_slabs) + " slabs; give at least " +
+                     format_number(p.depth.back() / max_damage_slabs) + " um");
+        if (!p.law.known())
+          return;
+        const bool crystal = m.model == ModelKind::crystal;
+        const bool barrier = p.law == DamageLaw::dispersed_barrier;
+        if (m.model == ModelKind::neo_hookean || crystal != barrier)
+          reject("material.damage_profile.law.form", p.law.word(),
+                 "model: " + m.model.word() + " takes " +
+                     (crystal                    ? std::string("form: dispersed_barrier")
+                      : m.model == ModelKind::j2 ? std::string("form: saturation or table")
+                                                 : std::string("no damage profile (it has no "
+                                                               "yield stress)")));
+        if (p.law == DamageLaw::table)
+          check_damage_table(p);
+        if (barrier)
+          {
+            bool hardened =
+                m.family_hardening.size() < families_of(m).size() && m.barrier_strength > 0;
+            for (const FamilyHardening &block : m.family_hardening)
+              hardened = hardened || block.barrier_strength > 0;
+            if (!hardened)
+              reject("material.hardening.barrier_strength", format_number(m.barrier_strength),
+                     "form: dispersed_barrier needs a barrier strength alpha > 0 for some slip "
+                     "family (typically 0.1 to 0.5); with 0 the defects harden nothing");
+          }
+      }
+
+      // form: table: the doses from 0 and strictly increasing, one increment per dose, >= 0,
+      // the first 0 (no damage, no hardening).
+      void check_damage_table(const DamageProfileParameters &p) const
+      {
+        const std::string doses = "material.damage_profile.law.dpa";
+        const std::string increments = "material.damage_profile.law.delta_yield_stress";
+        if (p.table_dpa.size() < 2 || p.table_dpa.front() != 0)
+          reject(doses, format_list(p.table_dpa), "at least 2 doses, the first 0");
+        for (std::size_t i = 1; i < p.table_dpa.size(); ++i)
+          if (!(p.table_dpa[i] > p.table_dpa[i - 1]))
+            reject(doses, format_list(p.table_dpa), "the doses must increase strictly");
+        if (p.table_delta_yield_stress.size() != p.table_dpa.size())
+          reject(increments, format_list(p.table_delta_yield_stress),
+                 "one increment per dose (" + std::to_string(p.table_dpa.size()) + " doses)");
+        if (p.table_delta_yield_stress.front() != 0)
+          reject(increments, format_list(p.table_delta_yield_stress),
+                 "the first increment (at 0 dpa) must be 0");
+      }
+
+      // The slip families of a crystal's lattice ({} for a lattice the reader did not know).
+      std::vector<std::string> families_of(const MaterialParameters &m) const
+      {
+        if (!m.lattice.known())
+          return {};
+        return materials::slip_systems(m.lattice.word(), designed.material.slip_families,
+                                       m.lattice == Lattice::hcp ? m.c_over_a : 0.0)
+            .families;
       }
 
       // The single-key checks of the schema for every key of one top-level section.
@@ -621,7 +730,10 @@ namespace indentsim::io
             for (const auto &[name, value] : {std::pair{"tau0", block.tau0},
                                               {"tau1", block.tau1},
                                               {"theta0", block.theta0},
-                                              {"theta1", block.theta1}})
+                                              {"theta1", block.theta1},
+                                              {"tau_irr", block.tau_irr},
+                                              {"softening_slip", block.softening_slip},
+                                              {"barrier_strength", block.barrier_strength}})
               if (const Key &key = find_key(std::string("material.hardening.") + name);
                   !key.range.contains(value))
                 reject(path + "." + name, format_number(value), key.range_message);

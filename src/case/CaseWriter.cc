@@ -93,13 +93,21 @@ namespace indentsim::io
             out << section << ":\n";
             open_section = section;
           }
-        if (parent != section && parent != open_group)
+        // Every map between the section and the key whose header line is not written yet.
+        for (std::size_t dot = parent.find('.'); parent != section && dot != std::string::npos;
+             dot = parent.find('.', dot + 1))
           {
-            const Group *group = group_at(parent);
-            write_line(out, indentation(parent) + parent.substr(parent.rfind('.') + 1) + ":",
+            const std::size_t end = parent.find('.', dot + 1);
+            const std::string map = parent.substr(0, end);
+            if (open_group == map || open_group.rfind(map + ".", 0) == 0)
+              continue;
+            const Group *group = group_at(map);
+            write_line(out, indentation(map) + map.substr(map.rfind('.') + 1) + ":",
                        group != nullptr ? group->comment : "");
-            open_group = parent;
+            open_group = map;
           }
+        if (parent != section)
+          open_group = parent;
         if (key.type == ValueType::family_blocks)
           {
             // One line per family, named by the family in place of the key's placeholder.

@@ -70,7 +70,8 @@ namespace indentsim::io
   const std::vector<std::string> &structural_layer_keys()
   {
     static const std::vector<std::string> keys = {
-        "model", "lattice", "slip_families", "c_over_a", "orientation", "hardening.law", "layers"};
+        "model", "lattice", "slip_families", "c_over_a", "orientation", "hardening.law", "layers",
+        "damage_profile"};
     return keys;
   }
 

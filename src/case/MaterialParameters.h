@@ -100,15 +100,19 @@ namespace indentsim::io
     bool operator==(const OrientationParameters &) const = default;
   };
 
-  // One slip family's own extended Voce parameters (material.hardening."{112}<111>": {...});
-  // the keys a block leaves out take the common values (material.hardening.tau0, ...) when read.
+  // One slip family's own extended Voce and irradiation parameters
+  // (material.hardening."{112}<111>": {...}); the keys a block leaves out take the common values
+  // (material.hardening.tau0, ...) when read.
   struct FamilyHardening
   {
-    std::string family;     // a name of SlipSystems.h, one of slip_families
-    double      tau0 = 0;   // [GPa]
-    double      tau1 = 0;   // [GPa]
-    double      theta0 = 0; // [GPa]
-    double      theta1 = 0; // [GPa]
+    std::string family;               // a name of SlipSystems.h, one of slip_families
+    double      tau0 = 0;             // [GPa]
+    double      tau1 = 0;             // [GPa]
+    double      theta0 = 0;           // [GPa]
+    double      theta1 = 0;           // [GPa]
+    double      tau_irr = 0;          // tau_irr,0 [GPa]
+    double      softening_slip = 0;   // gamma_0 [-]
+    double      barrier_strength = 0; // alpha of the dispersed-barrier law [-]
 
     bool operator==(const FamilyHardening &) const = default;
   };
@@ -123,6 +127,47 @@ namespace indentsim::io
     std::string overrides;     // e.g. "{yield_stress: 0.6}"
 
     bool operator==(const MaterialLayer &) const = default;
+  };
+
+  // How the damage of a damage profile raises the strength (material.damage_profile.law).
+  enum class DamageLaw
+  {
+    saturation,       // j2: Delta sigma_y = Delta sigma_sat (1 - exp(-d/d0))^p
+    table,            // j2: Delta sigma_y piecewise linear in d
+    dispersed_barrier // crystal: tau_irr,0 = alpha mu b sqrt(N(d) D), N = N_sat (1 - exp(-d/d0))
+  };
+  template <>
+  struct ChoiceWords<DamageLaw>
+  {
+    static constexpr std::array<ChoiceWord<DamageLaw>, 3> words = {
+        {{DamageLaw::saturation, "saturation"},
+         {DamageLaw::table, "table"},
+         {DamageLaw::dispersed_barrier, "dispersed_barrier"}}};
+  };
+
+  // A damage profile (material.damage_profile): the damage d [dpa] against the depth below the
+  // original surface, and the law that turns it into strength (case/DamageProfile.h). Empty
+  // depth: no profile.
+  struct DamageProfileParameters
+  {
+    std::string         file;               // CSV read into the two lists below ("": inline)
+    std::vector<double> depth;              // [um], from >= 0, strictly increasing
+    std::vector<double> dpa;                // d [dpa] >= 0, one per depth
+    double              resolution = 0.005; // the sampling slabs' thickness [um]
+    Choice<DamageLaw>   law = DamageLaw::saturation;
+    double              saturation_increment = 0.0; // Delta sigma_sat [GPa] (saturation)
+    double              saturation_dose = 0.1;      // d0 [dpa] (saturation, dispersed_barrier)
+    double              exponent = 1.0;             // p [-] (saturation)
+    std::vector<double> table_dpa;                  // d_i [dpa] (table)
+    std::vector<double> table_delta_yield_stress;   // Delta sigma_y,i [GPa] (table)
+    // dispersed_barrier (placeholders of the schema's ranges otherwise: the form needs them).
+    double shear_modulus = 1.0;      // mu [GPa]
+    double burgers_vector = 1.0;     // b [um]
+    double defect_size = 1.0;        // D, the defects' diameter [um]
+    double saturation_density = 1.0; // N_sat [1/um^3]
+
+    bool given() const { return !depth.empty() || !file.empty(); }
+    bool operator==(const DamageProfileParameters &) const = default;
   };
 
   // The depth of the last layer's bottom below the original surface: the layers' total
@@ -166,6 +211,9 @@ namespace indentsim::io
     double                   theta0 = 0.1;         // initial hardening rate [GPa]
     double                   theta1 = 0.006;       // asymptotic hardening rate [GPa]
     double                   q = 1.4;              // latent hardening ratio [-]
+    double                   tau_irr = 0.0; // the irradiation defects' initial critical shear [GPa]
+    double                   softening_slip = 0.05; // gamma_0, the slip that sweeps them out [-]
+    double barrier_strength = 0.0; // alpha of the dispersed-barrier law (damage_profile) [-]
     std::vector<FamilyHardening> family_hardening; // blocks given per family, in file order
     // Latent ratios q_fg between families f and g (rows and columns in slip_families order);
     // empty: q for every pair of distinct systems.
@@ -175,6 +223,8 @@ namespace indentsim::io
     // Layers from the surface down; below the last one the parameters above hold (the
     // substrate). Empty: a homogeneous specimen.
     std::vector<MaterialLayer> layers;
+    // A depth-graded material from a damage profile (excludes layers).
+    DamageProfileParameters damage_profile;
 
     bool operator==(const MaterialParameters &) const = default;
   };

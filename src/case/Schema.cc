@@ -43,6 +43,7 @@ namespace indentsim::io
     using S = SpecimenParameters;
     using L = LoadingParameters;
     using PU = PartialUnloads;
+    using DP = DamageProfileParameters;
     using CP = ContactParameters;
     using SP = SolverParameters;
     using OU = OutputParameters;
@@ -102,6 +103,16 @@ namespace indentsim::io
     {
       return !c.material.family_hardening.empty();
     }
+    // A crystal with irradiation defects (material.hardening.tau_irr or a dispersed-barrier
+    // damage profile, in the common block or a family's).
+    bool crystal_irradiation(const Case &c)
+    {
+      const MaterialParameters &m = c.material;
+      bool                      given = m.tau_irr > 0 || m.barrier_strength > 0;
+      for (const FamilyHardening &block : m.family_hardening)
+        given = given || block.tau_irr > 0 || block.barrier_strength > 0;
+      return m.model == ModelKind::crystal && given;
+    }
     bool latent_matrix_given(const Case &c)
     {
       return !c.material.latent_matrix.empty();
@@ -114,6 +125,38 @@ namespace indentsim::io
     bool layers_given(const Case &c)
     {
       return !c.material.layers.empty();
+    }
+    bool damage_profile_given(const Case &c)
+    {
+      return c.material.damage_profile.given();
+    }
+    bool inline_damage_profile(const Case &c)
+    {
+      return damage_profile_given(c) && c.material.damage_profile.file.empty();
+    }
+    bool damage_profile_file(const Case &c)
+    {
+      return !c.material.damage_profile.file.empty();
+    }
+    bool damage_law_is(const Case &c, const DamageLaw law)
+    {
+      return damage_profile_given(c) && c.material.damage_profile.law == law;
+    }
+    bool saturation_damage_law(const Case &c)
+    {
+      return damage_law_is(c, DamageLaw::saturation);
+    }
+    bool saturating_damage_law(const Case &c)
+    {
+      return saturation_damage_law(c) || damage_law_is(c, DamageLaw::dispersed_barrier);
+    }
+    bool table_damage_law(const Case &c)
+    {
+      return damage_law_is(c, DamageLaw::table);
+    }
+    bool barrier_damage_law(const Case &c)
+    {
+      return damage_law_is(c, DamageLaw::dispersed_barrier);
     }
     bool orientation_by_normal(const Case &c)
     {
@@ -349,11 +392,36 @@ namespace indentsim::io
               .describe("latent hardening ratio q, h_rs = q for r ≠ s, 1 for r = s (1: "
                         "isotropic hardening); or `latent_hardening: {q: ...}`, never both "
                         "(crystal)"),
+          D::at<&C::material, &M::tau_irr>("material.hardening.tau_irr")
+              .unit("GPa")
+              .expect("tau_irr in GPa")
+              .range(finite_at_least(0), "the irradiation term tau_irr must be finite and >= 0 GPa")
+              .written_if(&crystal_irradiation)
+              .comment("irradiation defects' initial critical shear [GPa]")
+              .describe("τirr,0: the critical shear that irradiation defects add, swept out by "
+                        "slip, τc = τc(Γ) + τirr,0 exp(−Γ/γ0); 0: none. Set per layer, or by a "
+                        "`damage_profile` (crystal)"),
+          D::at<&C::material, &M::softening_slip>("material.hardening.softening_slip")
+              .expect("the softening slip gamma_0")
+              .range(finite_above(0), "the softening slip gamma_0 must be finite and > 0")
+              .written_if(&crystal_irradiation)
+              .comment("gamma_0 of tau_irr exp(-Gamma/gamma_0) [-]")
+              .describe("γ0: the total slip Γ over which the irradiation term decays by 1/e "
+                        "(crystal)"),
+          D::at<&C::material, &M::barrier_strength>("material.hardening.barrier_strength")
+              .expect("the barrier strength alpha")
+              .range(finite_at_least(0), "the barrier strength alpha must be finite and >= 0")
+              .written_if(&crystal_irradiation)
+              .comment("alpha of the dispersed-barrier law [-]")
+              .describe("α of the damage law `form: dispersed_barrier`, τirr,0 = α μ b √(N D), "
+                        "typically 0.1–0.5 for dislocation loops; per family where they differ "
+                        "(crystal)"),
           D::at<&C::material, &M::family_hardening>("material.hardening.<family>")
               .written_if(&family_hardening_given)
               .default_is("– (every family: the keys above)")
               .allowed_is("a family of `slip_families`, each once; keys `tau0`, `tau1`, "
-                          "`theta0`, `theta1` as above")
+                          "`theta0`, `theta1`, `tau_irr`, `softening_slip`, `barrier_strength` "
+                          "as above")
               .comment("[GPa]")
               .describe("one slip family's own Voce parameters, e.g. `\"{112}<111>\": {tau0: "
                         "0.42, tau1: 0.1, theta0: 1, theta1: 0.01}`; the keys a block leaves out "
@@ -424,6 +492,144 @@ namespace indentsim::io
                         "key), the material block itself holds below the last layer (the "
                         "substrate). A quadrature point takes the layer of its depth below the "
                         "undeformed surface"),
+          D::at<&C::material, &M::damage_profile, &DP::file>("material.damage_profile.file")
+              .unit("path")
+              .expect("the path of a CSV damage profile")
+              .relative_to_case_file()
+              .written_if(&damage_profile_file)
+              .default_is("– (homogeneous)")
+              .comment("CSV: depth with its unit, dpa")
+              .describe("a depth-graded specimen from a damage profile (indentation; not with "
+                        "`layers`): a CSV relative to the case file's directory with a depth "
+                        "column whose name carries its unit (`depth_um`, `depth_nm`, "
+                        "`depth (nm)`) and a `dpa` column, from the surface down (user guide, "
+                        "\"Damage profiles\"); or the two lists below; `law` turns the dose into "
+                        "strength"),
+          D::at<&C::material, &M::damage_profile, &DP::depth>("material.damage_profile.depth")
+              .unit("um")
+              .entries("depths in um", "a depth in um")
+              .range(finite_at_least(0), "the depths must be finite and >= 0 um")
+              .written_if(&inline_damage_profile)
+              .default_is("–")
+              .allowed_is("≥ 0, strictly increasing, ≥ 2 points")
+              .comment("depth below the original surface [um]")
+              .describe("the profile inline: depths below the undeformed surface, strictly "
+                        "increasing; above the first the first dose holds, below the last the "
+                        "substrate"),
+          D::at<&C::material, &M::damage_profile, &DP::dpa>("material.damage_profile.dpa")
+              .unit("dpa")
+              .entries("doses in dpa", "a dose in dpa")
+              .range(finite_at_least(0), "the doses must be finite and >= 0 dpa")
+              .written_if(&inline_damage_profile)
+              .default_is("–")
+              .allowed_is("≥ 0, one per depth, some > 0")
+              .comment("damage [dpa]")
+              .describe("the damage (displacements per atom) at each depth; linear in between"),
+          D::at<&C::material, &M::damage_profile, &DP::resolution>(
+              "material.damage_profile.resolution")
+              .unit("um")
+              .expect("the sampling thickness in um")
+              .range(finite_above(0), "the resolution must be finite and > 0 um")
+              .written_if(&damage_profile_given)
+              .comment("sampling slab thickness [um]")
+              .describe("the profile is sampled in slabs of this thickness: a quadrature point "
+                        "takes the strength at its slab's centre (so within half of it of its "
+                        "own depth)"),
+          D::at<&C::material, &M::damage_profile, &DP::law>("material.damage_profile.law.form")
+              .expect("a dose-to-strength law")
+              .written_if(&damage_profile_given)
+              .default_is("– (required with a profile)")
+              .comment("saturation | table (j2) | dispersed_barrier (crystal)")
+              .describe("how the dose d raises the strength: `saturation` Δσy = Δσsat (1 − "
+                        "exp(−d/d0))^p and `table` (j2, added to `yield_stress`); "
+                        "`dispersed_barrier` τirr,0 = α μ b √(N D), N = Nsat (1 − exp(−d/d0)) "
+                        "(crystal, the irradiation term of `hardening.tau_irr`)"),
+          D::at<&C::material, &M::damage_profile, &DP::saturation_increment>(
+              "material.damage_profile.law.saturation_increment")
+              .unit("GPa")
+              .expect("Delta sigma_sat in GPa")
+              .range(finite_at_least(0), "Delta sigma_sat must be finite and >= 0 GPa")
+              .written_if(&saturation_damage_law)
+              .comment("Delta sigma_sat [GPa]")
+              .describe("Δσsat of `form: saturation`: the yield stress increment at high dose "
+                        "(j2)"),
+          D::at<&C::material, &M::damage_profile, &DP::saturation_dose>(
+              "material.damage_profile.law.saturation_dose")
+              .unit("dpa")
+              .expect("d0 in dpa")
+              .range(finite_above(0), "the saturation dose d0 must be finite and > 0 dpa")
+              .written_if(&saturating_damage_law)
+              .comment("d0 [dpa]")
+              .describe("d0 of `saturation` and `dispersed_barrier`: the dose scale of the "
+                        "saturation"),
+          D::at<&C::material, &M::damage_profile, &DP::exponent>(
+              "material.damage_profile.law.exponent")
+              .expect("the exponent p")
+              .range(finite_above(0), "the exponent p must be finite and > 0")
+              .written_if(&saturation_damage_law)
+              .comment("p [-]")
+              .describe("p of `form: saturation` (0.5: the dispersed-barrier square root at low "
+                        "dose)"),
+          D::at<&C::material, &M::damage_profile, &DP::table_dpa>("material.damage_profile.law.dpa")
+              .unit("dpa")
+              .entries("doses in dpa", "a dose in dpa")
+              .range(finite_at_least(0), "the doses must be finite and >= 0 dpa")
+              .written_if(&table_damage_law)
+              .default_is("– (table)")
+              .allowed_is("from 0, strictly increasing, ≥ 2 points")
+              .comment("d_i [dpa]")
+              .describe("`form: table`: the doses of the points, from 0, strictly increasing; "
+                        "beyond the last the last increment holds (j2)"),
+          D::at<&C::material, &M::damage_profile, &DP::table_delta_yield_stress>(
+              "material.damage_profile.law.delta_yield_stress")
+              .unit("GPa")
+              .entries("yield stress increments in GPa", "an increment in GPa")
+              .range(finite_at_least(0), "the increments must be finite and >= 0 GPa")
+              .written_if(&table_damage_law)
+              .default_is("– (table)")
+              .allowed_is("≥ 0, the first 0, one per dose")
+              .comment("Delta sigma_y,i [GPa]")
+              .describe("`form: table`: the yield stress increment at each dose, piecewise "
+                        "linear (j2)"),
+          D::at<&C::material, &M::damage_profile, &DP::shear_modulus>(
+              "material.damage_profile.law.shear_modulus")
+              .unit("GPa")
+              .expect("mu in GPa")
+              .range(finite_above(0), "the shear modulus mu must be finite and > 0 GPa")
+              .written_if(&barrier_damage_law)
+              .default_is("– (dispersed_barrier)")
+              .comment("mu [GPa]")
+              .describe("μ of `form: dispersed_barrier` (crystal)"),
+          D::at<&C::material, &M::damage_profile, &DP::burgers_vector>(
+              "material.damage_profile.law.burgers_vector")
+              .unit("um")
+              .expect("b in um")
+              .range(finite_above(0), "the Burgers vector b must be finite and > 0 um")
+              .written_if(&barrier_damage_law)
+              .default_is("– (dispersed_barrier)")
+              .comment("b [um]")
+              .describe("b of `form: dispersed_barrier`, e.g. 2.74e-4 µm for W (crystal)"),
+          D::at<&C::material, &M::damage_profile, &DP::defect_size>(
+              "material.damage_profile.law.defect_size")
+              .unit("um")
+              .expect("D in um")
+              .range(finite_above(0), "the defect size D must be finite and > 0 um")
+              .written_if(&barrier_damage_law)
+              .default_is("– (dispersed_barrier)")
+              .comment("D, defect diameter [um]")
+              .describe("D of `form: dispersed_barrier`: the mean diameter of the defects "
+                        "(dislocation loops) (crystal)"),
+          D::at<&C::material, &M::damage_profile, &DP::saturation_density>(
+              "material.damage_profile.law.saturation_density")
+              .unit("1/um^3")
+              .expect("N_sat in 1/um^3")
+              .range(finite_above(0),
+                     "the saturation density N_sat must be finite and > 0 per um^3")
+              .written_if(&barrier_damage_law)
+              .default_is("– (dispersed_barrier)")
+              .comment("N_sat [1/um^3]")
+              .describe("Nsat of `form: dispersed_barrier`: the defect density at high dose "
+                        "(1e23 m⁻³ = 1e5 µm⁻³) (crystal)"),
       };
     }
 
@@ -849,6 +1055,12 @@ namespace indentsim::io
           {"material.latent_hardening", "latent hardening (crystal)",
            "Latent hardening between slip systems (crystal): the ratio `q`, or a matrix between "
            "the slip families."},
+          {"material.damage_profile", "depth-graded by a damage profile [um, dpa, GPa]",
+           "A damage profile (indentation; not with `layers`): the damage d in dpa against the "
+           "depth below the undeformed surface and the law that turns it into strength; below "
+           "the profile's last depth the material block holds (the substrate)."},
+          {"material.damage_profile.law", "dose-to-strength law",
+           "The dose-to-strength law of a damage profile: `form` and its keys."},
           {"material.orientation", "Bunge, passive: v_crystal = g v_sample (crystal)",
            "Crystal orientation: `euler_bunge_deg`, or `surface_normal` with "
            "`reference_direction`."},
@@ -1039,9 +1251,15 @@ namespace indentsim::io
 
   std::string format_family_block(const FamilyHardening &block)
   {
-    return "{tau0: " + format_number(block.tau0) + ", tau1: " + format_number(block.tau1) +
-           ", theta0: " + format_number(block.theta0) + ", theta1: " + format_number(block.theta1) +
-           "}";
+    std::string text =
+        "{tau0: " + format_number(block.tau0) + ", tau1: " + format_number(block.tau1) +
+        ", theta0: " + format_number(block.theta0) + ", theta1: " + format_number(block.theta1);
+    // The irradiation keys only where the family has irradiation defects.
+    if (block.tau_irr > 0 || block.barrier_strength > 0)
+      text += ", tau_irr: " + format_number(block.tau_irr) +
+              ", softening_slip: " + format_number(block.softening_slip) +
+              ", barrier_strength: " + format_number(block.barrier_strength);
+    return text + "}";
   }
 
   std::string format_family_blocks(const std::vector<FamilyHardening> &blocks)

@@ -1,5 +1,5 @@
 #include "materials/MaterialFactory.h"
-#include "case/MaterialLayers.h"
+#include "case/DamageProfile.h"
 #include "materials/CrystalPlasticity.h"
 #include "materials/J2Plasticity.h"
 #include "materials/LayeredMaterial.h"
@@ -21,7 +21,8 @@ namespace indentsim::materials
     FamilyVoceHardening crystal_hardening(const io::MaterialParameters &p,
                                           const SlipSystems            &systems)
     {
-      const ExtendedVoceHardening common{p.tau0, p.tau1, p.theta0, p.theta1, p.q};
+      const ExtendedVoceHardening common{p.tau0, p.tau1,    p.theta0,        p.theta1,
+                                         p.q,    p.tau_irr, p.softening_slip};
       if (p.family_hardening.empty() && p.latent_matrix.empty())
         return FamilyVoceHardening(common);
       std::vector<ExtendedVoceHardening> laws(systems.families.size(), common);
@@ -32,8 +33,9 @@ namespace indentsim::materials
           if (found == systems.families.end())
             throw std::invalid_argument("material.hardening.\"" + block.family +
                                         "\": not one of the slip families");
-          laws[found - systems.families.begin()] = {block.tau0, block.tau1, block.theta0,
-                                                    block.theta1, p.q};
+          laws[found - systems.families.begin()] = {block.tau0,          block.tau1, block.theta0,
+                                                    block.theta1,        p.q,        block.tau_irr,
+                                                    block.softening_slip};
         }
       return FamilyVoceHardening(laws, systems.family, p.q, p.latent_matrix);
     }
@@ -79,16 +81,17 @@ namespace indentsim::materials
 
   std::unique_ptr<MaterialModel> create_material(const io::MaterialParameters &parameters)
   {
-    if (parameters.layers.empty())
+    // A depth-graded specimen (layers or a damage profile): each slab's material as the case
+    // validator read it, the material block itself below them.
+    const std::vector<io::DepthSlab> slabs = io::depth_slabs(parameters, "material");
+    if (slabs.empty())
       return create_homogeneous_material(parameters);
-    // A depth-graded specimen: each layer's material block as the case validator read it.
     std::vector<std::unique_ptr<MaterialModel>> layers;
     std::vector<double>                         thicknesses;
-    const std::vector<io::MaterialParameters> blocks = io::layer_materials(parameters, "material");
-    for (std::size_t i = 0; i < blocks.size(); ++i)
+    for (const io::DepthSlab &slab : slabs)
       {
-        layers.push_back(create_homogeneous_material(blocks[i]));
-        thicknesses.push_back(parameters.layers[i].thickness);
+        layers.push_back(create_homogeneous_material(slab.material));
+        thicknesses.push_back(slab.thickness);
       }
     return std::make_unique<LayeredMaterial>(std::move(layers), std::move(thicknesses),
                                              create_homogeneous_material(parameters));

@@ -1,5 +1,6 @@
 #include "mesh/MeshDesign.h"
 
+#include "case/DamageProfile.h"
 #include "mesh/MeshAdequacy.h"
 
 #include <algorithm>
@@ -71,14 +72,10 @@ namespace indentsim::mesh
     const double contact_half = round_up(design::contact_region_radii * std::max(a_d, reach));
     g.surface_radius = contact_half;
     g.surface_halvings = axisymmetric ? design::surface_halvings_2d : design::surface_halvings_3d;
-    g.layered_depth = io::layered_depth(the_case.material.layers);
-    g.layer_element = 0;
-    double thinnest = std::numeric_limits<double>::infinity();
-    for (const io::MaterialLayer &layer : the_case.material.layers)
-      if (layer.thickness > 0)
-        thinnest = std::min(thinnest, layer.thickness);
-    if (g.layered_depth > 0)
-      g.layer_element = thinnest / design::elements_per_layer;
+    g.layered_depth = io::graded_depth(the_case.material);
+    g.layer_element = g.layered_depth > 0
+                          ? io::graded_feature(the_case.material) / design::elements_per_layer
+                          : 0.0;
     s.refined_region = {{std::min(2 * contact_half, s.size[0]),
                          std::min(2 * contact_half, s.size[1]),
                          std::min(round_up(g.graded_radius), s.size[2])}};

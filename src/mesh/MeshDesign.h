@@ -20,7 +20,9 @@
 // A depth-graded specimen (material.layers) gets edges of at most t_min / 4 across its layers
 // in the near field (boxes within rho_p of the tip that reach above the last layer's bottom),
 // t_min the thinnest layer's thickness: four elements across every layer, so that the
-// boundaries are resolved where the plastic zone meets them.
+// boundaries are resolved where the plastic zone meets them. A damage profile
+// (material.damage_profile) is refined in the same way to its last depth, t_min the width of
+// its damage peak at half maximum (case/DamageProfile.h).
 // Contact nodes are the top face's nodes in the box of 1.5 times the cross-section's extent
 // along x and y (a Berkovich corner reaches 1.56 a_d; the refined region the guards watch).
 #pragma once

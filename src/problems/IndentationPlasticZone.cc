@@ -3,6 +3,8 @@
 // the element kernels in their reference positions. Units: um, um^3.
 #include "problems/IndentationProblem.h"
 
+#include "case/DamageProfile.h"
+
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 
@@ -21,7 +23,7 @@ namespace indentsim::problems
   template <int dim>
   void IndentationProblem<dim>::measure_plastic_zone(StepRecord &record)
   {
-    const double       layered_depth = io::layered_depth(case_.material.layers);
+    const double       layered_depth = io::graded_depth(case_.material);
     const unsigned int n_state = history_.n_state();
     FEValues<dim>      fe_values(solid_.fe, QGauss<dim>(2),
                                  update_quadrature_points | update_JxW_values);

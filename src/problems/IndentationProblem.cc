@@ -1,6 +1,7 @@
 #include "problems/IndentationProblem.h"
 
 #include "case/CaseFile.h"
+#include "case/DamageProfile.h"
 #include "fem/FiniteStrainElement.h"
 #include "indenter/IndenterFactory.h"
 #include "io/Version.h"
@@ -231,7 +232,7 @@ namespace indentsim::problems
   }
 
   // A single crystal: one lattice orientation everywhere (isotropic models ignore it). A
-  // depth-graded material (material.layers) takes at each Gauss point the layer of its depth
+  // depth-graded material (material.layers or damage_profile) takes at each Gauss point the layer of its depth
   // below the undeformed surface z = 0, the last coordinate in 3D and in the (r, z) section; the
   // points are those of the element kernels (2 x 2 (x 2) Gauss points in deal.II's order).
   template <int dim>
@@ -240,7 +241,7 @@ namespace indentsim::problems
     const dealii::Tensor<2, 3> orientation = materials::create_orientation(case_.material);
     for (std::size_t i = 0; i < history_.n_points(); ++i)
       material_->oriented_initial_state(history_.converged_point(i), orientation);
-    if (!case_.material.layers.empty())
+    if (io::graded_depth(case_.material) > 0)
       {
         const unsigned int    n_state = history_.n_state();
         dealii::FEValues<dim> fe_values(solid_.fe, dealii::QGauss<dim>(2),

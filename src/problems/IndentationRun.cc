@@ -3,6 +3,7 @@
 // outputs of each step (output/RunRecorder.h, VTU, pile-up snapshots), checkpoints, stop and
 // resume. Units: um, mN, GPa, s.
 #include "case/CaseFile.h"
+#include "case/DamageProfile.h"
 #include "output/Checkpoint.h"
 #include "output/OutputFile.h"
 #include "output/RunRecorder.h"
@@ -355,11 +356,11 @@ namespace indentsim::problems
   }
 
   // A depth-graded specimen: the indenter depth at which the plastic zone first reached below
-  // the last layer (console and run.log).
+  // the last layer or the damage profile's last depth (console and run.log).
   template <int dim>
   void IndentationProblem<dim>::note_plastic_zone_in_substrate(RunContext &context)
   {
-    const double layered_depth = io::layered_depth(case_.material.layers);
+    const double layered_depth = io::graded_depth(case_.material);
     if (!(layered_depth > 0))
       return;
     std::ostringstream note;
@@ -368,10 +369,10 @@ namespace indentsim::problems
       return r.plastic_zone_depth > layered_depth;
     });
     if (reached == records_.end())
-      note << "stays within the layers (" << layered_depth << " um)";
+      note << "stays above the substrate (the graded depth " << layered_depth << " um)";
     else
-      note << "reaches the substrate below the layers (" << layered_depth
-           << " um) at the indenter depth " << reached->depth << " um (step " << reached->step
+      note << "reaches the substrate below the graded depth " << layered_depth
+           << " um at the indenter depth " << reached->depth << " um (step " << reached->step
            << ")";
     pcout_ << "Depth-graded specimen: " << note.str() << std::endl;
     context.recorder.log_note(note.str());

@@ -341,7 +341,8 @@ TEST(CaseFile, FamilyHardeningAndLatentMatrix)
                                         "bcc.yaml");
   ASSERT_EQ(c.material.family_hardening.size(), 1u);
   EXPECT_EQ(c.material.family_hardening[0],
-            (FamilyHardening{"{112}<111>", 0.42, Case().material.tau1, 1.5, 0.02}));
+            (FamilyHardening{"{112}<111>", 0.42, Case().material.tau1, 1.5, 0.02, 0.0,
+                             Case().material.softening_slip, 0.0}));
   EXPECT_EQ(c.material.tau0, 0.3);
   EXPECT_EQ(c.material.latent_matrix, (std::vector<std::vector<double>>{{1, 1.4}, {1.3, 1}}));
   const Case again = parse_case_yaml(resolved_case_yaml(c), "resolved.yaml");
@@ -1316,6 +1317,20 @@ TEST(CaseFile, EveryKeyIsDocumentedAndWritten)
   Case layered; // writes material.layers
   layered.material.layers = {{1.5, "{yield_stress: 0.6}"}};
   written += resolved_case_yaml(layered);
+  Case irradiated; // writes the crystal's irradiation keys
+  irradiated.material.model = ModelKind::crystal;
+  irradiated.material.tau_irr = 0.1;
+  written += resolved_case_yaml(irradiated);
+  for (const auto law : {DamageLaw::saturation, DamageLaw::table, DamageLaw::dispersed_barrier})
+    {
+      Case damaged; // writes the damage profile inline, then by its file, with each law's keys
+      damaged.material.damage_profile.depth = {0, 1};
+      damaged.material.damage_profile.dpa = {1, 0};
+      damaged.material.damage_profile.law = law;
+      written += resolved_case_yaml(damaged);
+      damaged.material.damage_profile.file = "dpa.csv";
+      written += resolved_case_yaml(damaged);
+    }
   for (const auto &key : case_keys())
     {
       EXPECT_NE(reference.find("| `" + key.path + "` |"), std::string::npos) << key.path;

@@ -9,6 +9,11 @@
 // q = 1, where tau_c^r = tau_c(Gamma) exactly), so a monotonic single-crystal path does not
 // depend on the step size.
 //
+// Irradiation defects add a term that slip sweeps out (the form used for ion-irradiated and
+// helium-implanted tungsten): tau_c(Gamma) gains tau_irr(Gamma) = tau_irr,0 exp(-Gamma/gamma_0),
+// a function of the total slip alone (no latent structure), integrated exactly:
+//   Delta tau_irr = tau_irr(Gamma_n + Delta Gamma) - tau_irr(Gamma_n)  for every system.
+//
 // The law of one slip family; FamilyVoceHardening.h gives each family its own and is the
 // hardening-law policy of CrystalPlasticityModel. HardeningIncrement is that interface's result.
 #pragma once
@@ -16,6 +21,7 @@
 #include "materials/TensorFunctions.h"
 
 #include <array>
+#include <utility>
 
 namespace indentsim::materials
 {
@@ -38,16 +44,21 @@ namespace indentsim::materials
 
   struct ExtendedVoceHardening
   {
-    double tau0 = 0.12;    // initial critical resolved shear stress [GPa]
-    double tau1 = 0.02;    // [GPa]
-    double theta0 = 0.1;   // initial hardening rate [GPa]
-    double theta1 = 0.006; // asymptotic hardening rate [GPa]
-    double q = 1.4;        // latent hardening ratio [-]
+    double tau0 = 0.12;           // initial critical resolved shear stress [GPa]
+    double tau1 = 0.02;           // [GPa]
+    double theta0 = 0.1;          // initial hardening rate [GPa]
+    double theta1 = 0.006;        // asymptotic hardening rate [GPa]
+    double q = 1.4;               // latent hardening ratio [-]
+    double tau_irr = 0.0;         // tau_irr,0: the irradiation defects' initial share [GPa]
+    double softening_slip = 0.05; // gamma_0: the slip that sweeps the defects out [-]
 
-    // tau_c(Gamma) [GPa].
+    // tau_c(Gamma), including tau_irr(Gamma) [GPa].
     double critical_shear(double Gamma) const;
     // h(Gamma) = dtau_c/dGamma [GPa].
     double hardening_rate(double Gamma) const;
+    // tau_irr(Gamma_n + Delta Gamma) - tau_irr(Gamma_n) [GPa] and its derivative with respect to
+    // Delta Gamma (<= 0: softening).
+    std::pair<double, double> irradiation_increment(double Gamma_n, double delta_Gamma) const;
 
     // Hbar = theta1 (1 - e_n e^-x) + (tau1 + theta1 Gamma_n) e_n k phi(x),
     //   k = theta0 / tau1, e_n = exp(-k Gamma_n), x = k Delta Gamma, phi(x) = (1 - e^-x) / x;

@@ -6,7 +6,8 @@
 //   Delta tau_c^r = Hbar_f (sum_g q_fg Delta Gamma_g + (1 - q_ff) |Delta gamma^r|),  f = f(r),
 // Delta Gamma_g the slip of family g's systems over the increment, Hbar_f the secant of family
 // f's law, so that with q = 1 every system of family f has tau_c^r = tau_c,f(Gamma) exactly.
-// One family (FCC, or a single block in the case file) is the paper's law.
+// One family (FCC, or a single block in the case file) is the paper's law. Each family's
+// irradiation term tau_irr,f(Gamma) (ExtendedVoceHardening.h) adds to every system of the family.
 //
 // The hardening-law interface of CrystalPlasticityModel (crystal/CrystalPlasticityModel.h):
 //   initial_critical_shear(r)    tau_c^r of the virgin state [GPa],
@@ -24,6 +25,7 @@
 
 #include <algorithm>
 #include <array>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -58,7 +60,10 @@ namespace indentsim::materials
     {
       return laws[family_of_system.empty() ? 0 : family_of_system[r]];
     }
-    double initial_critical_shear(const unsigned int r) const { return law_of_system(r).tau0; }
+    double initial_critical_shear(const unsigned int r) const
+    {
+      return law_of_system(r).tau0 + law_of_system(r).tau_irr;
+    }
     double stress_scale() const
     {
       double smallest = laws.front().tau0;
@@ -74,9 +79,11 @@ namespace indentsim::materials
     {
       using SecantDerivative = Sacado::Fad::SFad<double, 1>;
       constexpr unsigned int           max_families = max_slip_families;
-      std::array<double, max_families> H_bar, dH_bar;
+      std::array<double, max_families> H_bar, dH_bar, irradiation, dirradiation;
       for (unsigned int f = 0; f < laws.size(); ++f)
         {
+          std::tie(irradiation[f], dirradiation[f]) =
+              laws[f].irradiation_increment(Gamma_n, delta_Gamma);
           const SecantDerivative H =
               laws[f].secant_modulus(Gamma_n, SecantDerivative(1, 0, delta_Gamma));
           H_bar[f] = H.val();
@@ -88,8 +95,8 @@ namespace indentsim::materials
             {
               const unsigned int f = family_of_system.empty() ? 0 : family_of_system[r];
               const double       latent_slip = q * delta_Gamma + (1.0 - q) * abs_delta_gamma[r];
-              out.value[r] = H_bar[f] * latent_slip;
-              out.total_rate[r] = dH_bar[f] * latent_slip + H_bar[f] * q;
+              out.value[r] = H_bar[f] * latent_slip + irradiation[f];
+              out.total_rate[r] = dH_bar[f] * latent_slip + H_bar[f] * q + dirradiation[f];
               out.own_rate[r] = H_bar[f] * (1.0 - q);
             }
           out.n_families = 0;
@@ -109,8 +116,8 @@ namespace indentsim::materials
           double                     latent_slip = (1.0 - q_f[f]) * abs_delta_gamma[r];
           for (unsigned int g = 0; g < n_families; ++g)
             latent_slip += q_f[g] * delta_Gamma_family[g];
-          out.value[r] = H_bar[f] * latent_slip;
-          out.total_rate[r] = dH_bar[f] * latent_slip;
+          out.value[r] = H_bar[f] * latent_slip + irradiation[f];
+          out.total_rate[r] = dH_bar[f] * latent_slip + dirradiation[f];
           out.own_rate[r] = H_bar[f] * (1.0 - q_f[f]);
           for (unsigned int g = 0; g < n_families; ++g)
             out.family_rate[r][g] = H_bar[f] * q_f[g];

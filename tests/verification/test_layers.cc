@@ -213,3 +213,48 @@ TEST(PlasticZone, DepthFollowsJohnsonsExpandingCavity)
                 << radius << std::endl;
     }
 }
+
+// A damage profile (case/DamageProfile.h) of the kind an ion beam leaves: the dose rises from 0
+// at the surface to 1 dpa at 0.2 um, stays to 0.3 um and falls to 0 at 0.35 um; with
+// Delta sigma_sat = sigma_y0 and d0 = 0.1 dpa the yield stress lies between the pristine
+// sigma_y0 and the saturated 2 sigma_y0 everywhere. On one mesh (the profile's design, four
+// elements across the damage peak's 0.225 um width at half maximum) the curve lies between the
+// two homogeneous curves at every depth to 0.6 um (above the pristine one by more than the
+// discretisation's noise while the indent is shallower than the profile, and within 0.2 % of it
+// deeper), and the profile's share of the hardening falls as the indent goes deeper. (It need not
+// lie below the uniformly hard 0.35 um layer: the softer surface piles up more and widens the
+// contact.)
+TEST(Layers, DamageProfileLiesBetweenItsBounds)
+{
+  io::Case profile_case = layered_case({}, 0.305);
+  profile_case.loading.max_depth = 0.6;
+  profile_case.loading.steps = 40;
+  io::DamageProfileParameters &profile = profile_case.material.damage_profile;
+  profile.depth = {0, 0.2, 0.3, 0.35};
+  profile.dpa = {0, 1, 1, 0};
+  profile.law = io::DamageLaw::saturation;
+  profile.saturation_increment = 0.305;
+  profile.saturation_dose = 0.1;
+  mesh::design_mesh(profile_case, *indenter::create_indenter(profile_case.indenter), false);
+  ASSERT_NEAR(profile_case.specimen.grading.layer_element, 0.225 / 4, 1e-12); // FWHM / 4
+  io::Case pristine_case = profile_case, hardened_case = profile_case;
+  pristine_case.material.damage_profile = {};
+  hardened_case.material.damage_profile = {};
+  hardened_case.material.yield_stress = 0.61;
+  const Curve damaged = run(profile_case), pristine = run(pristine_case),
+              hardened = run(hardened_case);
+  double previous_share = 1;
+  for (const double h : {0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6})
+    {
+      const double d = force_at(damaged, h), p = force_at(pristine, h),
+                   H = force_at(hardened, h);
+      const double share = (d - p) / (H - p);
+      std::cout << "[ layers ] h = " << h << " um: pristine " << p << " mN, damage profile " << d
+                << " mN, hardened " << H << " mN; the profile's share of the hardening " << share
+                << std::endl;
+      EXPECT_GT(d, h <= 0.4 ? 1.01 * p : 0.998 * p) << "h = " << h;
+      EXPECT_LT(d, H) << "h = " << h;
+      EXPECT_LT(share, previous_share) << "h = " << h;
+      previous_share = share;
+    }
+}

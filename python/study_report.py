@@ -15,12 +15,16 @@ stress_strain.csv, stress_strain_j2.csv, pileup.json, pileup_*.png, study_case.j
     figures/mesh_<group>.png          load-penetration curves per mesh
     figures/mesh_force.png            force at maximum depth against element size h
     figures/orientations.png          load-penetration curves per orientation
+    figures/irradiation_<group>.png   hardness against depth, its ratio to the pristine case, the
+                                      Nix-Gao plots and the plastic zone's share in the layer
 
 Sections: the cases; the tensile calibration (stress at the report's strains, the spread over
 the orientation seeds); the mesh convergence (force at maximum depth per mesh, observed order
 and Richardson extrapolation); the orientations (spread of the force); the pile-up (fold and
-height from pileup.json, maps); the paper's numbers beside ours; how to reproduce. A section
-whose cases are missing says so.
+height from pileup.json, maps); the paper's numbers beside ours; the Oliver-Pharr analysis; the
+irradiated layer against the pristine metal (groups irradiation_j2 and irradiation_crystal, the
+first case of each the pristine reference: hardness_depth.csv/json and the plastic-zone columns
+of load_penetration.csv); how to reproduce. A section whose cases are missing says so.
 
 The numbers (observed order, Richardson extrapolation, grid convergence index, interpolation)
 are plain Python functions, tested by tests/unit/python/test_study_report.py.
@@ -803,6 +807,126 @@ class Report:
             self.add("Loading branches compared at the measured depths inside the computed "
                      "range; each case's `load_penetration.png` overlays the measured curve.", "")
 
+    def hardness_profile(self, case):
+        """hardness_depth.csv and .json of a case with partial unloads, or None."""
+        path = os.path.join(case["path"], "hardness_depth.csv")
+        if not os.path.exists(path):
+            return None
+        profile = read_columns(path, ("depth_um", "hardness_GPa", "true_hardness_GPa"))
+        profile["json"] = self.data._json(case, "hardness_depth.json") or {}
+        return profile
+
+    def plastic_zone(self, case):
+        """Depth [um] and the plastic zone's share in the layer along the loading, and the first
+        loading depth at which the zone reaches below the layer (None if it never does)."""
+        columns = read_columns(os.path.join(case["path"], "load_penetration.csv"),
+                               ("depth_um", "plastic_zone_volume_um3",
+                                "plastic_zone_layer_fraction"), ("segment",))
+        depth, share, reached = [], [], None
+        for h, volume, fraction, segment in zip(columns["depth_um"],
+                                                columns["plastic_zone_volume_um3"],
+                                                columns["plastic_zone_layer_fraction"],
+                                                columns.get("segment", [])):
+            if segment != "load" or not volume > 0:
+                continue
+            depth.append(h)
+            share.append(fraction)
+            if reached is None and fraction < 0.999:
+                reached = h
+        return depth, share, reached
+
+    def irradiation_section(self):
+        """The irradiated layer against the pristine metal, per group: the first case of the
+        group is the pristine reference."""
+        groups = [g for g in ("irradiation_j2", "irradiation_crystal")
+                  if any(g in c["groups"] for c in self.data.cases)]
+        if not groups:
+            return
+        self.add("## 7. Irradiated layer against the pristine metal", "",
+                 "Each case indents with partial unloads (`loading.partial_unloads`), each "
+                 "analysed by Oliver–Pharr (`hardness_depth.csv`); the first case of a group is "
+                 "the pristine reference. The Nix–Gao fit (H² against 1/h, bilinear, Kasada et al.) "
+                 "gives the knee depth and the shallow branch's bulk-equivalent hardness H_0 of "
+                 "the layer; F tests the knee against one line (significant above 4). The plastic "
+                 "zone's share in the layer is the part of its volume above the layer's bottom.",
+                 "")
+        for group in groups:
+            cases = [c for c in self.data.finished(group) if self.hardness_profile(c)]
+            self.missing_note(group, f"the group {group}")
+            if not cases:
+                self.add(f"No finished case of {group} with partial unloads.", "")
+                continue
+            reference = cases[0]
+            profiles = {c["name"]: self.hardness_profile(c) for c in cases}
+            zones = {c["name"]: self.plastic_zone(c) for c in cases}
+            rows = []
+            for case in cases:
+                profile = profiles[case["name"]]
+                fit = profile["json"].get("nix_gao") or {}
+                reached = zones[case["name"]][2]
+                rows.append([case["label"], len(profile["depth_um"]),
+                             format_number(profile["hardness_GPa"][0], 3) + " / " +
+                             format_number(profile["hardness_GPa"][-1], 3),
+                             format_number(fit.get("knee_depth_um"), 2),
+                             format_number(fit.get("layer_hardness_GPa"), 3),
+                             format_number(fit.get("f_statistic"), 1) +
+                             (" (significant)" if fit.get("knee_significant") else ""),
+                             format_number(reached, 3) if reached is not None else "–"])
+            self.table(["case", "partial unloads", "H shallowest / deepest [GPa]",
+                        "Nix–Gao knee [µm]", "H_0 of the layer [GPa]", "F",
+                        "zone reaches the substrate at h [µm]"], rows)
+            plt = self.plt
+            figure, axes = plt.subplots(2, 2, figsize=(11, 8))
+            ref = profiles[reference["name"]]
+            for case in cases:
+                profile = profiles[case["name"]]
+                line, = axes[0][0].plot(profile["depth_um"], profile["hardness_GPa"], "o-",
+                                        ms=3, label=case["label"])
+                axes[0][0].plot(profile["depth_um"], profile["true_hardness_GPa"], "--",
+                                color=line.get_color(), lw=1)
+                ratio = [(h, value / interpolate(h, ref["depth_um"], ref["hardness_GPa"]))
+                         for h, value in zip(profile["depth_um"], profile["hardness_GPa"])
+                         if ref["depth_um"][0] <= h <= ref["depth_um"][-1]]
+                if case is not reference and ratio:
+                    axes[0][1].plot([r[0] for r in ratio], [r[1] for r in ratio], "o-", ms=3,
+                                    color=line.get_color(), label=case["label"])
+                inverse = [1 / h for h in profile["depth_um"]]
+                axes[1][0].plot(inverse, [h * h for h in profile["hardness_GPa"]], "o", ms=3,
+                                color=line.get_color(), label=case["label"])
+                fit = profile["json"].get("nix_gao") or {}
+                if fit.get("layer_range_um") and fit.get("deep_range_um"):
+                    h0, hs = fit["layer_hardness_GPa"], fit["layer_characteristic_depth_um"]
+                    lo, hi = fit["layer_range_um"]
+                    xs = [1 / hi, 1 / lo]
+                    axes[1][0].plot(xs, [h0 * h0 * (1 + hs * x) for x in xs], "-",
+                                    color=line.get_color(), lw=1)
+                    lo, hi = fit["deep_range_um"]
+                    xs = [1 / hi, 1 / lo]
+                    axes[1][0].plot(xs, [fit["deep_intercept_GPa2"] +
+                                         fit["deep_slope_GPa2_um"] * x for x in xs], ":",
+                                    color=line.get_color(), lw=1)
+                depth, share, _ = zones[case["name"]]
+                if case is not reference:
+                    axes[1][1].plot(depth, share, "-", color=line.get_color(),
+                                    label=case["label"])
+            axes[0][0].set(xlabel="depth h [µm]", ylabel="hardness H [GPa]",
+                           title="H(h): Oliver–Pharr (solid), true contact area (dashed)")
+            axes[0][1].axhline(1.0, color="0.6", lw=0.8)
+            axes[0][1].set(xlabel="depth h [µm]", ylabel="H / H pristine [-]",
+                           title=f"ratio to {reference['label']}")
+            axes[1][0].set(xlabel="1/h [1/µm]", ylabel="H² [GPa²]",
+                           title="Nix–Gao: fits, layer branch (solid) and deep branch (dotted)")
+            axes[1][1].set(xlabel="depth h [µm]", ylabel="share in the layer [-]", ylim=(0, 1.05),
+                           title="plastic zone's volume share in the layer")
+            for axis in (axes[0][0], axes[0][1], axes[1][0], axes[1][1]):
+                axis.grid(alpha=0.3)
+                if axis.get_legend_handles_labels()[0]:
+                    axis.legend(fontsize=8)
+            self.figure(figure, f"irradiation_{group}.png",
+                        f"{group}: hardness against depth, its ratio to the pristine case, the "
+                        "Nix–Gao plots with their fits and the plastic zone's share in the layer "
+                        "(µm, GPa). The pile-up of each case is in the pile-up section.")
+
     def reproduce_section(self):
         index = self.data.index
         versions = sorted({(c.get("summary") or {}).get("version", "?")
@@ -822,7 +946,7 @@ class Report:
     def write(self):
         sections = [self.header, self.cases_section, self.tensile_section, self.mesh_section,
                     self.orientation_section, self.pileup_section, self.paper_section,
-                    self.analysis_section, self.reproduce_section]
+                    self.analysis_section, self.irradiation_section, self.reproduce_section]
         for section in sections:
             try:
                 section()

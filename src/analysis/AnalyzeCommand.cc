@@ -145,19 +145,23 @@ namespace indentsim::analysis
       settings.indenter_modulus = *options.indenter_modulus;
     settings.indenter_poisson_ratio = options.indenter_poisson_ratio;
 
-    // A run's partial unloads (its segment column) are not part of the full unloading.
-    const LoadCurve curve = without_partial_unloads(
+    // A run's partial unloads (its segment column) are not part of the full unloading; they
+    // give the hardness-depth profile.
+    const LoadCurve recorded =
         read_load_curve_csv(csv_path, options.depth_column, options.force_column,
-                            options.depth_unit, options.force_unit));
+                            options.depth_unit, options.force_unit);
+    const LoadCurve   curve = without_partial_unloads(recorded);
     const std::string directory =
         output_directory ? *output_directory
         : run_directory  ? target.string()
                          : (target.has_parent_path() ? target.parent_path().string() : ".");
+    const auto              indenter = indenter::create_indenter(indenter_parameters);
     const OliverPharrResult result =
-        analyze_and_write(curve, *indenter::create_indenter(indenter_parameters),
-                          indenter_parameters, settings, directory, csv_path);
+        analyze_and_write(curve, *indenter, indenter_parameters, settings, directory, csv_path);
     const std::string json_path = directory + "/" + io::output_files::oliver_pharr_json;
     print_summary(std::cout, result, json_path);
+    if (curve.depth.size() < recorded.depth.size())
+      write_hardness_profile(recorded, *indenter, settings, directory, std::cout, std::cerr);
     return json_path;
   }
 
@@ -211,11 +215,17 @@ namespace indentsim::analysis
                                       const indenter::IndenterSurface &indenter,
                                       std::ostream &summary, std::ostream &warnings)
   {
-    const std::string               &directory = the_case.output.directory;
+    return write_hardness_profile(curve, indenter, run_settings(the_case),
+                                  the_case.output.directory, summary, warnings);
+  }
+
+  bool write_hardness_profile(const LoadCurve &curve, const indenter::IndenterSurface &indenter,
+                              const OliverPharrSettings &settings, const std::string &directory,
+                              std::ostream &summary, std::ostream &warnings)
+  {
     std::vector<std::string>         skipped;
     const std::vector<HardnessPoint> points = analyze_partial_unloads(
-        curve, [&](const double h) { return indenter.projected_area(h); }, run_settings(the_case),
-        skipped);
+        curve, [&](const double h) { return indenter.projected_area(h); }, settings, skipped);
     for (const std::string &why : skipped)
       warnings << "warning: hardness-depth profile of " << directory << ": left out " << why
                << '\n';

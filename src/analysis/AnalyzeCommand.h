@@ -15,7 +15,8 @@ namespace indentsim::analysis
 {
   // Analyses options.target (a run directory with load_penetration.csv and resolved_case.yaml,
   // or a CSV file) and writes oliver_pharr.json/png into output_directory, or else into the run
-  // directory or the CSV's directory. Prints a summary. Returns the JSON's path. Throws
+  // directory or the CSV's directory; a curve with partial unloads (a run's `segment` column)
+  // also gets its hardness-depth profile (write_hardness_profile). Prints a summary. Returns the JSON's path. Throws
   // std::invalid_argument (bad input, named), io::CaseFileError (bad indenter case) or
   // output::OutputError (a file that cannot be written).
   std::string analyze_command(const io::AnalyzeOptions         &options,
@@ -37,6 +38,12 @@ namespace indentsim::analysis
   bool analyze_partial_unloads_of_run(const LoadCurve &curve, const io::Case &the_case,
                                       const indenter::IndenterSurface &indenter,
                                       std::ostream &summary, std::ostream &warnings);
+
+  // The hardness-depth profile of a curve's partial unloads with the given Oliver-Pharr
+  // settings, written into `directory` (the same files and summary as above).
+  bool write_hardness_profile(const LoadCurve &curve, const indenter::IndenterSurface &indenter,
+                              const OliverPharrSettings &settings, const std::string &directory,
+                              std::ostream &summary, std::ostream &warnings);
 
   // A finished run's curve against a measured curve (output.experimental_curve): writes
   // comparison_with_experiment.json and the measured curve in um and mN

@@ -134,7 +134,9 @@ namespace indentsim::io
     unsigned int   elements_per_side = 3;
     Choice<Grains> grains = Grains::single; // per_element: random orientation each
     unsigned int   seed = 1;                // seed of the random orientations (per_element)
-    MeshGrading    grading;                 // contact_elements: auto only (designed)
+    // The automatic mesh's elements across the thinnest layer or the damage peak.
+    unsigned int elements_across_layers = 4;
+    MeshGrading  grading; // contact_elements: auto only (designed)
 
     bool automatic_mesh() const { return contact_elements == automatic_contact_elements; }
     bool operator==(const SpecimenParameters &) const = default;

@@ -57,6 +57,10 @@ namespace indentsim::io
     {
       return c.specimen.automatic_mesh();
     }
+    bool graded_automatic_mesh(const Case &c)
+    {
+      return automatic_mesh(c) && (!c.material.layers.empty() || c.material.damage_profile.given());
+    }
     bool linear_hardening(const Case &c)
     {
       return c.material.hardening_law == HardeningLaw::linear;
@@ -756,6 +760,17 @@ namespace indentsim::io
                         "per distance from the tip (edge ρ/n at the distance ρ, within three "
                         "contact radii; ρ/(n/2) beyond). `auto`: 10 in axisymmetric mode, 6 in "
                         "3D. A larger n refines the whole design, for convergence studies "
+                        "(user guide, \"Automatic meshes\")"),
+          D::at<&C::specimen, &S::elements_across_layers>("specimen.elements_across_layers")
+              .written_if(&graded_automatic_mesh)
+              .range(between(1, true, 16, true),
+                     "the elements across the thinnest layer must satisfy 1 <= m <= 16 (the "
+                     "cells across the layers grow as m^2 in axisymmetric mode and m^3 in 3D)")
+              .comment("elements across the thinnest layer or the damage peak")
+              .describe("with `contact_elements: auto` and `material.layers` or "
+                        "`damage_profile` only: the elements across the thinnest layer (or the "
+                        "damage peak's width at half maximum) near the indent; fewer make a 3D "
+                        "design affordable at the cost of resolving the layer's boundary "
                         "(user guide, \"Automatic meshes\")"),
           D::at<&C::specimen, &S::symmetry>("specimen.symmetry")
               .expect("a symmetry")

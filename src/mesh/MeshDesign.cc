@@ -74,7 +74,7 @@ namespace indentsim::mesh
     g.surface_halvings = axisymmetric ? design::surface_halvings_2d : design::surface_halvings_3d;
     g.layered_depth = io::graded_depth(the_case.material);
     g.layer_element = g.layered_depth > 0
-                          ? io::graded_feature(the_case.material) / design::elements_per_layer
+                          ? io::graded_feature(the_case.material) / s.elements_across_layers
                           : 0.0;
     s.refined_region = {{std::min(2 * contact_half, s.size[0]),
                          std::min(2 * contact_half, s.size[1]),

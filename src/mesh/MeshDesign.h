@@ -17,10 +17,10 @@
 // axisymmetric mode) of half-width and depth 160 a_d unless specimen.size is given: its fixed
 // bottom then stiffens an elastic contact by about 0.4 % (Hertz: +2.6 % at 40 a_d, +1.6 % at
 // 80 a_d, +1.25 % at 160 a_d, of which about 0.9 % is the finite-strain excess at h/R = 0.01).
-// A depth-graded specimen (material.layers) gets edges of at most t_min / 4 across its layers
+// A depth-graded specimen (material.layers) gets edges of at most t_min / m across its layers
 // in the near field (boxes within rho_p of the tip that reach above the last layer's bottom),
-// t_min the thinnest layer's thickness: four elements across every layer, so that the
-// boundaries are resolved where the plastic zone meets them. A damage profile
+// t_min the thinnest layer's thickness: m = specimen.elements_across_layers (default 4) elements
+// across every layer, so that the boundaries are resolved where the plastic zone meets them. A damage profile
 // (material.damage_profile) is refined in the same way to its last depth, t_min the width of
 // its damage peak at half maximum (case/DamageProfile.h).
 // Contact nodes are the top face's nodes in the box of 1.5 times the cross-section's extent
@@ -63,8 +63,6 @@ namespace indentsim::mesh
     // The contact nodes' region (its half-width) / a_d; the guards stop a run whose contact
     // passes 90 % of it.
     inline constexpr double contact_region_radii = 1.5;
-    // Elements across the thinnest layer of a depth-graded specimen.
-    inline constexpr double elements_per_layer = 4;
   } // namespace design
 
   // Designs the mesh of a case with specimen.contact_elements: auto: fills specimen.grading and

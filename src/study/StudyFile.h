@@ -57,9 +57,11 @@ namespace indentsim::study
 
   // The groups the report knows: the tensile calibration (test: tensile), the mesh convergence
   // of J2 and of crystal plasticity (indentation, one case per contact_elements) and the
-  // orientations (crystal indentation: curves and pile-up maps).
-  inline const std::vector<std::string> known_groups = {"tensile", "mesh_j2", "mesh_crystal",
-                                                        "orientation"};
+  // orientations (crystal indentation: curves and pile-up maps), and the irradiated layer against
+  // the pristine metal (indentation with partial unloads; the first case of the group is the
+  // pristine reference).
+  inline const std::vector<std::string> known_groups = {
+      "tensile", "mesh_j2", "mesh_crystal", "orientation", "irradiation_j2", "irradiation_crystal"};
 
   struct StudyCase
   {

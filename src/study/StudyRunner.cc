@@ -278,7 +278,7 @@ namespace indentsim::study
               allowed += (allowed.empty() ? "" : ", ") + n;
             throw StudyFileError(study_.source_file + ": --only " + name +
                                  ": no case or group of that name; cases: " + allowed +
-                                 "; groups: tensile, mesh_j2, mesh_crystal, orientation");
+                                 "; groups: " + io::join(known_groups, ", "));
           }
       }
   }

@@ -1317,6 +1317,8 @@ TEST(CaseFile, EveryKeyIsDocumentedAndWritten)
   Case layered; // writes material.layers
   layered.material.layers = {{1.5, "{yield_stress: 0.6}"}};
   written += resolved_case_yaml(layered);
+  layered.specimen.contact_elements = automatic_contact_elements; // elements_across_layers
+  written += resolved_case_yaml(layered);
   Case irradiated; // writes the crystal's irradiation keys
   irradiated.material.model = ModelKind::crystal;
   irradiated.material.tau_irr = 0.1;

@@ -1,17 +1,24 @@
 // The hardness-depth analysis of partial unloads and the Nix-Gao fit (analysis/HardnessDepth.h)
 // on synthetic curves with known answers. Units: um, mN, GPa (1 GPa*um^2 = 1 mN).
+#include "analysis/AnalyzeCommand.h"
 #include "analysis/HardnessDepth.h"
+
+#include "../test_files.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
 #include <sstream>
 #include <string>
 #include <vector>
 
 using namespace indentsim;
 using analysis::LoadCurve;
+namespace fs = std::filesystem;
 
 namespace
 {
@@ -135,4 +142,57 @@ TEST(HardnessDepth, NixGaoBilinearFitRecoversKneeAndLayerHardness)
   EXPECT_FALSE(flat->knee_significant()) << "F = " << flat->f_statistic;
   // Too few points for two branches of three: no fit.
   EXPECT_FALSE(analysis::fit_nix_gao({1, 2, 3, 4, 5}, {1, 1, 1, 1, 1}).has_value());
+}
+
+// `indentsim analyze` of a curve with partial unloads (a run's CSV with its `segment` column):
+// the full unloading goes to Oliver-Pharr as before, and the partial unloads give
+// hardness_depth.csv and .json next to oliver_pharr.json, each S = 2 P / h of Sneddon's cone.
+TEST(HardnessDepth, AnalyzeCommandWritesTheProfileOfARunsCurve)
+{
+  const double   reduced_modulus = 74.0, tan_theta = std::tan(70.3 * M_PI / 180.);
+  const double   c = 2. / M_PI * reduced_modulus * tan_theta;
+  const fs::path dir = test_files::scratch_directory("hardness_depth", "analyze");
+  std::ofstream  csv(dir / "load_penetration.csv");
+  csv << std::setprecision(15) << "depth_um,force_mN,segment\n0,0,start\n";
+  for (int k = 1; k <= 3; ++k)
+    {
+      for (int i = 1; i <= 10; ++i)
+        {
+          const double h = k - 1 + 0.1 * i;
+          csv << h << ',' << c * h * h << ",load\n";
+        }
+      for (int i = 1; i <= 4; ++i)
+        {
+          const double p = c * k * k * (1 - 0.025 * i);
+          csv << std::sqrt(p / c) << ',' << p << ",partial_unload\n";
+        }
+      csv << k << ',' << c * k * k << ",reload\n";
+    }
+  for (int i = 1; i <= 20; ++i)
+    {
+      const double h = 3.0 - 0.05 * i;
+      csv << h << ',' << c * h * h << ",unload\n";
+    }
+  csv.close();
+  io::AnalyzeOptions options;
+  options.target = (dir / "load_penetration.csv").string();
+  options.indenter_shape = "cone";
+  analysis::analyze_command(options, dir.string());
+  ASSERT_TRUE(fs::exists(dir / "oliver_pharr.json"));
+  ASSERT_TRUE(fs::exists(dir / "hardness_depth.json"));
+  std::ifstream            profile(dir / "hardness_depth.csv");
+  std::string              line;
+  std::vector<std::string> rows;
+  while (std::getline(profile, line))
+    rows.push_back(line);
+  ASSERT_EQ(rows.size(), 4u); // the header and one row per partial unload
+  for (int k = 1; k <= 3; ++k)
+    {
+      std::istringstream fields(rows[k]);
+      double             depth = 0, force = 0, stiffness = 0;
+      char               comma = 0;
+      fields >> depth >> comma >> force >> comma >> stiffness;
+      EXPECT_NEAR(depth, k, 1e-9);
+      EXPECT_NEAR(stiffness, 2 * c * k, 1e-5 * c * k);
+    }
 }

@@ -261,7 +261,7 @@ TEST(MeshDesign, LayersGetFourElementsAcrossTheThinnest)
   mesh::design_mesh(c, *indenter::create_indenter(c.indenter), /*size_given=*/false);
   const io::MeshGrading &g = c.specimen.grading;
   EXPECT_DOUBLE_EQ(g.layered_depth, 1.5);
-  EXPECT_DOUBLE_EQ(g.layer_element, 0.6 / mesh::design::elements_per_layer);
+  EXPECT_DOUBLE_EQ(g.layer_element, 0.6 / 4);
   EXPECT_EQ(g.min_element, plain.min_element);
   EXPECT_EQ(g.graded_radius, plain.graded_radius);
   check_rule<2>(c);
@@ -286,4 +286,9 @@ TEST(MeshDesign, LayersGetFourElementsAcrossTheThinnest)
   std::cout << "[ layers ] near field: largest edge " << largest_in_layers
             << " um across the layers, " << largest_below << " um below them; "
             << triangulation.n_active_cells() << " cells" << std::endl;
+
+  // specimen.elements_across_layers: m elements across the thinnest layer.
+  c.specimen.elements_across_layers = 2;
+  mesh::design_mesh(c, *indenter::create_indenter(c.indenter), /*size_given=*/false);
+  EXPECT_DOUBLE_EQ(c.specimen.grading.layer_element, 0.6 / 2);
 }

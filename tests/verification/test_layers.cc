@@ -246,8 +246,7 @@ TEST(Layers, DamageProfileLiesBetweenItsBounds)
   double previous_share = 1;
   for (const double h : {0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6})
     {
-      const double d = force_at(damaged, h), p = force_at(pristine, h),
-                   H = force_at(hardened, h);
+      const double d = force_at(damaged, h), p = force_at(pristine, h), H = force_at(hardened, h);
       const double share = (d - p) / (H - p);
       std::cout << "[ layers ] h = " << h << " um: pristine " << p << " mN, damage profile " << d
                 << " mN, hardened " << H << " mN; the profile's share of the hardening " << share

@@ -115,6 +115,21 @@ for name, layers, what in (("pristine", None, "pristine"),
          "specimen": {"contact_elements": "auto", "symmetry": "axisymmetric"},
          "contact": {"friction_coefficient": 0.0, "penetration_tolerance": 1e-5},
          "loading": CSM_LOADING})
+# The same under the synthetic self-ion damage profile of examples/data/self_ion_dpa.csv (inline;
+# peak 1.28 dpa at 0.6 um, to 0.8 um), raising the yield stress by up to sigma_y0.
+SELF_ION_PROFILE = {
+    "depth": [0, 0.1, 0.2, 0.3, 0.4, 0.45, 0.5, 0.55, 0.6, 0.65, 0.7, 0.75, 0.8],
+    "dpa": [0.40, 0.45, 0.52, 0.62, 0.78, 0.90, 1.05, 1.20, 1.28, 1.20, 0.85, 0.35, 0.0],
+    "law": {"form": "saturation", "saturation_increment": 0.305, "saturation_dose": 0.5,
+            "exponent": 0.5}}
+CASES["j2_axi_csm_profile"] = (
+    "J2 indentation (Table 1) under a self-ion damage profile (to 0.8 um, yield stress up to "
+    "doubled), axisymmetric automatic mesh, 128 geometric steps to 3 um with partial unloads "
+    "every 0.15 um",
+    {**indentation({**J2, "damage_profile": SELF_ION_PROFILE}, "auto", "axisymmetric"),
+     "specimen": {"contact_elements": "auto", "symmetry": "axisymmetric"},
+     "contact": {"friction_coefficient": 0.0, "penetration_tolerance": 1e-5},
+     "loading": CSM_LOADING})
 CASES["tensile_27"] = (
     "tensile test of 27 random grains (crystal, 3x3x3 elements, 100 steps), no J2 comparison",
     {"test": "tensile", "material": {**J2, **CRYSTAL},

@@ -1,8 +1,10 @@
 // The physics guards of an indentation run, checked after every accepted step
 // (IndentationRun.cc; thresholds and advice in mesh/MeshAdequacy.h): the contact against the
 // refined region (the run stops before the contact reaches its edge), the plastic zone against
-// the specimen's faces and the contact-element resolution at the maximum (warnings).
+// the specimen's faces, the contact-element resolution at the maximum and a damage profile cut
+// off before its damage ends (warnings).
 // Units: um, mN, GPa.
+#include "case/DamageProfile.h"
 #include "case/Schema.h"
 #include "mesh/MeshAdequacy.h"
 #include "output/RunRecorder.h"
@@ -30,6 +32,7 @@ namespace indentsim::problems
   {
     check_refined_region(recorder, segment, record);
     check_plastic_zone(recorder);
+    check_damage_profile_end(recorder);
     if (at_max)
       check_contact_resolution(recorder, record);
   }
@@ -47,6 +50,23 @@ namespace indentsim::problems
     recorder.log_note("warning: " + text);
     if (pcout_.is_active())
       std::cerr << "indentsim: warning: " << text << std::endl;
+  }
+
+  // A damage profile whose last row still has more than 1 % of the peak's dose: below it the
+  // substrate holds (the dose is 0 beyond the table), a step in strength the table may not mean.
+  template <int dim>
+  void IndentationProblem<dim>::check_damage_profile_end(output::RunRecorder &recorder)
+  {
+    const io::DamageProfileParameters &profile = case_.material.damage_profile;
+    if (profile.dpa.empty() || !(profile.dpa.back() > 0.01 * io::peak_dose(profile)))
+      return;
+    std::ostringstream message;
+    message << "material.damage_profile ends at " << short_number(profile.dpa.back())
+            << " dpa (" << short_number(100 * profile.dpa.back() / io::peak_dose(profile))
+            << " % of its peak) at the depth " << short_number(profile.depth.back())
+            << " um; below it the dose is 0 and the substrate holds: extend the table to where "
+               "the damage ends (a row with 0 dpa) if the cut is not meant";
+    warn(recorder, "damage_profile_end", message.str());
   }
 
   // The contact may cover at most guard::refined_region_margin of the refined region's

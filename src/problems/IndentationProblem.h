@@ -263,6 +263,7 @@ namespace indentsim::problems
     void check_refined_region(output::RunRecorder &recorder, const nonlinear::Segment &segment,
                               const StepRecord &record);
     void check_plastic_zone(output::RunRecorder &recorder);
+    void check_damage_profile_end(output::RunRecorder &recorder);
     void check_contact_resolution(output::RunRecorder &recorder, const StepRecord &record);
     // A guard's warning: run.log, stderr (verbose runs) and warnings(); once per `topic`.
     void warn(output::RunRecorder &recorder, const std::string &topic, const std::string &text);

@@ -5,7 +5,8 @@
 # run.log so far kept; check and run refuse (exit code 1, nothing written) a refined region that
 # cannot hold the predicted contact, a case whose memory estimate exceeds the available memory,
 # and a count key beyond its bound, each naming the key and what is allowed; a run warns once,
-# on stderr and in run.log, when the plastic zone nears the bottom face and when fewer than 5
+# on stderr and in run.log, when the plastic zone nears the bottom face, when a damage profile is
+# cut off above 1 % of its peak and when fewer than 5
 # contact elements lie across the contact radius at the maximum depth.
 # Usage: run_guards.sh INDENTSIM_EXECUTABLE SCRATCH_DIRECTORY
 set -uo pipefail
@@ -59,6 +60,16 @@ expect 0 coarse "$indentsim" run "$here/coarse_contact.yaml" --output "$out/coar
 has coarse "contact elements across the contact radius at the maximum"
 has coarse "specimen.contact_elements: 32 (now 8"
 grep -qF "# warning: " "$out/coarse/run.log" || fail "run.log lacks the resolution warning"
+
+# 6. A damage profile cut off above 1 % of its peak's dose: one warning, on stderr and in run.log.
+sed 's/^  model: j2$/  model: j2\n  damage_profile: {depth: [0, 0.5], dpa: [1, 0.5], law: {form: saturation, saturation_increment: 0.2, saturation_dose: 0.5}}/' \
+  "$here/coarse_contact.yaml" > "$out/cut_profile.yaml"
+expect 0 cut "$indentsim" run "$out/cut_profile.yaml" --output "$out/cut"
+has cut "indentsim: warning: material.damage_profile ends at 0.5 dpa (50 % of its peak)"
+[[ $(grep -c "material.damage_profile ends" "$out/cut.txt") -eq 1 ]] \
+  || fail "the damage profile warning is not once"
+grep -qF "# warning: material.damage_profile ends" "$out/cut/run.log" \
+  || fail "run.log lacks the damage profile warning"
 
 # 5. The memory estimate: printed by check; a case that does not fit in the memory available
 # (fixed here to 2000 MiB so that the test does not depend on the machine) is refused.

@@ -462,22 +462,9 @@ namespace indentsim::io
             {HardeningLaw::voce, {"saturation", "rate"}, {"modulus"}},
             {HardeningLaw::table, {}, {"plastic_strain", "stress", "file"}},
         };
-        const std::string law = material.hardening_law.word();
         for (const auto &keys : law_keys)
-          {
-            if (material.hardening_law != keys.law)
-              continue;
-            std::vector<std::string> own = keys.required;
-            own.insert(own.end(), keys.optional.begin(), keys.optional.end());
-            for (const auto &name : parameters)
-              if (given(name) && std::find(own.begin(), own.end(), name) == own.end())
-                fail(line(prefix + name), shown(name) + ": not a parameter of law: " + law +
-                                              " (its keys: " + join(own) + ")");
-            for (const auto &name : keys.required)
-              if (!given(name))
-                fail(line(prefix + "law"), "material.hardening: law: " + law + " needs " + prefix +
-                                               name + " (its keys: " + join(own) + ")");
-          }
+          if (material.hardening_law == keys.law)
+            check_form_keys("material.hardening", "law", parameters, keys.required, keys.optional);
         if (material.hardening_law == HardeningLaw::voce && !given("modulus"))
           material.hardening_modulus = 0.0;
         if (material.hardening_law == HardeningLaw::table)
@@ -594,23 +581,35 @@ namespace indentsim::io
               "saturation_dose"},
              {}},
         };
-        const std::string form = profile.law.word();
         for (const auto &keys : form_keys)
-          {
-            if (profile.law != keys.law)
-              continue;
-            std::vector<std::string> own = keys.required;
-            own.insert(own.end(), keys.optional.begin(), keys.optional.end());
-            for (const auto &name : parameters)
-              if (given("law." + name) && std::find(own.begin(), own.end(), name) == own.end())
-                fail(line("law." + name), shown("law." + name) + ": not a parameter of form: " +
-                                              form + " (its keys: " + join(own) + ")");
-            for (const auto &name : keys.required)
-              if (!given("law." + name))
-                fail(line("law.form"), "material.damage_profile.law: form: " + form + " needs " +
-                                           prefix + "law." + name + " (its keys: " + join(own) +
-                                           ")");
-          }
+          if (profile.law == keys.law)
+            check_form_keys("material.damage_profile.law", "form", parameters, keys.required,
+                            keys.optional);
+      }
+
+      // The keys of the map `map` for the form its key `kind` names (a J2 hardening law, a
+      // damage law): none of the other forms' `parameters`, every one of its `required`.
+      void check_form_keys(const std::string &map, const std::string &kind,
+                           const std::vector<std::string> &parameters,
+                           const std::vector<std::string> &required,
+                           const std::vector<std::string> &optional) const
+      {
+        const auto origin = [&](const std::string &name) {
+          const auto found = value_origins.find(map + "." + name);
+          return found == value_origins.end() ? nullptr : &found->second;
+        };
+        const std::string        form = kind + ": " + origin(kind)->text;
+        std::vector<std::string> own = required;
+        own.insert(own.end(), optional.begin(), optional.end());
+        for (const auto &name : parameters)
+          if (origin(name) && std::find(own.begin(), own.end(), name) == own.end())
+            fail(origin(name)->line, map + "." + name + " = " + origin(name)->text +
+                                         ": not a parameter of " + form +
+                                         " (its keys: " + join(own) + ")");
+        for (const auto &name : required)
+          if (!origin(name))
+            fail(origin(kind)->line, map + ": " + form + " needs " + map + "." + name +
+                                         " (its keys: " + join(own) + ")");
       }
 
       // A path given relative to the case file's directory, made absolute (the resolved case

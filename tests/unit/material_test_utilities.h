@@ -83,6 +83,30 @@ namespace indentsim::testing
     return F;
   }
 
+  // The virgin state of `model` in the orientation g.
+  inline std::vector<double> oriented_state(const MaterialModel &model, const Tensor<2, 3> &g)
+  {
+    std::vector<double> state(model.n_state_variables());
+    model.oriented_initial_state(state, g);
+    return state;
+  }
+
+  // `state` after loading from the identity towards F_target in `steps` equal increments of
+  // F_target / (steps + 1) (so F_target itself is one increment further); fails the test if an
+  // update fails.
+  inline void load_towards(const MaterialModel &model, const Tensor<2, 3> &F_target,
+                           const unsigned int steps, std::vector<double> &state)
+  {
+    MaterialPointResponse response;
+    for (unsigned int step = 1; step <= steps; ++step)
+      {
+        std::vector<double> state_new(state.size());
+        const Tensor<2, 3>  F = identity() + (F_target - identity()) * (step / (steps + 1.0));
+        EXPECT_EQ(model.update(F, state, response, state_new, false), UpdateStatus::success);
+        state = state_new;
+      }
+  }
+
   // Central finite differences of P(F) with the old state held fixed (each perturbed update
   // re-runs the whole return mapping from state_old), compared with the model's dP/dF:
   // returns |dP/dF_FD - dP/dF| / |dP/dF| (Frobenius norms).

@@ -32,13 +32,6 @@ namespace
     return CrystalPlasticity(fcc_slip_systems(), elasticity, ExtendedVoceHardening(), 10.0);
   }
 
-  std::vector<double> oriented_state(const MaterialModel &model, const Tensor<2, 3> &g)
-  {
-    std::vector<double> state(model.n_state_variables());
-    model.oriented_initial_state(state, g);
-    return state;
-  }
-
   // ---------------------------------------------------------------------------------------
 
   // FCC has 12 distinct {111}<110> systems with unit, orthogonal m and n.

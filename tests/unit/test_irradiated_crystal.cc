@@ -42,13 +42,6 @@ namespace
                              FamilyVoceHardening(irradiated_law(q)), 10.0);
   }
 
-  std::vector<double> oriented_state(const MaterialModel &model, const Tensor<2, 3> &g)
-  {
-    std::vector<double> state(model.n_state_variables());
-    model.oriented_initial_state(state, g);
-    return state;
-  }
-
   // The law: tau_c(0) = tau0 + tau_irr, the rate against central differences (negative while
   // the defects dominate), and the exact increment against the difference of the closed form.
   TEST(IrradiatedCrystal, LawMatchesItsClosedForm)
@@ -135,17 +128,8 @@ namespace
     std::mt19937 generator(7);
     for (unsigned int sample = 0; sample < 3; ++sample)
       {
-        std::vector<double>   state = oriented_state(model, random_rotation(generator));
-        const Tensor<2, 3>    F_target = random_deformation(generator, 0.03);
-        MaterialPointResponse response;
-        for (unsigned int step = 1; step <= 5; ++step)
-          {
-            std::vector<double> state_new(state.size());
-            ASSERT_EQ(model.update(identity() + (F_target - identity()) * (step / 5.0), state,
-                                   response, state_new, false),
-                      UpdateStatus::success);
-            state = state_new;
-          }
+        std::vector<double> state = oriented_state(model, random_rotation(generator));
+        load_towards(model, random_deformation(generator, 0.03), 5, state);
         const double Gamma = model.equivalent_plastic_strain(state);
         ASSERT_GT(Gamma, 0.0);
         for (unsigned int r = 0; r < 12; ++r)
@@ -175,15 +159,7 @@ namespace
           const CrystalPlasticity &model = models[m];
           std::vector<double>      state = oriented_state(model, random_rotation(generator));
           const Tensor<2, 3>       F_target = random_deformation(generator, 0.02);
-          MaterialPointResponse    response;
-          for (unsigned int step = 1; step <= 4; ++step)
-            {
-              std::vector<double> state_new(state.size());
-              ASSERT_EQ(model.update(identity() + (F_target - identity()) * (step / 5.0), state,
-                                     response, state_new, false),
-                        UpdateStatus::success);
-              state = state_new;
-            }
+          load_towards(model, F_target, 4, state);
           ASSERT_GT(model.equivalent_plastic_strain(state), 0.0);
           const double error = tangent_error(model, F_target, state, 1e-7);
           if (sample == 0)

@@ -115,7 +115,7 @@ for name, layers, what in (("pristine", None, "pristine"),
          "specimen": {"contact_elements": "auto", "symmetry": "axisymmetric"},
          "contact": {"friction_coefficient": 0.0, "penetration_tolerance": 1e-5},
          "loading": CSM_LOADING})
-# The same under the synthetic self-ion damage profile of examples/data/self_ion_dpa.csv (inline;
+# The same under the synthetic self-ion damage profile of studies/irradiated_layer/self_ion_dpa.csv (inline;
 # peak 1.28 dpa at 0.6 um, to 0.8 um), raising the yield stress by up to sigma_y0.
 SELF_ION_PROFILE = {
     "depth": [0, 0.1, 0.2, 0.3, 0.4, 0.45, 0.5, 0.55, 0.6, 0.65, 0.7, 0.75, 0.8],

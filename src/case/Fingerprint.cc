@@ -13,7 +13,9 @@ namespace indentsim::io
   {
     std::vector<std::string> lines;
     for (const auto &key : case_keys())
-      if (key.determines_results && (key.written == nullptr || key.written(resolved_case)))
+      if (key.determines_results &&
+          (key.fingerprinted != nullptr ? key.fingerprinted(resolved_case)
+                                        : key.written == nullptr || key.written(resolved_case)))
         lines.push_back(key.path + ": " + key.value_text(resolved_case));
     std::sort(lines.begin(), lines.end());
     return join(lines, "\n") + "\n";
@@ -38,7 +40,9 @@ namespace indentsim::io
   std::vector<KeyDifference> case_differences(const Case &old_case, const Case &new_case)
   {
     const auto value = [](const Key &key, const Case &c) {
-      return key.written == nullptr || key.written(c) ? key.value_text(c) : "(not set)";
+      const bool set = key.fingerprinted != nullptr ? key.fingerprinted(c)
+                                                    : key.written == nullptr || key.written(c);
+      return set ? key.value_text(c) : "(not set)";
     };
     std::vector<KeyDifference> differences;
     for (const auto &key : case_keys())

@@ -89,6 +89,10 @@ namespace indentsim::io
     {
       return c.material.hardening_law == HardeningLaw::table && c.material.hardening_file.empty();
     }
+    bool hardening_table(const Case &c)
+    {
+      return c.material.hardening_law == HardeningLaw::table;
+    }
     bool hardening_table_file(const Case &c)
     {
       return c.material.hardening_law == HardeningLaw::table && !c.material.hardening_file.empty();
@@ -334,6 +338,7 @@ namespace indentsim::io
           D::at<&C::material, &M::hardening_plastic_strain>("material.hardening.plastic_strain")
               .entries("plastic strains", "a plastic strain")
               .range(finite_at_least(0), "the plastic strains must be finite and >= 0")
+              .fingerprinted_if(&hardening_table)
               .written_if(&inline_hardening_table)
               .default_is("– (table)")
               .allowed_is("from 0, strictly increasing, ≥ 2 points")
@@ -344,6 +349,7 @@ namespace indentsim::io
               .unit("GPa")
               .entries("true stresses in GPa", "a stress in GPa")
               .range(finite_above(0), "the stresses must be finite and > 0 GPa")
+              .fingerprinted_if(&hardening_table)
               .written_if(&inline_hardening_table)
               .default_is("– (table)")
               .allowed_is("> 0, non-decreasing, the first = `yield_stress`")
@@ -356,6 +362,7 @@ namespace indentsim::io
               .unit("path")
               .expect("the path of a CSV hardening table")
               .relative_to_case_file()
+              .not_a_result() // the fingerprint takes its content: the two lists above
               .written_if(&hardening_table_file)
               .default_is("– (table)")
               .comment("table: CSV plastic_strain,true_stress_GPa")
@@ -500,6 +507,7 @@ namespace indentsim::io
               .unit("path")
               .expect("the path of a CSV damage profile")
               .relative_to_case_file()
+              .not_a_result() // the fingerprint takes its content: the two lists below
               .written_if(&damage_profile_file)
               .default_is("– (homogeneous)")
               .comment("CSV: depth with its unit, dpa")
@@ -513,6 +521,7 @@ namespace indentsim::io
               .unit("um")
               .entries("depths in um", "a depth in um")
               .range(finite_at_least(0), "the depths must be finite and >= 0 um")
+              .fingerprinted_if(&damage_profile_given)
               .written_if(&inline_damage_profile)
               .default_is("–")
               .allowed_is("≥ 0, strictly increasing, ≥ 2 points")
@@ -524,6 +533,7 @@ namespace indentsim::io
               .unit("dpa")
               .entries("doses in dpa", "a dose in dpa")
               .range(finite_at_least(0), "the doses must be finite and >= 0 dpa")
+              .fingerprinted_if(&damage_profile_given)
               .written_if(&inline_damage_profile)
               .default_is("–")
               .allowed_is("≥ 0, one per depth, some > 0")

@@ -83,6 +83,9 @@ namespace indentsim::io
     const char *zero_word = nullptr; // whole numbers: the word stored as 0 ("auto"), or none
     bool (*written)(const Case &) =
         nullptr; // resolved case: written only if true (nullptr: always)
+    // The fingerprint: included only if true (nullptr: when written). A table read from a file
+    // is fingerprinted by its content, which the resolved case leaves to the file.
+    bool (*fingerprinted)(const Case &) = nullptr;
 
     // Where the value is stored: the one accessor that matches `type`.
     double &(*number)(Case &) = nullptr;

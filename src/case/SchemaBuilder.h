@@ -182,6 +182,10 @@ namespace indentsim::io::schema_builder
     Declare &relative_to_case_file() { return key.relative_to_case_file = true, *this; }
     Declare &not_a_result() { return key.determines_results = false, *this; }
     Declare &written_if(bool (*condition)(const Case &)) { return key.written = condition, *this; }
+    Declare &fingerprinted_if(bool (*condition)(const Case &))
+    {
+      return key.fingerprinted = condition, *this;
+    }
 
     operator Key() const { return key; }
 

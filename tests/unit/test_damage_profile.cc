@@ -126,6 +126,19 @@ TEST(DamageProfile, ProfileIsReadFromFileAndResolved)
   EXPECT_NE(resolved.find("      form: saturation"), std::string::npos) << resolved;
   EXPECT_EQ(parse_case_yaml(resolved, "resolved.yaml").material, c.material);
 
+  // The fingerprint takes the profile's content, not the file's path: a copy elsewhere keeps
+  // it, a changed dose changes it.
+  fs::create_directories(dir / "moved");
+  write_text(dir / "moved" / "profile.csv", "depth_nm,dpa\n0,0.2\n1000,1.0\n1500,0\n");
+  write_text(dir / "moved" / "case.yaml",
+             with_profile("{file: profile.csv, law: {form: saturation, saturation_increment: "
+                          "0.4, saturation_dose: 0.5, exponent: 0.5}}"));
+  EXPECT_EQ(case_fingerprint(read_case_file((dir / "moved" / "case.yaml").string())),
+            case_fingerprint(c));
+  write_text(dir / "moved" / "profile.csv", "depth_nm,dpa\n0,0.2\n1000,1.1\n1500,0\n");
+  EXPECT_NE(case_fingerprint(read_case_file((dir / "moved" / "case.yaml").string())),
+            case_fingerprint(c));
+
   const Case inline_case = parse_case_yaml(with_profile(triangle), "inline.yaml");
   EXPECT_EQ(parse_case_yaml(resolved_case_yaml(inline_case), "r.yaml").material,
             inline_case.material);

@@ -15,7 +15,7 @@ stress_strain.csv, stress_strain_j2.csv, pileup.json, pileup_*.png, study_case.j
     figures/mesh_<group>.png          load-penetration curves per mesh
     figures/mesh_force.png            force at maximum depth against element size h
     figures/orientations.png          load-penetration curves per orientation
-    figures/irradiation_<group>.png   hardness against depth, its ratio to the pristine case, the
+    figures/irradiation_<kind>.png    hardness against depth, its ratio to the pristine case, the
                                       Nix-Gao plots and the plastic zone's share in the layer
 
 Sections: the cases; the tensile calibration (stress at the report's strains, the spread over
@@ -818,7 +818,8 @@ class Report:
 
     def plastic_zone(self, case):
         """Depth [um] and the plastic zone's share in the layer along the loading, and the first
-        loading depth at which the zone reaches below the layer (None if it never does)."""
+        loading depth at which the zone reaches below the layer (None if it never does, or the
+        specimen has no layer: every share 0)."""
         columns = read_columns(os.path.join(case["path"], "load_penetration.csv"),
                                ("depth_um", "plastic_zone_volume_um3",
                                 "plastic_zone_layer_fraction"), ("segment",))
@@ -833,7 +834,7 @@ class Report:
             share.append(fraction)
             if reached is None and fraction < 0.999:
                 reached = h
-        return depth, share, reached
+        return depth, share, (reached if any(f > 0 for f in share) else None)
 
     def irradiation_section(self):
         """The irradiated layer against the pristine metal, per group: the first case of the
@@ -848,7 +849,9 @@ class Report:
                  "the pristine reference. The Nix–Gao fit (H² against 1/h, bilinear, Kasada et al.) "
                  "gives the knee depth and the shallow branch's bulk-equivalent hardness H_0 of "
                  "the layer; F tests the knee against one line (significant above 4). The plastic "
-                 "zone's share in the layer is the part of its volume above the layer's bottom.",
+                 "zone's share in the layer is the part of its volume above the layer's bottom "
+                 "(the last layer's, or the damage profile's last depth). A knee without "
+                 "significance is shown in parentheses.",
                  "")
         for group in groups:
             cases = [c for c in self.data.finished(group) if self.hardness_profile(c)]
@@ -864,13 +867,17 @@ class Report:
                 profile = profiles[case["name"]]
                 fit = profile["json"].get("nix_gao") or {}
                 reached = zones[case["name"]][2]
+                # A knee that one line explains as well is shown in parentheses.
+                shown = (lambda text: text) if fit.get("knee_significant") else \
+                    (lambda text: f"({text})")
                 rows.append([case["label"], len(profile["depth_um"]),
                              format_number(profile["hardness_GPa"][0], 3) + " / " +
                              format_number(profile["hardness_GPa"][-1], 3),
-                             format_number(fit.get("knee_depth_um"), 2),
-                             format_number(fit.get("layer_hardness_GPa"), 3),
+                             shown(format_number(fit.get("knee_depth_um"), 2)),
+                             shown(format_number(fit.get("layer_hardness_GPa"), 3)),
                              format_number(fit.get("f_statistic"), 1) +
-                             (" (significant)" if fit.get("knee_significant") else ""),
+                             (" (significant)" if fit.get("knee_significant") else
+                              " (no significant knee)"),
                              format_number(reached, 3) if reached is not None else "–"])
             self.table(["case", "partial unloads", "H shallowest / deepest [GPa]",
                         "Nix–Gao knee [µm]", "H_0 of the layer [GPa]", "F",
@@ -922,7 +929,7 @@ class Report:
                 axis.grid(alpha=0.3)
                 if axis.get_legend_handles_labels()[0]:
                     axis.legend(fontsize=8)
-            self.figure(figure, f"irradiation_{group}.png",
+            self.figure(figure, f"{group}.png",
                         f"{group}: hardness against depth, its ratio to the pristine case, the "
                         "Nix–Gao plots with their fits and the plastic zone's share in the layer "
                         "(µm, GPa). The pile-up of each case is in the pile-up section.")

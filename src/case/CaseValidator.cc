@@ -68,6 +68,13 @@ namespace indentsim::io
                  std::to_string(checked.specimen.elements_per_radius),
                  "it sets the automatic mesh: give specimen.contact_elements: auto with it, or "
                  "remove it to mesh the refined region with contact_elements");
+        if (!checked.specimen.automatic_mesh() && value_origins != nullptr &&
+            value_origins->count("specimen.elements_across_layers") != 0)
+          reject("specimen.elements_across_layers",
+                 std::to_string(checked.specimen.elements_across_layers),
+                 "it sets the automatic mesh's refinement across layers: give "
+                 "specimen.contact_elements: auto with it, or remove it (an explicit mesh does "
+                 "not refine across layers)");
         check_specimen(*surface);
         check_section("loading");
         check_loading();

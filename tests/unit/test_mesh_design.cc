@@ -249,6 +249,12 @@ TEST(MeshDesign, CaseFileRefusals)
   expect_rejected("test: indentation\nmaterial: {model: j2}\n"
                   "specimen: {contact_elements: auto, elements_per_radius: 1}\n",
                   {"specimen.elements_per_radius = 1", "2 <= n <= 64"});
+  expect_rejected("test: indentation\nmaterial: {model: j2}\n"
+                  "specimen: {contact_elements: 12, elements_across_layers: 2}\n",
+                  {"specimen.elements_across_layers = 2", "give specimen.contact_elements: auto"});
+  expect_rejected("test: indentation\nmaterial: {model: j2}\n"
+                  "specimen: {contact_elements: auto, elements_across_layers: 0}\n",
+                  {"specimen.elements_across_layers = 0", "1 <= m <= 16"});
 }
 
 // A depth-graded specimen: four elements across its thinnest layer wherever the near field

@@ -105,14 +105,14 @@ namespace indentsim::io
   // (material.hardening.tau0, ...) when read.
   struct FamilyHardening
   {
-    std::string family;               // a name of SlipSystems.h, one of slip_families
-    double      tau0 = 0;             // [GPa]
-    double      tau1 = 0;             // [GPa]
-    double      theta0 = 0;           // [GPa]
-    double      theta1 = 0;           // [GPa]
-    double      tau_irr = 0;          // tau_irr,0 [GPa]
-    double      softening_slip = 0;   // gamma_0 [-]
-    double      barrier_strength = 0; // alpha of the dispersed-barrier law [-]
+    std::string family;                // a name of SlipSystems.h, one of slip_families
+    double      tau0 = 0;              // [GPa]
+    double      tau1 = 0;              // [GPa]
+    double      theta0 = 0;            // [GPa]
+    double      theta1 = 0;            // [GPa]
+    double      tau_irr = 0;           // tau_irr,0 [GPa]
+    double      softening_slip = 0.05; // gamma_0 [-] (the common default)
+    double      barrier_strength = 0;  // alpha of the dispersed-barrier law [-]
 
     bool operator==(const FamilyHardening &) const = default;
   };

@@ -836,9 +836,36 @@ class Report:
                 reached = h
         return depth, share, (reached if any(f > 0 for f in share) else None)
 
+    def layer_bulk_bias(self, bulk, cases, profiles):
+        """The layer's bulk hardness (a `_bulk` case: the specimen made of the layer's material
+        throughout) against what the usual analyses of the irradiated cases give."""
+        bulk_h = profiles[bulk["name"]]["hardness_GPa"]
+        h_bulk = sum(bulk_h) / len(bulk_h)
+        lines = [f"The layer's bulk hardness: {format_number(h_bulk, 3)} GPa, the mean over the "
+                 f"partial unloads of `{bulk['name']}` ({bulk['label']}; "
+                 f"{format_number(min(bulk_h), 3)}–{format_number(max(bulk_h), 3)} GPa). Against "
+                 "it:"]
+        for case in cases:
+            if case is bulk or case is cases[0]:
+                continue
+            profile = profiles[case["name"]]
+            fit = profile["json"].get("nix_gao") or {}
+            h0 = fit.get("layer_hardness_GPa")
+            shallow = profile["hardness_GPa"][0]
+            text = (f"- {case['label']}: the shallowest partial unload's H "
+                    f"{format_number(shallow, 3)} GPa ({100 * (shallow / h_bulk - 1):+.0f} %)")
+            if h0:
+                text += (f"; the Nix–Gao H_0 {format_number(h0, 3)} GPa "
+                         f"({100 * (h0 / h_bulk - 1):+.0f} %"
+                         + ("" if fit.get("knee_significant") else ", knee not significant")
+                         + ")")
+            lines.append(text + ".")
+        self.add(*lines, "")
+
     def irradiation_section(self):
         """The irradiated layer against the pristine metal, per group: the first case of the
-        group is the pristine reference."""
+        group is the pristine reference; a case whose name ends in `_bulk` is the layer's
+        material throughout, the truth the analyses of the layer are measured against."""
         groups = [g for g in ("irradiation_j2", "irradiation_crystal")
                   if any(g in c["groups"] for c in self.data.cases)]
         if not groups:
@@ -851,7 +878,9 @@ class Report:
                  "the layer; F tests the knee against one line (significant above 4). The plastic "
                  "zone's share in the layer is the part of its volume above the layer's bottom "
                  "(the last layer's, or the damage profile's last depth). A knee without "
-                 "significance is shown in parentheses.",
+                 "significance is shown in parentheses. A case named `..._bulk` is the layer's "
+                 "material throughout: the bulk hardness the analyses of the layer try to "
+                 "recover.",
                  "")
         for group in groups:
             cases = [c for c in self.data.finished(group) if self.hardness_profile(c)]
@@ -879,9 +908,12 @@ class Report:
                              (" (significant)" if fit.get("knee_significant") else
                               " (no significant knee)"),
                              format_number(reached, 3) if reached is not None else "–"])
+            bulk = next((c for c in cases if c["name"].endswith("_bulk")), None)
             self.table(["case", "partial unloads", "H shallowest / deepest [GPa]",
                         "Nix–Gao knee [µm]", "H_0 of the layer [GPa]", "F",
                         "zone reaches the substrate at h [µm]"], rows)
+            if bulk is not None and bulk is not reference:
+                self.layer_bulk_bias(bulk, cases, profiles)
             plt = self.plt
             figure, axes = plt.subplots(2, 2, figsize=(11, 8))
             ref = profiles[reference["name"]]
@@ -913,7 +945,7 @@ class Report:
                                          fit["deep_slope_GPa2_um"] * x for x in xs], ":",
                                     color=line.get_color(), lw=1)
                 depth, share, _ = zones[case["name"]]
-                if case is not reference:
+                if case is not reference and any(f > 0 for f in share):
                     axes[1][1].plot(depth, share, "-", color=line.get_color(),
                                     label=case["label"])
             axes[0][0].set(xlabel="depth h [µm]", ylabel="hardness H [GPa]",

@@ -30,6 +30,15 @@ namespace indentsim::io
     const std::vector<std::string> family_block_keys = {
         "tau0", "tau1", "theta0", "theta1", "tau_irr", "softening_slip", "barrier_strength"};
 
+    // The keys of one form of a law (a J2 hardening law, a damage law): those it needs and those
+    // it may take (CaseReader::check_form_keys).
+    template <typename Form>
+    struct FormKeys
+    {
+      Form                     form;
+      std::vector<std::string> required, optional;
+    };
+
     class CaseReader
     {
     public:
@@ -451,19 +460,14 @@ namespace indentsim::io
         if (!material.hardening_law.known())
           return; // named by the validator, with the allowed words
 
-        struct LawKeys
-        {
-          HardeningLaw             law;
-          std::vector<std::string> required, optional;
-        };
-        const std::vector<LawKeys> law_keys = {
+        const std::vector<FormKeys<HardeningLaw>> law_keys = {
             {HardeningLaw::linear, {"modulus"}, {}},
             {HardeningLaw::power, {"exponent"}, {}},
             {HardeningLaw::voce, {"saturation", "rate"}, {"modulus"}},
             {HardeningLaw::table, {}, {"plastic_strain", "stress", "file"}},
         };
         for (const auto &keys : law_keys)
-          if (material.hardening_law == keys.law)
+          if (material.hardening_law == keys.form)
             check_form_keys("material.hardening", "law", parameters, keys.required, keys.optional);
         if (material.hardening_law == HardeningLaw::voce && !given("modulus"))
           material.hardening_modulus = 0.0;
@@ -568,12 +572,7 @@ namespace indentsim::io
                    ", ...} (the dose-to-strength law; user guide, \"Damage profiles\")");
         if (!profile.law.known())
           return; // named by the validator, with the allowed words
-        struct FormKeys
-        {
-          DamageLaw                law;
-          std::vector<std::string> required, optional;
-        };
-        const std::vector<FormKeys> form_keys = {
+        const std::vector<FormKeys<DamageLaw>> form_keys = {
             {DamageLaw::saturation, {"saturation_increment", "saturation_dose"}, {"exponent"}},
             {DamageLaw::table, {"dpa", "delta_yield_stress"}, {}},
             {DamageLaw::dispersed_barrier,
@@ -582,7 +581,7 @@ namespace indentsim::io
              {}},
         };
         for (const auto &keys : form_keys)
-          if (profile.law == keys.law)
+          if (profile.law == keys.form)
             check_form_keys("material.damage_profile.law", "form", parameters, keys.required,
                             keys.optional);
       }

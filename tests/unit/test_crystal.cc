@@ -172,18 +172,9 @@ namespace
             106.7 * stiffness_factor, 60.4 * stiffness_factor, 28.3 * stiffness_factor));
         for (const auto &[axis, ratio] : cases)
           {
-            const auto state0 = oriented_state(model, axis_along_z(axis));
-            double     elastic = 1.0, plastic = 1.0 + 0.02 / stiffness_factor;
-            for (unsigned int k = 0; k < 60; ++k)
-              {
-                const double   middle = 0.5 * (elastic + plastic);
-                UniaxialDriver driver{model, state0};
-                driver.load_to(middle);
-                (model.equivalent_plastic_strain(driver.state) > 0 ? plastic : elastic) = middle;
-              }
-            UniaxialDriver driver{model, state0};
-            const double   sigma_y = driver.load_to(elastic);
-            const double   deviation = sigma_y / (0.12 * ratio) - 1.0;
+            const double sigma_y = initial_yield_stress(
+                model, oriented_state(model, axis_along_z(axis)), 1.0 + 0.02 / stiffness_factor);
+            const double deviation = sigma_y / (0.12 * ratio) - 1.0;
             report("stiffness x " + std::to_string(int(stiffness_factor)) +
                        ": sigma_y / tau0 along [" + std::to_string(int(axis[0])) +
                        std::to_string(int(axis[1])) + std::to_string(int(axis[2])) +

@@ -121,4 +121,22 @@ namespace indentsim::testing
     return rotation_from_surface_normal(axis, reference);
   }
 
+  // The initial yield stress sigma_zz [GPa] in uniaxial tension from `state0`: the largest
+  // stretch that leaves the point elastic, found by bisection (60 halvings) between 1 and
+  // `plastic_stretch` (which must yield), each trial loaded in one increment from state0.
+  inline double initial_yield_stress(const MaterialModel &model, const std::vector<double> &state0,
+                                     const double plastic_stretch)
+  {
+    double elastic = 1.0, plastic = plastic_stretch;
+    for (unsigned int k = 0; k < 60; ++k)
+      {
+        const double   middle = 0.5 * (elastic + plastic);
+        UniaxialDriver driver{model, state0};
+        driver.load_to(middle);
+        (model.equivalent_plastic_strain(driver.state) > 0 ? plastic : elastic) = middle;
+      }
+    UniaxialDriver driver{model, state0};
+    return driver.load_to(elastic);
+  }
+
 } // namespace indentsim::testing

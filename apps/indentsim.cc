@@ -4,6 +4,8 @@
 // Thin application layer: parse the command line and the case file, build the problem, run it,
 // write the outputs. No physics here.
 #include "analysis/AnalyzeCommand.h"
+#include "calibration/CalibrationFile.h"
+#include "calibration/CalibrationRunner.h"
 #include "case/CaseFile.h"
 #include "io/CommandLine.h"
 #include "mesh/MeshAdequacy.h"
@@ -40,29 +42,26 @@ namespace
   // With `measured_csv` (um, mN) the measured curve is overlaid.
   void plot_load_penetration(const std::string &directory, const std::string &measured_csv = "")
   {
-    const std::string script = indentsim::output::python_script("plot_load_penetration.py");
-    std::string command = "python3 \"" + script + "\" \"" + directory + "/load_penetration.csv\"";
+    std::vector<std::string> arguments = {directory + "/load_penetration.csv"};
     if (!measured_csv.empty())
-      command += " \"" + measured_csv + "\" --label computed --label measured";
-    command += " -o \"" + directory + "/load_penetration.png\"";
-    if (std::system(command.c_str()) != 0)
-      std::cerr << "warning: the plot " << directory
-                << "/load_penetration.png could not be written (command: " << command << ")\n";
+      arguments.insert(arguments.end(),
+                       {measured_csv, "--label", "computed", "--label", "measured"});
+    const std::string png = directory + "/load_penetration.png";
+    arguments.insert(arguments.end(), {"-o", png});
+    output::draw_plot("plot_load_penetration.py", arguments, png, std::cerr);
   }
 
   // Writes the PNG plot of the tensile curve(s): the case's model and, if present, J2.
   void plot_stress_strain(const std::string &directory, const std::string &model, bool with_j2)
   {
-    const std::string script = indentsim::output::python_script("plot_stress_strain.py");
-    std::string       command = "python3 \"" + script + "\" \"" + directory + "/" +
-                          io::output_files::stress_strain_csv + "\" --label \"" + model + "\"";
+    std::vector<std::string> arguments = {directory + "/" + io::output_files::stress_strain_csv,
+                                          "--label", model};
     if (with_j2)
-      command +=
-          " \"" + directory + "/" + io::output_files::stress_strain_j2_csv + "\" --label \"j2\"";
-    command += " -o \"" + directory + "/" + io::output_files::stress_strain_png + "\"";
-    if (std::system(command.c_str()) != 0)
-      std::cerr << "warning: the plot " << directory << "/" << io::output_files::stress_strain_png
-                << " could not be written (command: " << command << ")\n";
+      arguments.insert(arguments.end(),
+                       {directory + "/" + io::output_files::stress_strain_j2_csv, "--label", "j2"});
+    const std::string png = directory + "/" + io::output_files::stress_strain_png;
+    arguments.insert(arguments.end(), {"-o", png});
+    output::draw_plot("plot_stress_strain.py", arguments, png, std::cerr);
   }
 
   // `word` as one word for the shell (in single quotes unless it needs none).
@@ -252,6 +251,7 @@ namespace
         output::write_file(resolved_case_path, resolved_text);
     });
 
+    output::set_plots_enabled(the_case.output.plots);
     // Assembly threads per rank: solver.threads, or (0) the cores of the node divided among the
     // ranks on it, as MPI_InitFinalize set it up.
     if (the_case.solver.threads > 0)
@@ -274,6 +274,30 @@ namespace
     return finished ? 0 : 130; // stopped by a signal: the shell's convention for SIGINT
   }
 
+  // indentsim calibrate: reads the calibration file and fits, running the forward cases as
+  // child processes.
+  int run_calibrate(const io::CommandLineOptions &options, const MPI_Comm communicator)
+  {
+    if (dealii::Utilities::MPI::n_mpi_processes(communicator) > 1)
+      throw io::CaseFileError("indentsim calibrate starts each forward run itself and runs in "
+                              "one process; use --ranks N to run every case on N MPI ranks");
+    const calibration::Calibration the_calibration = calibration::read_calibration_file(
+        options.study_file, options.output_directory.value_or(""));
+    if (options.study_dry_run)
+      {
+        std::cout << "Calibration " << options.study_file
+                  << " is valid: " << the_calibration.parameters.size() << " parameter(s), "
+                  << the_calibration.data.size() << " data set(s), output "
+                  << the_calibration.output_directory << ". Nothing was run or written.\n";
+        return 0;
+      }
+    study::StudyRunSettings settings;
+    settings.ranks = options.study_ranks;
+    settings.jobs = options.study_jobs;
+    settings.launcher = options.study_launcher;
+    return calibration::run_calibration(the_calibration, settings, std::cout, std::cerr);
+  }
+
   // indentsim study: reads the study file and runs its cases as child processes.
   int run_study(const io::CommandLineOptions &options, const MPI_Comm communicator)
   {
@@ -287,6 +311,7 @@ namespace
     settings.jobs = options.study_jobs;
     settings.dry_run = options.study_dry_run;
     settings.only = options.study_only;
+    settings.launcher = options.study_launcher;
     return study::StudyRunner(the_study, settings, std::cout).run();
   }
 } // namespace
@@ -334,6 +359,8 @@ int main(int argc, char **argv)
           return 0;
         case io::Command::study:
           return run_study(options, communicator);
+        case io::Command::calibrate:
+          return run_calibrate(options, communicator);
         default:
           return run(options, argv[0], communicator);
         }

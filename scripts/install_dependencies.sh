@@ -4,7 +4,7 @@
 # Uses sudo only when not running as root.
 set -euo pipefail
 
-packages=(cmake g++ ccache libdeal.ii-dev libyaml-cpp-dev libgtest-dev googletest
+packages=(cmake g++ ccache libdeal.ii-dev libyaml-cpp-dev libceres-dev libgtest-dev googletest
           python3 python3-numpy python3-matplotlib openmpi-bin libopenblas0-openmp)
 
 missing=()

@@ -53,12 +53,8 @@ namespace indentsim::analysis
       const std::string json_path = directory + "/" + io::output_files::oliver_pharr_json;
       output::write_file(json_path,
                          to_json(result, settings, describe(indenter_parameters), source, &curve));
-      const std::string script = indentsim::output::python_script("plot_oliver_pharr.py");
-      const std::string command = "python3 \"" + script + "\" \"" + json_path + "\" -o \"" +
-                                  directory + "/" + io::output_files::oliver_pharr_png + "\"";
-      if (std::system(command.c_str()) != 0)
-        std::cerr << "warning: the plot " << directory << "/" << io::output_files::oliver_pharr_png
-                  << " could not be written (command: " << command << ")\n";
+      const std::string png = directory + "/" + io::output_files::oliver_pharr_png;
+      output::draw_plot("plot_oliver_pharr.py", {json_path, "-o", png}, png, std::cerr);
       return result;
     }
 
@@ -245,12 +241,8 @@ namespace indentsim::analysis
     const std::string json_path = directory + "/" + io::output_files::hardness_depth_json;
     output::write_file(directory + "/" + io::output_files::hardness_depth_csv, to_csv(points));
     output::write_file(json_path, to_json(points, nix_gao, skipped, curve.source));
-    const std::string script = indentsim::output::python_script("plot_hardness_depth.py");
-    const std::string command = "python3 \"" + script + "\" \"" + json_path + "\" -o \"" +
-                                directory + "/" + io::output_files::hardness_depth_png + "\"";
-    if (std::system(command.c_str()) != 0)
-      warnings << "warning: the plot " << directory << "/" << io::output_files::hardness_depth_png
-               << " could not be written (command: " << command << ")\n";
+    const std::string png = directory + "/" + io::output_files::hardness_depth_png;
+    output::draw_plot("plot_hardness_depth.py", {json_path, "-o", png}, png, warnings);
     summary << std::setprecision(4) << "Hardness-depth profile (" << json_path
             << "): " << points.size() << " partial unloads from " << points.front().depth << " to "
             << points.back().depth << " um, H " << points.front().estimate.hardness << " to "

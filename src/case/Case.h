@@ -223,6 +223,9 @@ namespace indentsim::io
     // Indentation: wall time between checkpoints of a run [s] (0: only when stopped by
     // SIGINT/SIGTERM); `indentsim run CASE --resume` continues from the last one.
     double checkpoint_interval_s = 300;
+    // Whether the run draws its PNG plots (Python); the CSV, JSON and VTU files are written
+    // either way. Off in a calibration's forward runs.
+    bool plots = true;
 
     bool operator==(const OutputParameters &) const = default;
   };

@@ -1055,6 +1055,12 @@ namespace indentsim::io
               .comment("[s] wall time between checkpoints (0: only when stopped)")
               .describe("indentation: wall time between checkpoints for `--resume` (0: only when "
                         "stopped by Ctrl-C/SIGTERM)"),
+          D::at<&C::output, &OU::plots>("output.plots")
+              .not_a_result()
+              .comment("draw the PNG plots (Python); false: CSV, JSON and VTU only")
+              .describe("whether the run draws its PNG plots with Python (about a second each); "
+                        "`false` leaves the CSV, JSON and VTU files only, as a calibration's "
+                        "forward runs do"),
       };
     }
 

@@ -58,12 +58,16 @@ namespace indentsim::io
       return static_cast<unsigned int>(parsed);
     }
 
-    // indentsim study STUDY.yaml [--output DIR] [--ranks N] [--jobs J] [--dry-run]
-    //                            [--only NAME[,NAME...]]
+    // indentsim study STUDY.yaml [--output DIR] [--ranks N] [--jobs J] [--launcher T]
+    //                            [--dry-run] [--only NAME[,NAME...]]
+    // indentsim calibrate CONFIG.yaml [--output DIR] [--ranks N] [--jobs J] [--launcher T]
+    //                            [--dry-run]
     CommandLineOptions parse_study_arguments(const std::vector<std::string> &arguments)
     {
       CommandLineOptions options;
-      options.command = Command::study;
+      const bool         calibrate = arguments[0] == "calibrate";
+      const std::string  word = calibrate ? "calibrate" : "study";
+      options.command = calibrate ? Command::calibrate : Command::study;
       bool ranks_given = false, jobs_given = false;
       for (std::size_t i = 1; i < arguments.size(); ++i)
         {
@@ -99,9 +103,19 @@ namespace indentsim::io
               options.study_jobs =
                   positive_count("--jobs", option_value(arguments, i, "--jobs", "J"), 64);
             }
+          else if (is_option("--launcher"))
+            {
+              if (!options.study_launcher.empty())
+                bad_usage("--launcher given twice");
+              options.study_launcher = option_value(arguments, i, "--launcher", "TEMPLATE");
+              if (options.study_launcher.find("{command}") == std::string::npos)
+                bad_usage("--launcher " + options.study_launcher +
+                          ": the template needs the word {command}, e.g. "
+                          "'srun -n {ranks} {command}'");
+            }
           else if (argument == "--dry-run")
             options.study_dry_run = true;
-          else if (is_option("--only"))
+          else if (!calibrate && is_option("--only"))
             {
               const std::string list = option_value(arguments, i, "--only", "NAME[,NAME...]");
               std::size_t       start = 0;
@@ -117,17 +131,20 @@ namespace indentsim::io
                 }
             }
           else if (!argument.empty() && argument[0] == '-')
-            bad_usage("unknown option '" + argument +
-                      "' for 'study'; allowed: --output DIR, --ranks N, --jobs J, --dry-run, "
-                      "--only NAME[,NAME...]");
+            bad_usage("unknown option '" + argument + "' for '" + word +
+                      "'; allowed: --output DIR, --ranks N, --jobs J, --launcher TEMPLATE, "
+                      "--dry-run" +
+                      (calibrate ? std::string() : std::string(", --only NAME[,NAME...]")));
           else if (options.study_file.empty())
             options.study_file = argument;
           else
-            bad_usage("more than one study file given ('" + options.study_file + "' and '" +
-                      argument + "')");
+            bad_usage("more than one " + std::string(calibrate ? "calibration" : "study") +
+                      " file given ('" + options.study_file + "' and '" + argument + "')");
         }
       if (options.study_file.empty())
-        bad_usage("'study' needs a study file: indentsim study STUDY.yaml");
+        bad_usage(calibrate
+                      ? "'calibrate' needs a calibration file: indentsim calibrate CONFIG.yaml"
+                      : "'study' needs a study file: indentsim study STUDY.yaml");
       return options;
     }
 
@@ -240,7 +257,9 @@ namespace indentsim::io
            "                    [--depth-column NAME] [--force-column NAME]\n"
            "                    [--depth-unit um|nm|mm] [--force-unit mN|uN|N]\n"
            "  indentsim study STUDY.yaml [--output DIR] [--ranks N] [--jobs J] [--dry-run]\n"
-           "                  [--only NAME[,NAME...]]\n"
+           "                  [--only NAME[,NAME...]] [--launcher TEMPLATE]\n"
+           "  indentsim calibrate CONFIG.yaml [--output DIR] [--ranks N] [--jobs J] [--dry-run]\n"
+           "                  [--launcher TEMPLATE]\n"
            "  indentsim --help\n"
            "  indentsim --version\n";
   }
@@ -285,6 +304,15 @@ namespace indentsim::io
            "                    rerun skips finished cases and resumes interrupted ones\n"
            "                    from their checkpoint (same --ranks), else reruns them.\n"
            "                    Exit code 3 if a case failed (the others still run).\n"
+           "  calibrate CONFIG.yaml\n"
+           "                    Fit numeric keys of a base case (bounded) to measured curves\n"
+           "                    by weighted least squares (Ceres Solver, Levenberg-Marquardt,\n"
+           "                    Jacobians by finite differences run as parallel cases). Every\n"
+           "                    forward run is a study case: cached by the hash of its resolved\n"
+           "                    case, so a rerun continues where an interrupted one stopped.\n"
+           "                    Writes calibration.json (values, standard errors, 95 %\n"
+           "                    intervals, correlations, identifiability), iterations.csv,\n"
+           "                    the fitted curves and report.md; docs/calibration.md.\n"
            "\n"
            "Options:\n"
            "  --output DIR      Write results to DIR instead of output.directory of the case.\n"
@@ -307,7 +335,11 @@ namespace indentsim::io
            "                    --ranks N runs each case under mpirun -np N (default 1);\n"
            "                    --jobs J runs up to J cases side by side (default 1);\n"
            "                    --dry-run validates and lists the cases (finished or to run);\n"
-           "                    --only NAME[,NAME...] runs only these cases or groups.\n"
+           "                    --only NAME[,NAME...] runs only these cases or groups;\n"
+           "                    --launcher TEMPLATE starts each case through a scheduler,\n"
+           "                    {command} and {ranks} replaced: 'srun -n {ranks} {command}'.\n"
+           "  calibrate options: as for study, without --only; --dry-run checks the\n"
+           "                    configuration and the data and runs nothing.\n"
            "  -h, --help        Show this help.\n"
            "  --version         Show the version.\n"
            "\n"
@@ -351,7 +383,7 @@ namespace indentsim::io
       }
     if (first == "analyze")
       return parse_analyze(arguments);
-    if (first == "study")
+    if (first == "study" || first == "calibrate")
       return parse_study_arguments(arguments);
     if (first == "run")
       options.command = Command::run;
@@ -359,10 +391,10 @@ namespace indentsim::io
       options.command = Command::check;
     else if (!first.empty() && first[0] == '-')
       bad_usage("unknown option '" + first +
-                "' (a command comes first: run, check, analyze or study)");
+                "' (a command comes first: run, check, analyze, study or calibrate)");
     else
       bad_usage("unknown command '" + first +
-                "'; allowed: run, check, analyze, study, --help, --version");
+                "'; allowed: run, check, analyze, study, calibrate, --help, --version");
 
     for (std::size_t i = 1; i < arguments.size(); ++i)
       {

@@ -3,6 +3,9 @@
 //   indentsim check CASE.yaml [--output DIR] [--compare-j2]
 //   indentsim analyze RUN_DIR_OR_CSV [--indenter SHAPE | --indenter-case CASE.yaml] [...]
 //   indentsim study STUDY.yaml [--output DIR] [--ranks N] [--jobs J] [--dry-run] [--only NAMES]
+//                              [--launcher TEMPLATE]
+//   indentsim calibrate CONFIG.yaml [--output DIR] [--ranks N] [--jobs J] [--dry-run]
+//                              [--launcher TEMPLATE]
 //   indentsim --help | --version
 #pragma once
 
@@ -22,10 +25,11 @@ namespace indentsim::io
 
   enum class Command
   {
-    run,     // validate the case, prepare the output directory, compute
-    check,   // validate the case and print the resolved case; no computation
-    analyze, // Oliver-Pharr analysis of a run directory or a load-penetration CSV
-    study,   // run the cases of a study file (skipping finished ones) and write a report
+    run,       // validate the case, prepare the output directory, compute
+    check,     // validate the case and print the resolved case; no computation
+    analyze,   // Oliver-Pharr analysis of a run directory or a load-penetration CSV
+    study,     // run the cases of a study file (skipping finished ones) and write a report
+    calibrate, // fit case keys to measured curves (calibration/CalibrationRunner.h)
     help,
     version
   };
@@ -61,6 +65,9 @@ namespace indentsim::io
     unsigned int             study_jobs = 1;        // --jobs J: cases run side by side
     bool                     study_dry_run = false; // --dry-run: print the plan, run nothing
     std::vector<std::string> study_only;            // --only NAME[,NAME...]: case names or groups
+    std::string study_launcher; // --launcher TEMPLATE: "srun -n {ranks} {command}"; "": direct
+    // calibrate uses study_file (the calibration file), output_directory, study_ranks,
+    // study_jobs, study_dry_run and study_launcher.
   };
 
   // `arguments` excludes the program name. Throws CommandLineError.

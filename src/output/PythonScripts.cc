@@ -48,4 +48,34 @@ namespace indentsim::output
     std::cerr << " (set " << environment_override << " to the folder that holds it)\n";
     return (fs::path(folders.front()) / name).string();
   }
+
+  namespace
+  {
+    bool plots_switched_on = true;
+  }
+
+  void set_plots_enabled(const bool enabled)
+  {
+    plots_switched_on = enabled;
+  }
+
+  bool plots_enabled()
+  {
+    return plots_switched_on;
+  }
+
+  bool draw_plot(const std::string &script_name, const std::vector<std::string> &arguments,
+                 const std::string &what, std::ostream &warnings)
+  {
+    if (!plots_switched_on)
+      return false;
+    std::string command = "python3 \"" + python_script(script_name) + "\"";
+    for (const std::string &argument : arguments)
+      command += " \"" + argument + "\"";
+    if (std::system(command.c_str()) == 0)
+      return true;
+    warnings << "warning: the plot " << what << " could not be written (command: " << command
+             << ")\n";
+    return false;
+  }
 } // namespace indentsim::output

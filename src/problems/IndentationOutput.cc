@@ -258,11 +258,8 @@ namespace indentsim::problems
         [&](std::ostream &out) { pileup::write_profiles_csv(out, pileup_results_); });
 
     // The maps and profiles as PNG files; a missing Python or matplotlib leaves a warning only.
-    const std::string script = indentsim::output::python_script("plot_pileup.py");
-    const std::string command = "python3 \"" + script + "\" \"" + output_directory_ + "\"";
-    if (std::system(command.c_str()) != 0)
-      std::cerr << "warning: the pile-up plots in " << output_directory_
-                << " could not be written (command: " << command << ")\n";
+    output::draw_plot("plot_pileup.py", {output_directory_},
+                      "of the pile-up in " + output_directory_, std::cerr);
   }
   template class IndentationProblem<2>;
   template class IndentationProblem<3>;

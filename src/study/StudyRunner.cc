@@ -251,6 +251,9 @@ namespace indentsim::study
     , out_(out)
     , selected_(study.cases.size(), settings.only.empty())
   {
+    if (!settings_.launcher.empty())
+      launch_command(settings_.launcher, {},
+                     settings_.ranks); // refuses a template without {command}
     if (settings_.executable.empty())
       settings_.executable = self_executable();
     if (settings_.report_script.empty())
@@ -283,16 +286,43 @@ namespace indentsim::study
       }
   }
 
+  std::vector<std::string> launch_command(const std::string              &launcher,
+                                          const std::vector<std::string> &command,
+                                          const unsigned int              ranks)
+  {
+    std::istringstream       words(launcher);
+    std::vector<std::string> launched;
+    bool                     has_command = false;
+    for (std::string word; words >> word;)
+      {
+        if (word == "{command}")
+          {
+            launched.insert(launched.end(), command.begin(), command.end());
+            has_command = true;
+            continue;
+          }
+        for (std::size_t at; (at = word.find("{ranks}")) != std::string::npos;)
+          word.replace(at, 7, std::to_string(ranks));
+        launched.push_back(word);
+      }
+    if (!has_command)
+      throw StudyFileError("--launcher '" + launcher +
+                           "': the template must have the word {command} (where the case's "
+                           "command goes) and may have {ranks}, e.g. 'srun -n {ranks} {command}'");
+    return launched;
+  }
+
   std::vector<std::string> StudyRunner::case_command(const StudyCase &study_case) const
   {
-    std::vector<std::string> command;
-    if (settings_.ranks > 1)
-      command = {"mpirun", "-np", std::to_string(settings_.ranks)};
-    command.push_back(settings_.executable);
-    command.push_back("run");
-    command.push_back((fs::path(study_case.directory) / study_files::case_input).string());
-    command.push_back(resumable(study_case) ? "--resume" : "--overwrite");
-    return command;
+    const std::vector<std::string> command = {
+        settings_.executable, "run",
+        (fs::path(study_case.directory) / study_files::case_input).string(),
+        resumable(study_case) ? "--resume" : "--overwrite"};
+    if (!settings_.launcher.empty())
+      return launch_command(settings_.launcher, command, settings_.ranks);
+    if (settings_.ranks == 1)
+      return command;
+    return launch_command("mpirun -np {ranks} {command}", command, settings_.ranks);
   }
 
   // An interrupted indentation case continues from its checkpoint when that was written by
@@ -353,7 +383,8 @@ namespace indentsim::study
     for (const auto &c : study_.cases)
       progress.states.push_back(case_state(c));
     progress.ran_now.assign(study_.cases.size(), false);
-    print_plan(progress.states);
+    if (!settings_.batch)
+      print_plan(progress.states);
 
     std::vector<std::size_t> to_run;
     std::size_t              n_skipped = 0;
@@ -379,10 +410,13 @@ namespace indentsim::study
     prepare_output_directory();
     const auto study_start = Clock::now();
     progress.n_to_run = to_run.size();
-    out_ << n_skipped << " finished case(s) skipped, " << to_run.size() << " to run\n"
-         << std::flush;
+    if (!settings_.batch)
+      out_ << n_skipped << " finished case(s) skipped, " << to_run.size() << " to run\n"
+           << std::flush;
     if (!run_cases(to_run, child_environment(start_variables), progress))
       return exit_interrupted;
+    if (settings_.batch)
+      return progress.n_failed > 0 ? exit_case_failed : exit_ok;
 
     write_index(progress.states, progress.ran_now);
     const int report_status = write_report();
@@ -407,6 +441,8 @@ namespace indentsim::study
     if (error)
       throw StudyFileError("study output directory '" + study_.output_directory +
                            "' cannot be created: " + error.message());
+    if (settings_.batch)
+      return;
     std::ofstream copy(fs::path(study_.output_directory) / study_files::study_copy);
     copy << "# Copy of the study file " << fs::absolute(study_.source_file).string()
          << "\n# (base paths are relative to that file's directory).\n"

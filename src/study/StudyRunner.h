@@ -45,7 +45,21 @@ namespace indentsim::study
     std::vector<std::string> only;            // case names or groups to run; empty: all
     std::string              executable;      // indentsim binary for the cases ("": this one)
     std::string              report_script;   // "": python/study_report.py of the source tree
+    // How a case's command is launched: "" runs it directly (under `mpirun -np N` for ranks > 1);
+    // otherwise a template of words in which {command} stands for the case's command
+    // (`indentsim run case.yaml ...`) and {ranks} for the number of ranks, e.g.
+    // "srun -n {ranks} {command}" for a cluster's scheduler. Without {command} it is refused.
+    std::string launcher;
+    // A batch of another command's cases (indentsim calibrate): no plan table, no study.json,
+    // no copy of the study file, no report; only the cases' own files.
+    bool batch = false;
   };
+
+  // The words of `launcher` (see StudyRunSettings) with {command} and {ranks} replaced. Throws
+  // StudyFileError if the template has no {command} word.
+  std::vector<std::string> launch_command(const std::string              &launcher,
+                                          const std::vector<std::string> &command,
+                                          unsigned int                    ranks);
 
   enum class CaseState
   {

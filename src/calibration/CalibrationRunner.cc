@@ -1,0 +1,242 @@
+// The calibrate command (see CalibrationRunner.h).
+#include "calibration/CalibrationRunner.h"
+
+#include "calibration/CurveData.h"
+#include "calibration/FitStatistics.h"
+#include "calibration/ForwardRuns.h"
+#include "calibration/LeastSquaresFit.h"
+#include "io/JsonText.h"
+#include "io/Version.h"
+#include "output/OutputFile.h"
+#include "output/PythonScripts.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <set>
+#include <sstream>
+
+namespace indentsim::calibration
+{
+  namespace
+  {
+    namespace fs = std::filesystem;
+    using io::json_number;
+    using io::json_string;
+
+    // What else would separate correlated parameters, from the data a calibration lacks.
+    std::string suggestion(const Calibration &c)
+    {
+      std::set<std::string> have;
+      for (const DataSet &d : c.data)
+        have.insert(d.kind == DataKind::tensile   ? "tensile"
+                    : d.branch == Branch::loading ? "loading"
+                                                  : "unloading");
+      std::vector<std::string> add;
+      if (!have.count("unloading"))
+        add.push_back("the unloading branch of the curve (kind: load_penetration, branch: "
+                      "unloading)");
+      if (!have.count("tensile"))
+        add.push_back("a tensile curve (kind: tensile)");
+      add.push_back("the residual imprint's pile-up profile, or a curve with a second tip "
+                    "geometry (a sphere responds to hardening differently from a cone)");
+      std::string text = "data that would separate them: ";
+      for (std::size_t i = 0; i < add.size(); ++i)
+        text += (i == 0 ? "" : "; ") + add[i];
+      return text;
+    }
+
+    void write_fit_curves(const Calibration &c, const std::vector<std::vector<double>> &start,
+                          const std::vector<std::vector<double>> &fitted)
+    {
+      for (std::size_t k = 0; k < c.data.size(); ++k)
+        {
+          const DataSet &d = c.data[k];
+          output::write_file(c.output_directory + "/fit_data" + std::to_string(k) + ".csv",
+                             [&](std::ostream &out) {
+                               out << "# " << d.label << ", measured in " << d.file << "\n# units: "
+                                   << (d.kind == DataKind::tensile ? "log strain, true stress GPa"
+                                                                   : "depth um, force mN")
+                                   << "\n"
+                                   << d.x_name() << ",measured_" << d.y_name() << ",start_"
+                                   << d.y_name() << ",fitted_" << d.y_name() << "\n"
+                                   << std::setprecision(10);
+                               for (std::size_t i = 0; i < d.x.size(); ++i)
+                                 out << d.x[i] << ',' << d.measured[i] << ',' << start[k][i] << ','
+                                     << fitted[k][i] << '\n';
+                             });
+        }
+    }
+
+    void write_history(const Calibration &c, const FitResult &fit)
+    {
+      output::write_file(c.output_directory + "/iterations.csv", [&](std::ostream &out) {
+        out << "# units: parameters in their keys' units, times s; cost = 1/2 sum r^2\n"
+            << "iteration,cost,step_accepted";
+        for (const Parameter &p : c.parameters)
+          out << ',' << p.key;
+        out << ",forward_runs,wall_time_s\n" << std::setprecision(10);
+        for (const IterationRecord &r : fit.history)
+          {
+            out << r.iteration << ',' << r.cost << ',' << (r.step_accepted ? 1 : 0);
+            for (const double v : r.x)
+              out << ',' << v;
+            out << ',' << r.forward_runs << ',' << r.wall_time_s << '\n';
+          }
+      });
+    }
+
+    void write_json(const Calibration &c, const FitResult &fit, const FitStatistics &s,
+                    const std::vector<std::string> &warnings, const ForwardRuns &runs,
+                    const double wall_time)
+    {
+      std::ostringstream out;
+      out << "{\n  \"units\": \"parameters in the units of their case keys (lengths um, forces "
+             "mN, stresses GPa); residuals relative to each data set's largest measured value; "
+             "times s\",\n"
+          << "  \"version\": " << json_string(std::string("indentsim ") + indentsim::version())
+          << ",\n  \"calibration_file\": " << json_string(fs::absolute(c.source_file).string())
+          << ",\n  \"base_case\": " << json_string(c.base_case_file) << ",\n  \"parameters\": {";
+      for (std::size_t j = 0; j < c.parameters.size(); ++j)
+        {
+          const Parameter &p = c.parameters[j];
+          out << (j == 0 ? "\n" : ",\n") << "    " << json_string(p.key)
+              << ": {\"value\": " << json_number(fit.x[j])
+              << ", \"standard_error\": " << json_number(s.standard_error[j]) << ", \"ci95\": ["
+              << json_number(s.ci95[j][0]) << ", " << json_number(s.ci95[j][1])
+              << "], \"unit\": " << json_string(p.unit) << ", \"start\": " << json_number(p.start)
+              << ", \"min\": " << json_number(p.min) << ", \"max\": " << json_number(p.max) << "}";
+        }
+      out << "\n  },\n  \"identifiable\": " << (s.identifiable ? "true" : "false")
+          << ",\n  \"warnings\": [";
+      for (std::size_t w = 0; w < warnings.size(); ++w)
+        out << (w == 0 ? "\n    " : ",\n    ") << json_string(warnings[w]);
+      out << (warnings.empty() ? "" : "\n  ") << "],\n  \"correlation\": [";
+      for (std::size_t a = 0; a < s.correlation.size(); ++a)
+        {
+          out << (a == 0 ? "" : ", ") << "[";
+          for (std::size_t b = 0; b < s.correlation[a].size(); ++b)
+            out << (b == 0 ? "" : ", ") << json_number(s.correlation[a][b]);
+          out << "]";
+        }
+      out << "],\n  \"scaled_condition_number\": " << json_number(s.scaled_condition)
+          << ",\n  \"residual_variance\": " << json_number(s.residual_variance)
+          << ",\n  \"degrees_of_freedom\": " << s.degrees_of_freedom << ",\n  \"data\": [";
+      std::size_t offset = 0;
+      for (std::size_t k = 0; k < c.data.size(); ++k)
+        {
+          const DataSet &d = c.data[k];
+          double         sum = 0.;
+          for (std::size_t i = 0; i < d.x.size(); ++i)
+            sum += fit.residuals[offset + i] * fit.residuals[offset + i];
+          offset += d.x.size();
+          // sum = w * mean square relative misfit.
+          out << (k == 0 ? "\n" : ",\n") << "    {\"label\": " << json_string(d.label)
+              << ", \"kind\": " << json_string(d.kind_name())
+              << ", \"file\": " << json_string(d.file) << ", \"weight\": " << json_number(d.weight)
+              << ", \"points\": " << d.x.size()
+              << ", \"rms_relative_misfit\": " << json_number(std::sqrt(sum / d.weight))
+              << ", \"rms_misfit\": " << json_number(std::sqrt(sum / d.weight) * d.scale)
+              << ", \"misfit_unit\": " << json_string(d.kind == DataKind::tensile ? "GPa" : "mN")
+              << ", \"curve\": " << json_string("fit_data" + std::to_string(k) + ".csv") << "}";
+        }
+      out << "\n  ],\n  \"initial_cost\": " << json_number(fit.initial_cost)
+          << ",\n  \"cost\": " << json_number(fit.cost) << ",\n  \"iterations\": " << fit.iterations
+          << ",\n  \"converged\": " << (fit.converged ? "true" : "false")
+          << ",\n  \"termination\": " << json_string(fit.termination)
+          << ",\n  \"forward_runs\": " << runs.runs_computed()
+          << ",\n  \"forward_runs_reused\": " << runs.runs_reused()
+          << ",\n  \"forward_runs_failed\": " << runs.runs_failed()
+          << ",\n  \"wall_time_s\": " << json_number(wall_time) << "\n}\n";
+      output::write_file(c.output_directory + "/calibration.json", out.str());
+    }
+  } // namespace
+
+  int run_calibration(const Calibration &c, const study::StudyRunSettings &settings,
+                      std::ostream &out, std::ostream &warnings_out)
+  {
+    const auto start_time = std::chrono::steady_clock::now();
+    fs::create_directories(c.output_directory);
+    std::ofstream log(c.output_directory + "/forward_runs.log", std::ios::app);
+    out << "Calibration " << c.source_file << ": " << c.parameters.size() << " parameter(s), "
+        << c.data.size() << " data set(s), " << c.forward_cases().size()
+        << " forward case(s) per point; output " << c.output_directory << "\n";
+    for (const DataSet &d : c.data)
+      out << "  " << d.label << ": " << d.x.size() << " points from " << d.x.front() << " to "
+          << d.x.back() << ", weight " << d.weight << "\n";
+    out << std::flush;
+
+    ForwardRuns   runs(c, settings, log);
+    ResidualModel model(c, runs);
+    FitResult     fit;
+    try
+      {
+        fit = calibration::fit(c, model, runs, out);
+      }
+    catch (const study::StudyFileError &error) // interrupted
+      {
+        warnings_out << "indentsim calibrate: " << error.what() << "\n";
+        return study::exit_interrupted;
+      }
+    catch (const std::runtime_error &error)
+      {
+        warnings_out << "indentsim calibrate: error: " << error.what() << "\n";
+        return study::exit_case_failed;
+      }
+
+    std::vector<std::string>           names;
+    std::vector<std::array<double, 2>> bounds;
+    Point                              start;
+    for (const Parameter &p : c.parameters)
+      {
+        names.push_back(p.key);
+        bounds.push_back({p.min, p.max});
+        start.push_back(p.start);
+      }
+    const FitStatistics statistics =
+        fit_statistics(fit.x, fit.residuals, fit.jacobian, names, bounds);
+    std::vector<std::string> warnings = statistics.warnings;
+    if (!statistics.identifiable)
+      warnings.push_back(suggestion(c));
+    for (const std::string &bound : fit.at_bound)
+      warnings.push_back(bound + ": the fit ends on a bound; the optimum may lie beyond it "
+                                 "(widen the bounds if the physics allows)");
+    if (!fit.converged)
+      warnings.push_back("the minimiser did not converge: " + fit.termination);
+
+    const auto   at_start = model.simulated(start), at_fit = model.simulated(fit.x);
+    const double wall_time =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+    write_json(c, fit, statistics, warnings, runs, wall_time);
+    write_history(c, fit);
+    if (at_start && at_fit)
+      write_fit_curves(c, *at_start, *at_fit);
+    output::draw_plot("calibration_report.py", {c.output_directory},
+                      "report of " + c.output_directory, warnings_out);
+
+    out << "Fitted in " << std::fixed << std::setprecision(1) << wall_time << " s, "
+        << runs.runs_computed() << " forward runs (" << runs.runs_reused() << " reused), "
+        << fit.iterations << " iterations: " << fit.termination << "\n"
+        << std::defaultfloat;
+    for (std::size_t j = 0; j < c.parameters.size(); ++j)
+      out << "  " << c.parameters[j].key << " = " << std::setprecision(6) << fit.x[j] << " "
+          << c.parameters[j].unit << " +- " << std::setprecision(3) << statistics.standard_error[j]
+          << " (95 %: " << std::setprecision(6) << statistics.ci95[j][0] << " to "
+          << statistics.ci95[j][1] << ")\n";
+    if (!warnings.empty())
+      {
+        std::string text = statistics.identifiable ? "WARNING:\n"
+                                                   : "WARNING: the parameters are NOT "
+                                                     "identifiable from these data:\n";
+        for (const auto &w : warnings)
+          text += "  - " + w + "\n";
+        warnings_out << text << std::flush;
+      }
+    out << "Results: " << c.output_directory << "/calibration.json, iterations.csv, "
+        << "fit_data*.csv, report.md\n"
+        << std::flush;
+    return 0;
+  }
+} // namespace indentsim::calibration

@@ -1,0 +1,253 @@
+// Measured and simulated curves at the comparison points (see CurveData.h).
+// Units: depth um, force mN, stress GPa, strain dimensionless.
+#include "calibration/CurveData.h"
+
+#include "case/OutputDirectory.h"
+#include "io/CsvTable.h"
+#include "io/LoadCurveCsv.h"
+#include "io/TextNumber.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+
+namespace indentsim::calibration
+{
+  namespace
+  {
+    std::string number_text(const double value)
+    {
+      std::ostringstream out;
+      out << value;
+      return out.str();
+    }
+
+    // A measured or simulated stress-strain curve: the first column named strain*, log_strain*,
+    // true_strain* or eps* (dimensionless, or in % when the name says so) and the first named
+    // stress*, true_stress* or sigma* with its unit (GPa or MPa) in the name.
+    SampledCurve read_stress_strain(const std::string &path)
+    {
+      io::CsvTable csv;
+      try
+        {
+          csv = io::read_csv_table(path);
+        }
+      catch (const std::invalid_argument &error)
+        {
+          throw std::invalid_argument(path + ": " + error.what());
+        }
+      const auto column = [&](std::initializer_list<const char *> prefixes, const char *what) {
+        for (std::size_t c = 0; c < csv.header.size(); ++c)
+          for (const char *prefix : prefixes)
+            if (io::lowered(csv.header[c]).rfind(prefix, 0) == 0)
+              return c;
+        throw std::invalid_argument(path + ": no " + what + " column in the header '" +
+                                    io::join_fields(csv.header) + "'");
+      };
+      const std::size_t strain = column({"log_strain", "true_strain", "strain", "eps"},
+                                        "strain (log_strain, true_strain, strain)");
+      const std::size_t stress =
+          column({"true_stress", "stress", "sigma"}, "stress (stress_GPa, true_stress_MPa, ...)");
+      const std::string strain_unit = io::unit_in_name(csv.header[strain]);
+      const double      strain_factor = strain_unit == "%" || strain_unit == "percent" ? 0.01 : 1.;
+      const double      stress_factor = io::stress_factor(io::unit_in_name(csv.header[stress]));
+      if (stress_factor == 0.)
+        throw std::invalid_argument(path + ": column '" + csv.header[stress] +
+                                    "': no stress unit in the name; write it as stress_GPa or "
+                                    "stress_MPa");
+      std::vector<double> x, y;
+      for (std::size_t r = 0; r < csv.rows.size(); ++r)
+        {
+          const auto field = [&](const std::size_t c) {
+            if (c >= csv.rows[r].size())
+              throw std::invalid_argument(path + ", " + csv.row_name(r) + ": no value in column '" +
+                                          csv.header[c] + "'");
+            const auto value = io::parse_finite_number(csv.rows[r][c]);
+            if (!value)
+              throw std::invalid_argument(path + ", " + csv.row_name(r) + ", column '" +
+                                          csv.header[c] + "': '" + csv.rows[r][c] +
+                                          "' is not a finite number");
+            return *value;
+          };
+          x.push_back(field(strain) * strain_factor);
+          y.push_back(field(stress) * stress_factor);
+        }
+      return sorted_curve(x, y);
+    }
+
+    // The loading and unloading branches of a load-penetration curve, split at its deepest
+    // point (which belongs to both); partial unloads and their reloads left out.
+    std::pair<SampledCurve, SampledCurve> branches(const io::LoadCurve &whole)
+    {
+      const io::LoadCurve curve = io::without_partial_unloads(whole);
+      if (curve.depth.empty())
+        return {};
+      const std::size_t deepest =
+          std::max_element(curve.depth.begin(), curve.depth.end()) - curve.depth.begin();
+      const auto part = [&](const std::size_t from, const std::size_t to) {
+        return sorted_curve({curve.depth.begin() + from, curve.depth.begin() + to},
+                            {curve.force.begin() + from, curve.force.begin() + to});
+      };
+      return {part(0, deepest + 1), part(deepest, curve.depth.size())};
+    }
+
+    std::vector<double> evenly_spaced(const double from, const double to, const unsigned int n)
+    {
+      std::vector<double> x(n);
+      for (unsigned int i = 0; i < n; ++i)
+        x[i] = n == 1 ? to : from + (to - from) * i / (n - 1);
+      return x;
+    }
+
+    std::size_t points_within(const SampledCurve &curve, const double from, const double to)
+    {
+      return std::count_if(curve.x.begin(), curve.x.end(),
+                           [&](const double x) { return x >= from && x <= to; });
+    }
+  } // namespace
+
+  double SampledCurve::at(const double at) const
+  {
+    if (x.empty())
+      return 0.;
+    if (at <= x.front())
+      return y.front();
+    if (at >= x.back())
+      return y.back();
+    const std::size_t upper = std::upper_bound(x.begin(), x.end(), at) - x.begin();
+    const double      t = (at - x[upper - 1]) / (x[upper] - x[upper - 1]);
+    return (1. - t) * y[upper - 1] + t * y[upper];
+  }
+
+  SampledCurve sorted_curve(std::vector<double> x, std::vector<double> y)
+  {
+    std::vector<std::size_t> order(x.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](const std::size_t a, const std::size_t b) { return x[a] < x[b]; });
+    SampledCurve curve;
+    for (std::size_t k = 0; k < order.size();)
+      {
+        std::size_t same = k;
+        double      sum = 0.;
+        while (same < order.size() && x[order[same]] == x[order[k]])
+          sum += y[order[same++]];
+        curve.x.push_back(x[order[k]]);
+        curve.y.push_back(sum / double(same - k));
+        k = same;
+      }
+    return curve;
+  }
+
+  void read_measured(DataSet &data_set, const io::Case &simulated_case, const std::string &where)
+  {
+    const std::string what = where + ": file " + data_set.file;
+    SampledCurve      measured;
+    double            from = 0., to = 0.;
+    std::string       simulated_range;
+    try
+      {
+        if (data_set.kind == DataKind::load_penetration)
+          {
+            const auto [loading, unloading] = branches(io::read_load_curve_csv(data_set.file));
+            const double max_depth = simulated_case.loading.max_depth;
+            simulated_range = "0 to " + number_text(max_depth) + " um (loading.max_depth)";
+            if (data_set.branch == Branch::loading)
+              {
+                measured = loading;
+                to = std::min(measured.x.empty() ? 0. : measured.x.back(), max_depth);
+                from = to / data_set.points;
+              }
+            else
+              {
+                measured = unloading;
+                if (measured.x.size() < 3)
+                  throw CalibrationFileError(
+                      what + ": branch: unloading, but the curve has " +
+                      std::to_string(measured.x.size()) +
+                      " point(s) after its deepest one; an unloading branch needs at least 3");
+                to = std::min(measured.x.back(), max_depth);
+                from = measured.x.front();
+                if (!simulated_case.loading.unload)
+                  throw CalibrationFileError(where + ": branch: unloading, but the case " +
+                                             data_set.case_file +
+                                             " does not unload (loading.unload: false)");
+              }
+          }
+        else
+          {
+            measured = read_stress_strain(data_set.file);
+            const double max_strain = std::log1p(simulated_case.loading.max_strain);
+            simulated_range = "log strain 0 to " + number_text(max_strain) +
+                              " (loading.max_strain " +
+                              number_text(simulated_case.loading.max_strain) + ")";
+            to = std::min(measured.x.empty() ? 0. : measured.x.back(), max_strain);
+            from = to / data_set.points;
+          }
+      }
+    catch (const std::invalid_argument &error)
+      {
+        throw CalibrationFileError(where + ": " + error.what());
+      }
+    const std::size_t inside = to > from ? points_within(measured, from, to) : 0;
+    if (inside < 3)
+      throw CalibrationFileError(
+          what + ": only " + std::to_string(inside) + " measured point(s) within the range the " +
+          "case simulates (" + simulated_range + "); the measured curve spans " +
+          (measured.x.empty()
+               ? std::string("nothing")
+               : number_text(measured.x.front()) + " to " + number_text(measured.x.back())) +
+          ". A data set must overlap the simulated range with at least 3 points");
+    data_set.x = evenly_spaced(from, to, data_set.points);
+    data_set.measured.clear();
+    data_set.scale = 0.;
+    for (const double x : data_set.x)
+      {
+        data_set.measured.push_back(measured.at(x));
+        data_set.scale = std::max(data_set.scale, std::abs(data_set.measured.back()));
+      }
+    if (!(data_set.scale > 0.))
+      throw CalibrationFileError(what + ": the measured values are all 0 within the simulated "
+                                        "range; nothing to fit");
+  }
+
+  std::vector<double> simulated_values(const DataSet &data_set, const std::string &run_directory)
+  {
+    SampledCurve simulated;
+    double       end = 0.;
+    if (data_set.kind == DataKind::load_penetration)
+      {
+        const std::string path = run_directory + "/" + io::output_files::load_penetration_csv;
+        const auto [loading, unloading] = branches(io::read_load_curve_csv(path));
+        simulated = data_set.branch == Branch::loading ? loading : unloading;
+        end = simulated.x.empty() ? 0. : simulated.x.back();
+        if (data_set.branch == Branch::unloading && !simulated.x.empty())
+          {
+            // Shallower than where the unloading ended, the tip has left the surface: P = 0.
+            simulated.x.insert(simulated.x.begin(), 0.);
+            simulated.y.insert(simulated.y.begin(), 0.);
+            if (simulated.x.size() > 2 && simulated.x[1] > 0.)
+              {
+                simulated.x.insert(simulated.x.begin() + 1, simulated.x[1] * (1. - 1e-12));
+                simulated.y.insert(simulated.y.begin() + 1, 0.);
+              }
+          }
+      }
+    else
+      {
+        const std::string path = run_directory + "/" + io::output_files::stress_strain_csv;
+        simulated = read_stress_strain(path);
+        end = simulated.x.empty() ? 0. : simulated.x.back();
+      }
+    if (simulated.x.empty() || end < data_set.x.back() * (1. - 1e-9))
+      throw std::runtime_error(run_directory + ": the simulated curve ends at " + number_text(end) +
+                               ", before the last comparison point " +
+                               number_text(data_set.x.back()));
+    std::vector<double> values;
+    for (const double x : data_set.x)
+      values.push_back(simulated.at(x));
+    return values;
+  }
+} // namespace indentsim::calibration

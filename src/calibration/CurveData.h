@@ -1,0 +1,47 @@
+// The curves a calibration compares: the measured ones, read and resampled onto comparison
+// points, and the simulated ones, read from a forward run's output at the same points.
+// Units: depth um, force mN, stress GPa, strain dimensionless (log strain).
+//
+// Comparison points (docs/calibration.md):
+//   load_penetration, loading: `points` depths evenly spaced from h_max / points to
+//     h_max = min(deepest measured loading point, loading.max_depth of the case);
+//   load_penetration, unloading: `points` depths evenly spaced from the shallowest measured
+//     unloading point to min(measured maximum depth, loading.max_depth); below the depth at which
+//     the simulated unloading ends the simulated force is 0 (the tip has left the surface);
+//   tensile: `points` log strains evenly spaced from max_strain / points to
+//     min(largest measured strain, log(1 + loading.max_strain)).
+// The measured curve is interpolated linearly between its points (sorted by abscissa; points at
+// the same abscissa are averaged). A point outside the measured range is never extrapolated:
+// the range is cut to it, and fewer than 3 measured points inside the simulated range is an
+// error (the data set does not overlap what the case simulates).
+#pragma once
+
+#include "calibration/CalibrationFile.h"
+#include "case/Case.h"
+
+#include <string>
+#include <vector>
+
+namespace indentsim::calibration
+{
+  // A curve sorted by x, without repeated x; y linear between the points.
+  struct SampledCurve
+  {
+    std::vector<double> x, y;
+    // y at `at`; outside [x.front(), x.back()] the end value (callers keep inside).
+    double at(double at) const;
+  };
+
+  // Sorts by x and averages points with the same x.
+  SampledCurve sorted_curve(std::vector<double> x, std::vector<double> y);
+
+  // Reads data_set.file, chooses the comparison points against `simulated_case` (its maximum
+  // depth or strain) and fills data_set.x, .measured and .scale. Throws CalibrationFileError
+  // naming `where` (the data entry), the file and the ranges.
+  void read_measured(DataSet &data_set, const io::Case &simulated_case, const std::string &where);
+
+  // The simulated curve of a finished forward run in `run_directory` at data_set.x
+  // (load_penetration.csv or stress_strain.csv). Throws std::runtime_error if the run's file
+  // is missing or does not reach the comparison points.
+  std::vector<double> simulated_values(const DataSet &data_set, const std::string &run_directory);
+} // namespace indentsim::calibration

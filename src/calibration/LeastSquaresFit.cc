@@ -1,0 +1,262 @@
+// The bounded least-squares fit with Ceres Solver (see LeastSquaresFit.h).
+#include "calibration/LeastSquaresFit.h"
+
+#include "calibration/CurveData.h"
+#include "case/Schema.h"
+
+#include <ceres/ceres.h>
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace indentsim::calibration
+{
+  ResidualModel::ResidualModel(const Calibration &calibration, ForwardRuns &runs)
+    : calibration_(calibration)
+    , runs_(runs)
+  {
+    for (const DataSet &d : calibration_.data)
+      n_residuals_ += d.x.size();
+  }
+
+  std::vector<double>
+  ResidualModel::residuals_of(const std::vector<std::vector<double>> &simulated) const
+  {
+    std::vector<double> r;
+    for (std::size_t d = 0; d < calibration_.data.size(); ++d)
+      {
+        const DataSet &data = calibration_.data[d];
+        const double   factor = std::sqrt(data.weight / double(data.x.size())) / data.scale;
+        for (std::size_t i = 0; i < data.x.size(); ++i)
+          r.push_back(factor * (simulated[d][i] - data.measured[i]));
+      }
+    return r;
+  }
+
+  std::vector<std::optional<std::vector<double>>>
+  ResidualModel::residuals(const std::vector<Point> &points)
+  {
+    const auto                                      directories = runs_.run(points);
+    std::vector<std::optional<std::vector<double>>> result;
+    for (const auto &of_point : directories)
+      {
+        if (!of_point)
+          {
+            result.emplace_back(std::nullopt);
+            continue;
+          }
+        try
+          {
+            std::vector<std::vector<double>> simulated;
+            for (const DataSet &d : calibration_.data)
+              simulated.push_back(
+                  simulated_values(d, of_point->at(calibration_.forward_case_of(d))));
+            result.emplace_back(residuals_of(simulated));
+          }
+        catch (const std::exception &)
+          {
+            result.emplace_back(std::nullopt); // a curve cut short: a failed point
+          }
+      }
+    return result;
+  }
+
+  std::optional<std::vector<std::vector<double>>> ResidualModel::simulated(const Point &point)
+  {
+    const auto directories = runs_.run({point});
+    if (!directories.front())
+      return std::nullopt;
+    std::vector<std::vector<double>> values;
+    for (const DataSet &d : calibration_.data)
+      values.push_back(
+          simulated_values(d, directories.front()->at(calibration_.forward_case_of(d))));
+    return values;
+  }
+
+  std::optional<std::pair<std::vector<double>, std::vector<double>>>
+  residuals_and_jacobian(const Calibration &calibration, ResidualModel &model, const Point &x)
+  {
+    const std::size_t   p = x.size();
+    std::vector<Point>  points = {x};
+    std::vector<double> step(p);
+    for (std::size_t j = 0; j < p; ++j)
+      {
+        const Parameter &parameter = calibration.parameters[j];
+        step[j] = calibration.solver.finite_difference_step *
+                  std::max(std::abs(x[j]), 1e-3 * (parameter.max - parameter.min));
+        if (x[j] + step[j] > parameter.max)
+          step[j] = -step[j];
+        Point shifted = x;
+        shifted[j] += step[j];
+        points.push_back(shifted);
+      }
+    const auto r = model.residuals(points);
+    for (const auto &one : r)
+      if (!one)
+        return std::nullopt;
+    const std::size_t   m = r[0]->size();
+    std::vector<double> jacobian(m * p);
+    for (std::size_t j = 0; j < p; ++j)
+      for (std::size_t i = 0; i < m; ++i)
+        jacobian[i * p + j] = ((*r[j + 1])[i] - (*r[0])[i]) / step[j];
+    return std::make_pair(*r[0], jacobian);
+  }
+
+  namespace
+  {
+    using Clock = std::chrono::steady_clock;
+
+    // One residual block of all residuals over one parameter block of all parameters.
+    class ForwardModelCost : public ceres::CostFunction
+    {
+    public:
+      ForwardModelCost(const Calibration &calibration, ResidualModel &model)
+        : calibration_(calibration)
+        , model_(model)
+      {
+        set_num_residuals(static_cast<int>(model.n_residuals()));
+        mutable_parameter_block_sizes()->push_back(static_cast<int>(calibration.parameters.size()));
+      }
+
+      // false (a failed run) makes Ceres reject the step and shrink its trust region.
+      bool Evaluate(double const *const *parameters, double *residuals,
+                    double **jacobians) const override
+      {
+        const std::size_t   p = calibration_.parameters.size();
+        const Point         x(parameters[0], parameters[0] + p);
+        std::vector<double> r, jacobian;
+        if (jacobians != nullptr && jacobians[0] != nullptr)
+          {
+            const auto both = residuals_and_jacobian(calibration_, model_, x);
+            if (!both)
+              return false;
+            r = both->first;
+            jacobian = both->second;
+            std::copy(jacobian.begin(), jacobian.end(), jacobians[0]);
+          }
+        else
+          {
+            const auto only = model_.residuals({x});
+            if (!only.front())
+              return false;
+            r = *only.front();
+          }
+        std::copy(r.begin(), r.end(), residuals);
+        return true;
+      }
+
+    private:
+      const Calibration &calibration_;
+      ResidualModel     &model_;
+    };
+
+    // A line per iteration, and the history.
+    class Progress : public ceres::IterationCallback
+    {
+    public:
+      Progress(const Calibration &calibration, const double *x, ForwardRuns &runs,
+               std::ostream &out, std::vector<IterationRecord> &history)
+        : calibration_(calibration)
+        , x_(x)
+        , runs_(runs)
+        , out_(out)
+        , history_(history)
+        , start_(Clock::now())
+      {
+      }
+
+      ceres::CallbackReturnType operator()(const ceres::IterationSummary &summary) override
+      {
+        IterationRecord record;
+        record.iteration = static_cast<unsigned int>(summary.iteration);
+        record.cost = summary.cost;
+        record.x.assign(x_, x_ + calibration_.parameters.size());
+        record.step_accepted = summary.step_is_successful;
+        record.forward_runs = runs_.runs_computed();
+        record.wall_time_s = std::chrono::duration<double>(Clock::now() - start_).count();
+        history_.push_back(record);
+        out_ << "iteration " << std::setw(3) << record.iteration << ": cost " << std::setw(11)
+             << std::setprecision(5) << std::scientific << record.cost << std::defaultfloat
+             << (record.step_accepted ? "" : " (step rejected)") << " ";
+        for (std::size_t j = 0; j < record.x.size(); ++j)
+          out_ << " " << calibration_.parameters[j].key << " " << std::setprecision(7)
+               << record.x[j];
+        out_ << "; " << record.forward_runs << " forward runs, " << std::fixed
+             << std::setprecision(1) << record.wall_time_s << " s\n"
+             << std::defaultfloat << std::flush;
+        return ceres::SOLVER_CONTINUE;
+      }
+
+    private:
+      const Calibration            &calibration_;
+      const double                 *x_;
+      ForwardRuns                  &runs_;
+      std::ostream                 &out_;
+      std::vector<IterationRecord> &history_;
+      Clock::time_point             start_;
+    };
+  } // namespace
+
+  FitResult fit(const Calibration &calibration, ResidualModel &model, ForwardRuns &runs,
+                std::ostream &progress)
+  {
+    const std::size_t p = calibration.parameters.size();
+    FitResult         result;
+    result.x.resize(p);
+    for (std::size_t j = 0; j < p; ++j)
+      result.x[j] = calibration.parameters[j].start;
+    if (!model.residuals({result.x}).front())
+      throw std::runtime_error("the forward runs at the start point failed; the console output "
+                               "of each is in its directory under " +
+                               calibration.output_directory + "/forward/cases/");
+
+    ceres::Problem problem;
+    problem.AddResidualBlock(new ForwardModelCost(calibration, model), nullptr, result.x.data());
+    for (std::size_t j = 0; j < p; ++j)
+      {
+        problem.SetParameterLowerBound(result.x.data(), int(j), calibration.parameters[j].min);
+        problem.SetParameterUpperBound(result.x.data(), int(j), calibration.parameters[j].max);
+      }
+    ceres::Solver::Options options;
+    options.minimizer_type = ceres::TRUST_REGION;
+    options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+    options.linear_solver_type = ceres::DENSE_QR;
+    options.max_num_iterations = int(calibration.solver.max_iterations);
+    options.function_tolerance = calibration.solver.function_tolerance;
+    options.parameter_tolerance = calibration.solver.parameter_tolerance;
+    options.gradient_tolerance = 1e-14;
+    options.num_threads = 1; // the parallelism is in the forward runs
+    options.logging_type = ceres::SILENT;
+    options.update_state_every_iteration = true;
+    Progress callback(calibration, result.x.data(), runs, progress, result.history);
+    options.callbacks.push_back(&callback);
+    ceres::Solver::Summary summary;
+    ceres::Solve(options, &problem, &summary);
+
+    result.initial_cost = summary.initial_cost;
+    result.cost = summary.final_cost;
+    result.iterations = static_cast<unsigned int>(summary.iterations.size());
+    result.converged = summary.termination_type == ceres::CONVERGENCE;
+    result.termination = summary.message;
+    const auto both = residuals_and_jacobian(calibration, model, result.x);
+    if (!both)
+      throw std::runtime_error("the forward runs for the Jacobian at the optimum failed");
+    result.residuals = both->first;
+    result.jacobian = both->second;
+    for (std::size_t j = 0; j < p; ++j)
+      {
+        const Parameter &parameter = calibration.parameters[j];
+        const double     tolerance = 1e-6 * (parameter.max - parameter.min);
+        if (result.x[j] <= parameter.min + tolerance)
+          result.at_bound.push_back(parameter.key + " at its min " +
+                                    io::format_number(parameter.min));
+        else if (result.x[j] >= parameter.max - tolerance)
+          result.at_bound.push_back(parameter.key + " at its max " +
+                                    io::format_number(parameter.max));
+      }
+    return result;
+  }
+} // namespace indentsim::calibration

@@ -1,0 +1,79 @@
+// The weighted least-squares fit of a calibration: residuals from the forward runs, and the
+// bounded minimisation of their sum of squares by Ceres Solver (Levenberg-Marquardt with the
+// bounds as box constraints), the Jacobian by forward differences whose p + 1 runs go out as one
+// batch (side by side with --jobs).
+//
+// Residuals (docs/calibration.md): for data set d with weight w_d, n_d comparison points,
+// measured values y_i and the scale s_d = max |y_i|,
+//   r_i = sqrt(w_d / n_d) (y_sim(x_i) - y_i) / s_d,
+// so that each data set adds w_d times its mean square relative misfit, whatever its number of
+// points and its unit. Units: those of the parameters.
+#pragma once
+
+#include "calibration/CalibrationFile.h"
+#include "calibration/ForwardRuns.h"
+
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace indentsim::calibration
+{
+  // The residual vector of a parameter point, through the forward runs.
+  class ResidualModel
+  {
+  public:
+    ResidualModel(const Calibration &calibration, ForwardRuns &runs);
+
+    std::size_t n_residuals() const { return n_residuals_; }
+
+    // Per point the residuals, or nullopt if its runs failed or fell short of the data.
+    std::vector<std::optional<std::vector<double>>> residuals(const std::vector<Point> &points);
+
+    // Per data set the simulated values at its comparison points; nullopt if the runs failed.
+    std::optional<std::vector<std::vector<double>>> simulated(const Point &point);
+
+    // Residuals of simulated values (per data set) as defined above.
+    std::vector<double> residuals_of(const std::vector<std::vector<double>> &simulated) const;
+
+  private:
+    const Calibration &calibration_;
+    ForwardRuns       &runs_;
+    std::size_t        n_residuals_ = 0;
+  };
+
+  struct IterationRecord
+  {
+    unsigned int iteration = 0;
+    double       cost = 0.; // half the sum of squared residuals (Ceres' cost)
+    Point        x;
+    bool         step_accepted = true;
+    unsigned int forward_runs = 0; // computed so far (cached ones not counted)
+    double       wall_time_s = 0.;
+  };
+
+  struct FitResult
+  {
+    Point                        x;
+    std::vector<double>          residuals;
+    std::vector<double>          jacobian; // row-major, residuals x parameters, at x
+    double                       initial_cost = 0., cost = 0.;
+    unsigned int                 iterations = 0;
+    bool                         converged = false;
+    std::string                  termination; // Ceres' message
+    std::vector<IterationRecord> history;
+    std::vector<std::string>     at_bound; // "material.yield_stress at its min 0.05"
+  };
+
+  // Minimises from the parameters' starts. `progress` gets a line per iteration (cost,
+  // parameters, forward runs, wall time). Throws std::runtime_error if the runs at the start
+  // fail (nothing to minimise).
+  FitResult fit(const Calibration &calibration, ResidualModel &model, ForwardRuns &runs,
+                std::ostream &progress);
+
+  // Forward-difference Jacobian at `x` (row-major), with the residuals there, from one batch of
+  // p + 1 points; steps point inward at an upper bound. nullopt if a run failed.
+  std::optional<std::pair<std::vector<double>, std::vector<double>>>
+  residuals_and_jacobian(const Calibration &calibration, ResidualModel &model, const Point &x);
+} // namespace indentsim::calibration

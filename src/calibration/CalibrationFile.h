@@ -62,7 +62,7 @@ namespace indentsim::calibration
     std::string  file;                     // absolute
     std::string  case_file;                // the case that simulates it (absolute)
     double       weight = 1.;
-    unsigned int points = 40; // comparison points
+    unsigned int points = 40; // at most this many comparison points (CurveData.h)
     std::string  label;       // "data[0] load_penetration loading (ph.csv)"
     int          line = -1;   // 0-based line of the entry in the calibration file
 
@@ -81,8 +81,8 @@ namespace indentsim::calibration
     // Forward-difference step, relative to max(|x|, 1e-3 (max - min)) of each parameter.
     double finite_difference_step = 1.e-3;
     // Ceres' convergence tolerances (relative change of the cost, and of the parameters).
-    double function_tolerance = 1.e-8;
-    double parameter_tolerance = 1.e-6;
+    double function_tolerance = 1.e-6;
+    double parameter_tolerance = 1.e-4;
   };
 
   struct Calibration

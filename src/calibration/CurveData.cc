@@ -93,18 +93,29 @@ namespace indentsim::calibration
       return {part(0, deepest + 1), part(deepest, curve.depth.size())};
     }
 
-    std::vector<double> evenly_spaced(const double from, const double to, const unsigned int n)
+    // The measured points within [from, to] (from excluded when `open_from`), in at most
+    // `bins` groups of consecutive points of nearly equal count, each group's mean abscissa and
+    // mean value: every measured point counts once, and the groups' errors are independent.
+    SampledCurve binned(const SampledCurve &curve, const double from, const double to,
+                        const bool open_from, const unsigned int bins)
     {
-      std::vector<double> x(n);
-      for (unsigned int i = 0; i < n; ++i)
-        x[i] = n == 1 ? to : from + (to - from) * i / (n - 1);
-      return x;
-    }
-
-    std::size_t points_within(const SampledCurve &curve, const double from, const double to)
-    {
-      return std::count_if(curve.x.begin(), curve.x.end(),
-                           [&](const double x) { return x >= from && x <= to; });
+      std::vector<std::size_t> inside;
+      for (std::size_t i = 0; i < curve.x.size(); ++i)
+        if ((open_from ? curve.x[i] > from : curve.x[i] >= from) && curve.x[i] <= to)
+          inside.push_back(i);
+      const std::size_t groups = std::min<std::size_t>(bins, inside.size());
+      SampledCurve      result;
+      for (std::size_t g = 0; g < groups; ++g)
+        {
+          const std::size_t begin = g * inside.size() / groups,
+                            end = (g + 1) * inside.size() / groups;
+          double            x = 0., y = 0.;
+          for (std::size_t k = begin; k < end; ++k)
+            x += curve.x[inside[k]], y += curve.y[inside[k]];
+          result.x.push_back(x / double(end - begin));
+          result.y.push_back(y / double(end - begin));
+        }
+      return result;
     }
   } // namespace
 
@@ -158,7 +169,6 @@ namespace indentsim::calibration
               {
                 measured = loading;
                 to = std::min(measured.x.empty() ? 0. : measured.x.back(), max_depth);
-                from = to / data_set.points;
               }
             else
               {
@@ -184,14 +194,19 @@ namespace indentsim::calibration
                               " (loading.max_strain " +
                               number_text(simulated_case.loading.max_strain) + ")";
             to = std::min(measured.x.empty() ? 0. : measured.x.back(), max_strain);
-            from = to / data_set.points;
           }
       }
     catch (const std::invalid_argument &error)
       {
         throw CalibrationFileError(where + ": " + error.what());
       }
-    const std::size_t inside = to > from ? points_within(measured, from, to) : 0;
+    // Loading and tensile curves from above 0 (the origin says nothing), unloading from the
+    // shallowest measured unloading point.
+    const bool         from_origin = data_set.kind == DataKind::tensile ||
+                             data_set.branch == Branch::loading;
+    const SampledCurve points =
+        to > from ? binned(measured, from, to, from_origin, data_set.points) : SampledCurve();
+    const std::size_t inside = points.x.size();
     if (inside < 3)
       throw CalibrationFileError(
           what + ": only " + std::to_string(inside) + " measured point(s) within the range the " +
@@ -200,14 +215,11 @@ namespace indentsim::calibration
                ? std::string("nothing")
                : number_text(measured.x.front()) + " to " + number_text(measured.x.back())) +
           ". A data set must overlap the simulated range with at least 3 points");
-    data_set.x = evenly_spaced(from, to, data_set.points);
-    data_set.measured.clear();
+    data_set.x = points.x;
+    data_set.measured = points.y;
     data_set.scale = 0.;
-    for (const double x : data_set.x)
-      {
-        data_set.measured.push_back(measured.at(x));
-        data_set.scale = std::max(data_set.scale, std::abs(data_set.measured.back()));
-      }
+    for (const double y : data_set.measured)
+      data_set.scale = std::max(data_set.scale, std::abs(y));
     if (!(data_set.scale > 0.))
       throw CalibrationFileError(what + ": the measured values are all 0 within the simulated "
                                         "range; nothing to fit");

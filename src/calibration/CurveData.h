@@ -2,18 +2,20 @@
 // points, and the simulated ones, read from a forward run's output at the same points.
 // Units: depth um, force mN, stress GPa, strain dimensionless (log strain).
 //
-// Comparison points (docs/calibration.md):
-//   load_penetration, loading: `points` depths evenly spaced from h_max / points to
-//     h_max = min(deepest measured loading point, loading.max_depth of the case);
-//   load_penetration, unloading: `points` depths evenly spaced from the shallowest measured
-//     unloading point to min(measured maximum depth, loading.max_depth); below the depth at which
-//     the simulated unloading ends the simulated force is 0 (the tip has left the surface);
-//   tensile: `points` log strains evenly spaced from max_strain / points to
-//     min(largest measured strain, log(1 + loading.max_strain)).
-// The measured curve is interpolated linearly between its points (sorted by abscissa; points at
-// the same abscissa are averaged). A point outside the measured range is never extrapolated:
-// the range is cut to it, and fewer than 3 measured points inside the simulated range is an
-// error (the data set does not overlap what the case simulates).
+// Comparison points (docs/calibration.md): the measured points within the range the case
+// simulates, in at most `points` groups of consecutive points of nearly equal count, each group
+// its mean abscissa and mean value (a sparse curve keeps every point; a dense one is averaged, so
+// that every measured point counts once and the comparison points' errors are independent).
+// The range:
+//   load_penetration, loading: depths above 0 up to min(deepest measured point,
+//     loading.max_depth of the case);
+//   load_penetration, unloading: from the shallowest measured unloading point to min(measured
+//     maximum depth, loading.max_depth); shallower than the depth at which the simulated unloading
+//     ends, the simulated force is 0 (the tip has left the surface);
+//   tensile: log strains above 0 up to min(largest measured strain, log(1 + loading.max_strain)).
+// The simulated curve is interpolated linearly at the comparison points. Fewer than 3 measured
+// points inside the simulated range is an error (the data set does not overlap what the case
+// simulates).
 #pragma once
 
 #include "calibration/CalibrationFile.h"

@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# Closed-loop test of `indentsim calibrate` (CTest: Calibration.ClosedLoopJ2Cone). Synthetic data
+# from known parameters (J2, yield stress 0.3 GPa and hardening modulus 2 GPa, sharp cone,
+# axisymmetric, cone_j2.yaml) are fitted from a start 17 % and 50 % off:
+#   1. the fit is stopped with SIGINT while its forward runs go through a stand-in launcher
+#      (exit code 130; the launcher saw the cases and {ranks});
+#   2. the same command continues (finished forward runs reused) and recovers both parameters
+#      within 0.5 %;
+#   3. a third run computes nothing (every forward run cached) and gives the same values;
+#   4. with 1 % noise (standard deviation 1 % of the largest force) in five seeded draws, both
+#      true values lie inside their reported 95 % intervals in at least 4 of the 5 draws. The two
+#      estimates correlate at about -0.97, so they miss together: a draw misses with a
+#      probability of 5-10 % for true 95 % intervals, two draws of five with 2-8 %.
+# Usage: run_closed_loop.sh INDENTSIM_EXECUTABLE SCRATCH_DIRECTORY
+# Units: lengths um, forces mN, stresses GPa.
+set -euo pipefail
+indentsim="$1"
+out="$2"
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+python=/usr/bin/python3
+rm -rf "$out"
+mkdir -p "$out"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+"$indentsim" run "$here/cone_j2.yaml" --output "$out/truth" > "$out/truth.txt" 2>&1 \
+  || { cat "$out/truth.txt"; fail "the run at the true parameters failed"; }
+
+# calibration_file NAME MEASURED_CSV: a calibration of the two parameters to both branches.
+calibration_file() {
+  cat > "$out/$1.yaml" <<YAML
+base_case: $here/cone_j2.yaml
+output: $out/$1
+parameters:
+  material.yield_stress:      {start: 0.25, min: 0.05, max: 1.0}
+  material.hardening_modulus: {start: 1.0,  min: 0.0,  max: 5.0}
+data:
+  - {kind: load_penetration, file: $2, branch: loading}
+  - {kind: load_penetration, file: $2, branch: unloading, weight: 0.5}
+YAML
+}
+# value FILE EXPRESSION: a Python expression of the calibration.json `c`.
+value() { "$python" -c "import json,sys; c=json.load(open(sys.argv[1])); print($2)" "$1"; }
+
+calibration_file exact "$out/truth/load_penetration.csv"
+status=0
+timeout --preserve-status -s INT 8 "$indentsim" calibrate "$out/exact.yaml" --jobs 2 \
+  --launcher "bash $here/stand_in_launcher.sh $out/launcher.log {ranks} {command}" \
+  > "$out/first.txt" 2>&1 || status=$?
+cat "$out/first.txt"
+[[ $status -eq 130 ]] || fail "the interrupted calibration ended with $status, not 130"
+[[ ! -e "$out/exact/calibration.json" ]] || fail "an interrupted calibration wrote results"
+grep -q "^ranks=1 .* run $out/exact/forward/cases/c0-.*/case.yaml" "$out/launcher.log" \
+  || fail "the stand-in launcher did not run the forward cases: $(cat "$out/launcher.log")"
+
+"$indentsim" calibrate "$out/exact.yaml" --jobs 2 > "$out/second.txt" 2>&1 \
+  || { cat "$out/second.txt"; fail "the continued calibration failed"; }
+cat "$out/second.txt"
+json="$out/exact/calibration.json"
+for key in material.yield_stress:0.3 material.hardening_modulus:2.0; do
+  name=${key%%:*}; truth=${key##*:}
+  error=$(value "$json" "abs(c['parameters']['$name']['value'] / $truth - 1)")
+  echo "$name: relative error $error"
+  "$python" -c "import sys; sys.exit(0 if $error < 0.005 else 1)" \
+    || fail "$name recovered with a relative error $error (allowed 0.005)"
+done
+[[ $(value "$json" "c['forward_runs_reused']") -gt 0 ]] || fail "nothing of the stopped run reused"
+for file in iterations.csv fit_data0.csv fit_data1.csv; do
+  [[ -s "$out/exact/$file" ]] || fail "no $file"
+done
+
+"$indentsim" calibrate "$out/exact.yaml" > "$out/third.txt" 2>&1 || fail "the rerun failed"
+[[ $(value "$json" "c['forward_runs']") -eq 0 ]] || fail "the rerun computed forward runs again"
+grep -q "material.yield_stress = 0.3 GPa" "$out/third.txt" || fail "the rerun changed the fit"
+
+covered=0
+for seed in 1 2 3 4 5; do
+  "$python" "$here/add_noise.py" "$out/truth/load_penetration.csv" "$out/noisy$seed.csv" $seed 0.01
+  calibration_file "noisy$seed" "$out/noisy$seed.csv"
+  "$indentsim" calibrate "$out/noisy$seed.yaml" --jobs 2 > "$out/noisy$seed.txt" 2>&1 \
+    || { cat "$out/noisy$seed.txt"; fail "the calibration of seed $seed failed"; }
+  grep -A2 "^Fitted" "$out/noisy$seed.txt"
+  inside=0
+  for key in material.yield_stress:0.3 material.hardening_modulus:2.0; do
+    name=${key%%:*}; truth=${key##*:}
+    hit=$(value "$out/noisy$seed/calibration.json" \
+      "int(c['parameters']['$name']['ci95'][0] <= $truth <= c['parameters']['$name']['ci95'][1])")
+    inside=$((inside + hit))
+  done
+  echo "seed $seed: $inside of 2 true values inside their 95 % intervals"
+  [[ $inside -eq 2 ]] && covered=$((covered + 1))
+done
+echo "draws with both true values inside the 95 % intervals: $covered of 5"
+[[ $covered -ge 4 ]] || fail "only $covered of 5 draws hold both true values"
+echo "PASS"

@@ -10,7 +10,10 @@
 #   4. with 1 % noise (standard deviation 1 % of the largest force) in five seeded draws, both
 #      true values lie inside their reported 95 % intervals in at least 4 of the 5 draws. The two
 #      estimates correlate at about -0.97, so they miss together: a draw misses with a
-#      probability of 5-10 % for true 95 % intervals, two draws of five with 2-8 %.
+#      probability of 5-10 % for true 95 % intervals, two draws of five with 2-8 %;
+#   5. the curve of one noisy draw alone leaves the two not identifiable (the warning names both);
+#      with a tensile curve added (tensile_j2.yaml at the true values) they are identifiable and
+#      within 1 % of the truth.
 # Usage: run_closed_loop.sh INDENTSIM_EXECUTABLE SCRATCH_DIRECTORY
 # Units: lengths um, forces mN, stresses GPa.
 set -euo pipefail
@@ -91,4 +94,24 @@ for seed in 1 2 3 4 5; do
 done
 echo "draws with both true values inside the 95 % intervals: $covered of 5"
 [[ $covered -ge 4 ]] || fail "only $covered of 5 draws hold both true values"
+grep -q "NOT identifiable" "$out/noisy1.txt" || fail "one cone curve reported as identifiable"
+grep -q "material.yield_stress and material.hardening_modulus correlate" "$out/noisy1.txt" \
+  || fail "the warning does not name the correlated parameters"
+"$indentsim" run "$here/tensile_j2.yaml" --output "$out/tensile_truth" > "$out/tensile.txt" 2>&1 \
+  || { cat "$out/tensile.txt"; fail "the tensile run at the true parameters failed"; }
+calibration_file both "$out/noisy1.csv"
+echo "  - {kind: tensile, file: $out/tensile_truth/stress_strain.csv, case: $here/tensile_j2.yaml}" \
+  >> "$out/both.yaml"
+"$indentsim" calibrate "$out/both.yaml" --jobs 2 > "$out/both.txt" 2>&1 \
+  || { cat "$out/both.txt"; fail "the calibration with the tensile curve failed"; }
+grep -A2 "^Fitted" "$out/both.txt"
+[[ $(value "$out/both/calibration.json" "c['identifiable']") == True ]] \
+  || fail "with the tensile curve the parameters are still not identifiable"
+for key in material.yield_stress:0.3 material.hardening_modulus:2.0; do
+  name=${key%%:*}; truth=${key##*:}
+  error=$(value "$out/both/calibration.json" "abs(c['parameters']['$name']['value'] / $truth - 1)")
+  echo "$name with the tensile curve: relative error $error"
+  "$python" -c "import sys; sys.exit(0 if $error < 0.01 else 1)" \
+    || fail "$name with the tensile curve: relative error $error (allowed 0.01)"
+done
 echo "PASS"

@@ -23,13 +23,13 @@ namespace indentsim::calibration
     const std::vector<std::string> top_keys = {"base_case", "output", "parameters", "data",
                                                "solver"};
     const std::vector<std::string> bound_keys = {"start", "min", "max"};
-    const std::vector<std::string> data_keys = {"kind",   "file", "branch",
-                                                "weight", "case", "points"};
+    const std::vector<std::string> data_keys = {"kind", "file",   "branch",     "weight",
+                                                "case", "points", "azimuth_deg"};
     const std::vector<std::string> solver_keys = {"max_iterations", "finite_difference_step",
                                                   "function_tolerance", "parameter_tolerance"};
-    const std::vector<std::string> kinds = {"load_penetration", "tensile"};
-    // Named by the issue and recognised, but not computed yet: refused by name.
-    const std::vector<std::string> kinds_not_yet = {"pileup_profile", "hardness_depth"};
+    const std::vector<std::string> kinds = {"load_penetration", "tensile", "pileup_profile"};
+    // Recognised, but not computed yet: refused by name.
+    const std::vector<std::string> kinds_not_yet = {"hardness_depth"};
 
     class Reader
     {
@@ -203,7 +203,9 @@ namespace indentsim::calibration
                        ": not available yet in this version; available: " + io::join(kinds));
             if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end())
               fail(entry["kind"], where + ".kind = " + kind + ": allowed: " + io::join(kinds));
-            d.kind = kind == "tensile" ? DataKind::tensile : DataKind::load_penetration;
+            d.kind = kind == "tensile"          ? DataKind::tensile
+                     : kind == "pileup_profile" ? DataKind::pileup_profile
+                                                : DataKind::load_penetration;
             d.file = path_of(required(entry, "file"), where + ".file", "a CSV file");
             if (const YAML::Node branch = entry["branch"]; branch.IsDefined())
               {
@@ -219,6 +221,12 @@ namespace indentsim::calibration
                 d.weight = number(weight, where + ".weight");
                 if (!(d.weight > 0.))
                   fail(weight, where + ".weight = " + weight.Scalar() + ": must be > 0");
+              }
+            if (const YAML::Node azimuth = entry["azimuth_deg"]; azimuth.IsDefined())
+              {
+                if (d.kind != DataKind::pileup_profile)
+                  fail(azimuth, where + ".azimuth_deg: only for kind: pileup_profile");
+                d.azimuth_deg = number(azimuth, where + ".azimuth_deg");
               }
             if (const YAML::Node points = entry["points"]; points.IsDefined())
               {
@@ -327,17 +335,30 @@ namespace indentsim::calibration
 
   std::string DataSet::x_name() const
   {
-    return kind == DataKind::tensile ? "log_strain" : "depth_um";
+    return kind == DataKind::tensile          ? "log_strain"
+           : kind == DataKind::pileup_profile ? "r_um"
+                                              : "depth_um";
   }
 
   std::string DataSet::y_name() const
   {
-    return kind == DataKind::tensile ? "true_stress_GPa" : "force_mN";
+    return kind == DataKind::tensile          ? "true_stress_GPa"
+           : kind == DataKind::pileup_profile ? "height_um"
+                                              : "force_mN";
   }
 
   std::string DataSet::kind_name() const
   {
-    return kind == DataKind::tensile ? "tensile" : "load_penetration";
+    return kind == DataKind::tensile          ? "tensile"
+           : kind == DataKind::pileup_profile ? "pileup_profile"
+                                              : "load_penetration";
+  }
+
+  std::string DataSet::units() const
+  {
+    return kind == DataKind::tensile          ? "log strain, true stress GPa"
+           : kind == DataKind::pileup_profile ? "radius um, height um"
+                                              : "depth um, force mN";
   }
 
   std::vector<std::string> Calibration::forward_cases() const

@@ -11,6 +11,7 @@
 //     - {kind: load_penetration, file: measured/ph.csv, branch: loading, weight: 1.0}
 //     - {kind: load_penetration, file: measured/ph.csv, branch: unloading, weight: 0.5}
 //     - {kind: tensile, file: measured/tensile.csv, case: tensile.yaml}
+//     - {kind: pileup_profile, file: measured/afm_line.csv}
 //   solver: {max_iterations: 30, finite_difference_step: 1.0e-3}
 //
 // Every parameter is a `number` key of the case-file schema (docs/case-file-reference.md); the
@@ -45,7 +46,8 @@ namespace indentsim::calibration
   enum class DataKind
   {
     load_penetration, // force [mN] against depth [um], one branch of the base case's curve
-    tensile           // true stress [GPa] against log strain, of its own tensile case
+    tensile,          // true stress [GPa] against log strain, of its own tensile case
+    pileup_profile    // height [um] against radius [um] of the imprint after unloading
   };
 
   enum class Branch
@@ -62,17 +64,19 @@ namespace indentsim::calibration
     std::string  file;                     // absolute
     std::string  case_file;                // the case that simulates it (absolute)
     double       weight = 1.;
-    unsigned int points = 40; // at most this many comparison points (CurveData.h)
-    std::string  label;       // "data[0] load_penetration loading (ph.csv)"
-    int          line = -1;   // 0-based line of the entry in the calibration file
+    double       azimuth_deg = 0.; // pileup_profile: the simulated profile's nearest azimuth
+    unsigned int points = 40;      // at most this many comparison points (CurveData.h)
+    std::string  label;            // "data[0] load_penetration loading (ph.csv)"
+    int          line = -1;        // 0-based line of the entry in the calibration file
 
     std::vector<double> x;          // the comparison points: depth [um] or log strain
     std::vector<double> measured;   // the measured curve there: force [mN] or stress [GPa]
     double              scale = 1.; // max |measured|: residuals are relative to it
 
-    std::string x_name() const; // "depth_um" | "log_strain"
-    std::string y_name() const; // "force_mN" | "true_stress_GPa"
+    std::string x_name() const; // "depth_um" | "log_strain" | "r_um"
+    std::string y_name() const; // "force_mN" | "true_stress_GPa" | "height_um"
     std::string kind_name() const;
+    std::string units() const; // of the comparison points and values, for files' headers
   };
 
   struct SolverSettings

@@ -31,17 +31,19 @@ namespace indentsim::calibration
     {
       std::set<std::string> have;
       for (const DataSet &d : c.data)
-        have.insert(d.kind == DataKind::tensile   ? "tensile"
-                    : d.branch == Branch::loading ? "loading"
-                                                  : "unloading");
+        have.insert(d.kind != DataKind::load_penetration ? d.kind_name()
+                    : d.branch == Branch::loading        ? "loading"
+                                                         : "unloading");
       std::vector<std::string> add;
       if (!have.count("unloading"))
         add.push_back("the unloading branch of the curve (kind: load_penetration, branch: "
                       "unloading)");
       if (!have.count("tensile"))
         add.push_back("a tensile curve (kind: tensile)");
-      add.push_back("the residual imprint's pile-up profile, or a curve with a second tip "
-                    "geometry (a sphere responds to hardening differently from a cone)");
+      if (!have.count("pileup_profile"))
+        add.push_back("the residual imprint's height profile (kind: pileup_profile)");
+      add.push_back("a curve with a second tip geometry (a sphere responds to hardening "
+                    "differently from a cone)");
       std::string text = "data that would separate them: ";
       for (std::size_t i = 0; i < add.size(); ++i)
         text += (i == 0 ? "" : "; ") + add[i];
@@ -56,10 +58,8 @@ namespace indentsim::calibration
           const DataSet &d = c.data[k];
           output::write_file(c.output_directory + "/fit_data" + std::to_string(k) + ".csv",
                              [&](std::ostream &out) {
-                               out << "# " << d.label << ", measured in " << d.file << "\n# units: "
-                                   << (d.kind == DataKind::tensile ? "log strain, true stress GPa"
-                                                                   : "depth um, force mN")
-                                   << "\n"
+                               out << "# " << d.label << ", measured in " << d.file
+                                   << "\n# units: " << d.units() << "\n"
                                    << d.x_name() << ",measured_" << d.y_name() << ",start_"
                                    << d.y_name() << ",fitted_" << d.y_name() << "\n"
                                    << std::setprecision(10);
@@ -139,7 +139,7 @@ namespace indentsim::calibration
               << ", \"points\": " << d.x.size()
               << ", \"rms_relative_misfit\": " << json_number(std::sqrt(sum / d.weight))
               << ", \"rms_misfit\": " << json_number(std::sqrt(sum / d.weight) * d.scale)
-              << ", \"misfit_unit\": " << json_string(d.kind == DataKind::tensile ? "GPa" : "mN")
+              << ", \"misfit_unit\": " << json_string(d.y_name().substr(d.y_name().rfind('_') + 1))
               << ", \"curve\": " << json_string("fit_data" + std::to_string(k) + ".csv") << "}";
         }
       out << "\n  ],\n  \"initial_cost\": " << json_number(fit.initial_cost)

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -24,56 +25,141 @@ namespace indentsim::calibration
       return out.str();
     }
 
-    // A measured or simulated stress-strain curve: the first column named strain*, log_strain*,
-    // true_strain* or eps* (dimensionless, or in % when the name says so) and the first named
-    // stress*, true_stress* or sigma* with its unit (GPa or MPa) in the name.
+    // A CSV whose columns are found by the start of their names and read as numbers; every
+    // error names the file, the line and the column.
+    class NumberTable
+    {
+    public:
+      explicit NumberTable(const std::string &path)
+        : path_(path)
+      {
+        try
+          {
+            csv_ = io::read_csv_table(path);
+          }
+        catch (const std::invalid_argument &error)
+          {
+            throw std::invalid_argument(path + ": " + error.what());
+          }
+      }
+
+      std::size_t column(std::initializer_list<const char *> prefixes,
+                         const std::string                  &what) const
+      {
+        for (const char *prefix : prefixes)
+          for (std::size_t c = 0; c < csv_.header.size(); ++c)
+            if (io::lowered(csv_.header[c]).rfind(prefix, 0) == 0)
+              return c;
+        throw std::invalid_argument(path_ + ": no " + what + " column in the header '" +
+                                    io::join_fields(csv_.header) + "'");
+      }
+
+      // The factor of the unit in column c's name (`factor_of` returns 0 for an unknown one).
+      double unit_factor(const std::size_t  c, double (*factor_of)(const std::string &),
+                         const std::string &spellings) const
+      {
+        const double factor = factor_of(io::unit_in_name(csv_.header[c]));
+        if (factor == 0.)
+          throw std::invalid_argument(path_ + ": column '" + csv_.header[c] +
+                                      "': no known unit in the name; write it as " + spellings);
+        return factor;
+      }
+
+      std::size_t        rows() const { return csv_.rows.size(); }
+      const std::string &text(const std::size_t r, const std::size_t c) const
+      {
+        if (c >= csv_.rows[r].size())
+          throw std::invalid_argument(path_ + ", " + csv_.row_name(r) + ": no value in column '" +
+                                      csv_.header[c] + "'");
+        return csv_.rows[r][c];
+      }
+      double number(const std::size_t r, const std::size_t c) const
+      {
+        const auto value = io::parse_finite_number(text(r, c));
+        if (!value)
+          throw std::invalid_argument(path_ + ", " + csv_.row_name(r) + ", column '" +
+                                      csv_.header[c] + "': '" + text(r, c) +
+                                      "' is not a finite number");
+        return *value;
+      }
+
+    private:
+      std::string  path_;
+      io::CsvTable csv_;
+    };
+
+    double strain_factor(const std::string &unit)
+    {
+      return unit.empty() || unit == "strain" ? 1. : unit == "%" || unit == "percent" ? 0.01 : 0.;
+    }
+
+    // A measured or simulated stress-strain curve: the first column named log_strain*,
+    // true_strain*, strain* or eps* (dimensionless, or in % when the name says so) and the first
+    // named true_stress*, stress* or sigma* with its unit (GPa or MPa) in the name.
     SampledCurve read_stress_strain(const std::string &path)
     {
-      io::CsvTable csv;
-      try
-        {
-          csv = io::read_csv_table(path);
-        }
-      catch (const std::invalid_argument &error)
-        {
-          throw std::invalid_argument(path + ": " + error.what());
-        }
-      const auto column = [&](std::initializer_list<const char *> prefixes, const char *what) {
-        for (std::size_t c = 0; c < csv.header.size(); ++c)
-          for (const char *prefix : prefixes)
-            if (io::lowered(csv.header[c]).rfind(prefix, 0) == 0)
-              return c;
-        throw std::invalid_argument(path + ": no " + what + " column in the header '" +
-                                    io::join_fields(csv.header) + "'");
-      };
-      const std::size_t strain = column({"log_strain", "true_strain", "strain", "eps"},
-                                        "strain (log_strain, true_strain, strain)");
-      const std::size_t stress =
-          column({"true_stress", "stress", "sigma"}, "stress (stress_GPa, true_stress_MPa, ...)");
-      const std::string strain_unit = io::unit_in_name(csv.header[strain]);
-      const double      strain_factor = strain_unit == "%" || strain_unit == "percent" ? 0.01 : 1.;
-      const double      stress_factor = io::stress_factor(io::unit_in_name(csv.header[stress]));
-      if (stress_factor == 0.)
-        throw std::invalid_argument(path + ": column '" + csv.header[stress] +
-                                    "': no stress unit in the name; write it as stress_GPa or "
-                                    "stress_MPa");
+      const NumberTable table(path);
+      const std::size_t strain = table.column({"log_strain", "true_strain", "strain", "eps"},
+                                              "strain (log_strain, true_strain, strain)");
+      const std::size_t stress = table.column({"true_stress", "stress", "sigma"},
+                                              "stress (stress_GPa, true_stress_MPa, ...)");
+      const double      to_strain = table.unit_factor(strain, strain_factor, "strain or strain_%");
+      const double      to_stress =
+          table.unit_factor(stress, io::stress_factor, "stress_GPa or stress_MPa");
       std::vector<double> x, y;
-      for (std::size_t r = 0; r < csv.rows.size(); ++r)
+      for (std::size_t r = 0; r < table.rows(); ++r)
         {
-          const auto field = [&](const std::size_t c) {
-            if (c >= csv.rows[r].size())
-              throw std::invalid_argument(path + ", " + csv.row_name(r) + ": no value in column '" +
-                                          csv.header[c] + "'");
-            const auto value = io::parse_finite_number(csv.rows[r][c]);
-            if (!value)
-              throw std::invalid_argument(path + ", " + csv.row_name(r) + ", column '" +
-                                          csv.header[c] + "': '" + csv.rows[r][c] +
-                                          "' is not a finite number");
-            return *value;
-          };
-          x.push_back(field(strain) * strain_factor);
-          y.push_back(field(stress) * stress_factor);
+          x.push_back(table.number(r, strain) * to_strain);
+          y.push_back(table.number(r, stress) * to_stress);
         }
+      return sorted_curve(x, y);
+    }
+
+    // A measured height profile across the residual imprint: the first column named radius*,
+    // r_*, distance*, x_* or position* and the first named height* or z_*, each with its length
+    // unit (um, nm, mm) in the name. A line through the centre has negative positions: the
+    // profile is taken against |position|.
+    SampledCurve read_height_profile(const std::string &path)
+    {
+      const NumberTable table(path);
+      const std::size_t radius = table.column({"radius", "r_", "distance", "x_", "position"},
+                                              "radius (radius_um, r_um, x_nm, distance_um)");
+      const std::size_t height = table.column({"height", "z_"}, "height (height_nm, z_um)");
+      const double      to_um_r = table.unit_factor(radius, io::length_factor, "r_um or r_nm");
+      const double to_um_h = table.unit_factor(height, io::length_factor, "height_um or height_nm");
+      std::vector<double> x, y;
+      for (std::size_t r = 0; r < table.rows(); ++r)
+        {
+          x.push_back(std::abs(table.number(r, radius) * to_um_r));
+          y.push_back(table.number(r, height) * to_um_h);
+        }
+      return sorted_curve(x, y);
+    }
+
+    // The simulated profile after unloading (pileup_profiles.csv of a run, stage `unloaded`)
+    // along the azimuth nearest to `azimuth_deg`.
+    SampledCurve simulated_height_profile(const std::string &path, const double azimuth_deg)
+    {
+      const NumberTable table(path);
+      const std::size_t stage = table.column({"stage"}, "stage");
+      const std::size_t azimuth = table.column({"azimuth_deg"}, "azimuth_deg");
+      const std::size_t radius = table.column({"r_um"}, "r_um");
+      const std::size_t height = table.column({"height_um"}, "height_um");
+      double            nearest = 0., distance = std::numeric_limits<double>::infinity();
+      for (std::size_t r = 0; r < table.rows(); ++r)
+        if (table.text(r, stage) == "unloaded")
+          {
+            const double d = std::abs(std::remainder(table.number(r, azimuth) - azimuth_deg, 360.));
+            if (d < distance)
+              distance = d, nearest = table.number(r, azimuth);
+          }
+      std::vector<double> x, y;
+      for (std::size_t r = 0; r < table.rows(); ++r)
+        if (table.text(r, stage) == "unloaded" && table.number(r, azimuth) == nearest)
+          {
+            x.push_back(table.number(r, radius));
+            y.push_back(table.number(r, height));
+          }
       return sorted_curve(x, y);
     }
 
@@ -109,7 +195,7 @@ namespace indentsim::calibration
         {
           const std::size_t begin = g * inside.size() / groups,
                             end = (g + 1) * inside.size() / groups;
-          double            x = 0., y = 0.;
+          double x = 0., y = 0.;
           for (std::size_t k = begin; k < end; ++k)
             x += curve.x[inside[k]], y += curve.y[inside[k]];
           result.x.push_back(x / double(end - begin));
@@ -186,6 +272,20 @@ namespace indentsim::calibration
                                              " does not unload (loading.unload: false)");
               }
           }
+        else if (data_set.kind == DataKind::pileup_profile)
+          {
+            if (!simulated_case.loading.unload)
+              throw CalibrationFileError(where +
+                                         ": kind: pileup_profile is the imprint after "
+                                         "unloading, but the case " +
+                                         data_set.case_file +
+                                         " does not unload (loading.unload: false)");
+            measured = read_height_profile(data_set.file);
+            // The simulated profile spans the specimen's top face (its outer radius).
+            const double outer = simulated_case.specimen.size[0] / 2.;
+            simulated_range = "r from 0 to " + number_text(outer) + " um (the specimen's radius)";
+            to = std::min(measured.x.empty() ? 0. : measured.x.back(), outer);
+          }
         else
           {
             measured = read_stress_strain(data_set.file);
@@ -202,8 +302,9 @@ namespace indentsim::calibration
       }
     // Loading and tensile curves from above 0 (the origin says nothing), unloading from the
     // shallowest measured unloading point.
-    const bool         from_origin = data_set.kind == DataKind::tensile ||
-                             data_set.branch == Branch::loading;
+    const bool from_origin =
+        data_set.kind == DataKind::tensile ||
+        (data_set.kind == DataKind::load_penetration && data_set.branch == Branch::loading);
     const SampledCurve points =
         to > from ? binned(measured, from, to, from_origin, data_set.points) : SampledCurve();
     const std::size_t inside = points.x.size();
@@ -246,6 +347,13 @@ namespace indentsim::calibration
                 simulated.y.insert(simulated.y.begin() + 1, 0.);
               }
           }
+      }
+    else if (data_set.kind == DataKind::pileup_profile)
+      {
+        // Beyond the profile's last point the height is its last value (the far surface).
+        simulated = simulated_height_profile(
+            run_directory + "/" + io::output_files::pileup_profiles_csv, data_set.azimuth_deg);
+        end = std::numeric_limits<double>::infinity();
       }
     else
       {

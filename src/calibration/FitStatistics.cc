@@ -112,8 +112,8 @@ namespace indentsim::calibration
     for (std::size_t a = 0; a < p; ++a)
       {
         s.standard_error[a] = std::sqrt(s.residual_variance * inverse(a, a)) / norm[a];
-        s.ci95[a] = {{x[a] - s.t_quantile * s.standard_error[a],
-                     x[a] + s.t_quantile * s.standard_error[a]}};
+        s.ci95[a] = {
+            {x[a] - s.t_quantile * s.standard_error[a], x[a] + s.t_quantile * s.standard_error[a]}};
         for (std::size_t b = 0; b < p; ++b)
           s.correlation[a][b] = inverse(a, b) / std::sqrt(inverse(a, a) * inverse(b, b));
       }

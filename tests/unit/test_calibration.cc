@@ -2,11 +2,11 @@
 // key), the statistics at the optimum against the closed forms of linear regression, the
 // resampling of measured curves, and the launcher template. The closed loops that run the
 // program are in tests/system/calibration/. Units: um, mN, GPa.
+#include "../test_files.h"
 #include "calibration/CalibrationFile.h"
 #include "calibration/CurveData.h"
 #include "calibration/FitStatistics.h"
 #include "study/StudyRunner.h"
-#include "../test_files.h"
 
 #include <gtest/gtest.h>
 
@@ -126,9 +126,12 @@ TEST(CalibrationFile, BadConfigurationsAreRefusedBeforeAnyRunNamingTheKey)
   expect_refused(base + good_parameters + "data:\n  - {kind: load_penetration, file: deep.csv}\n",
                  {"data[0]", "deep.csv", "0 measured point(s) within the range",
                   "0 to 1 um (loading.max_depth)", "spans 2 to 3"});
-  expect_refused(base + good_parameters + "data:\n  - {kind: pileup_profile, file: curve.csv}\n",
-                 {"data[0].kind = pileup_profile", "not available yet",
-                  "load_penetration, tensile"});
+  expect_refused(base + good_parameters + "data:\n  - {kind: hardness_depth, file: curve.csv}\n",
+                 {"data[0].kind = hardness_depth", "not available yet",
+                  "load_penetration, tensile, pileup_profile"});
+  expect_refused(base + good_parameters +
+                     "data:\n  - {kind: load_penetration, file: curve.csv, azimuth_deg: 10}\n",
+                 {"data[0].azimuth_deg", "only for kind: pileup_profile"});
   expect_refused(base + good_parameters + "data:\n  - {kind: tensile, file: curve.csv}\n",
                  {"data[0]", "needs its own case"});
   expect_refused(base + good_parameters +
@@ -194,8 +197,8 @@ TEST(FitStatistics, ParametersTheDataCannotSeparateAreNamed)
       residuals.push_back(0.01 * ((i % 2) - 0.5));
       jacobian.insert(jacobian.end(), {1. + i, 1. + i});
     }
-  const FitStatistics same = fit_statistics({1., 2.}, residuals, jacobian, {"p", "q"},
-                                            {{{0., 5.}}, {{0., 5.}}});
+  const FitStatistics same =
+      fit_statistics({1., 2.}, residuals, jacobian, {"p", "q"}, {{{0., 5.}}, {{0., 5.}}});
   EXPECT_FALSE(same.identifiable);
   ASSERT_FALSE(same.warnings.empty());
   EXPECT_NE(same.warnings.front().find("near-singular"), std::string::npos);
@@ -205,8 +208,8 @@ TEST(FitStatistics, ParametersTheDataCannotSeparateAreNamed)
   jacobian.clear();
   for (int i = 0; i < 6; ++i)
     jacobian.insert(jacobian.end(), {1. + i, 1. + i + 0.3 * (i % 2)});
-  const FitStatistics close = fit_statistics({1., 2.}, residuals, jacobian, {"p", "q"},
-                                             {{{0., 5.}}, {{0., 5.}}});
+  const FitStatistics close =
+      fit_statistics({1., 2.}, residuals, jacobian, {"p", "q"}, {{{0., 5.}}, {{0., 5.}}});
   EXPECT_FALSE(close.identifiable);
   bool named = false;
   for (const auto &w : close.warnings)
@@ -217,8 +220,8 @@ TEST(FitStatistics, ParametersTheDataCannotSeparateAreNamed)
   jacobian.clear();
   for (int i = 0; i < 6; ++i)
     jacobian.insert(jacobian.end(), {1. + i, 0.});
-  const FitStatistics none = fit_statistics({1., 2.}, residuals, jacobian, {"p", "q"},
-                                            {{{0., 5.}}, {{0., 5.}}});
+  const FitStatistics none =
+      fit_statistics({1., 2.}, residuals, jacobian, {"p", "q"}, {{{0., 5.}}, {{0., 5.}}});
   EXPECT_FALSE(none.identifiable);
   EXPECT_NE(none.warnings.front().find("do not change with q"), std::string::npos);
 
@@ -226,8 +229,8 @@ TEST(FitStatistics, ParametersTheDataCannotSeparateAreNamed)
   jacobian.clear();
   for (int i = 0; i < 6; ++i)
     jacobian.insert(jacobian.end(), {1e-3 * (1. + i), 1e-3 * (i % 3)});
-  const FitStatistics wide = fit_statistics({1., 2.}, residuals, jacobian, {"p", "q"},
-                                            {{{0.9, 1.1}}, {{1.9, 2.1}}});
+  const FitStatistics wide =
+      fit_statistics({1., 2.}, residuals, jacobian, {"p", "q"}, {{{0.9, 1.1}}, {{1.9, 2.1}}});
   EXPECT_FALSE(wide.identifiable);
   bool wider = false;
   for (const auto &w : wide.warnings)
@@ -245,11 +248,54 @@ TEST(CurveData, SortsAveragesAndInterpolates)
   EXPECT_DOUBLE_EQ(curve.at(5.), 4.); // the end value beyond the range
 }
 
+// A measured line across the imprint in nm (negative positions folded onto the radius) against
+// a run's pileup_profiles.csv: the unloaded stage along the azimuth nearest to the one asked.
+TEST(CurveData, HeightProfilesAreFoldedAndReadAlongTheNearestAzimuth)
+{
+  const fs::path dir = calibration_folder();
+  {
+    std::ofstream line(dir / "afm.csv");
+    line << "# AFM line\nx_nm,height_nm\n-2000,10\n-1000,-400\n0,-900\n1000,-420\n2000,12\n"
+            "3000,5\n";
+  }
+  Calibration c = parse_calibration_yaml(
+      "base_case: cone_j2.yaml\n" + good_parameters +
+          "data:\n  - {kind: pileup_profile, file: afm.csv, azimuth_deg: 40}\n",
+      (dir / "calibrate.yaml").string());
+  const DataSet &d = c.data.at(0);
+  EXPECT_EQ(d.kind_name(), "pileup_profile");
+  EXPECT_EQ(d.x_name(), "r_um");
+  // Radii 0, 1, 2, 3 um; the two sides averaged at 1 and 2 um; heights in um.
+  ASSERT_EQ(d.x.size(), 4u);
+  EXPECT_DOUBLE_EQ(d.x[1], 1.);
+  EXPECT_NEAR(d.measured[0], -0.9, 1e-12);
+  EXPECT_NEAR(d.measured[1], -0.41, 1e-12);
+  EXPECT_NEAR(d.measured[2], 0.011, 1e-12);
+  EXPECT_NEAR(d.scale, 0.9, 1e-12);
+
+  const fs::path run = dir / "run";
+  fs::create_directories(run);
+  {
+    std::ofstream profiles(run / "pileup_profiles.csv");
+    profiles << "stage,azimuth_deg,r_um,height_um\n";
+    for (const double azimuth : {0., 45., 90.})
+      for (const char *stage : {"max_depth", "unloaded"})
+        for (int i = 0; i <= 2; ++i)
+          profiles << stage << "," << azimuth << "," << 1.5 * i << ","
+                   << (std::string(stage) == "unloaded" ? azimuth / 1000. : -1.) - 0.1 * i << "\n";
+  }
+  const std::vector<double> simulated = simulated_values(d, run.string());
+  ASSERT_EQ(simulated.size(), 4u);
+  EXPECT_NEAR(simulated[0], 0.045, 1e-12);             // azimuth 45, r = 0
+  EXPECT_NEAR(simulated[1], 0.045 - 0.1 / 1.5, 1e-12); // linear between r = 0 and 1.5
+  EXPECT_NEAR(simulated[3], 0.045 - 0.2, 1e-12);       // beyond the profile: its last height
+}
+
 TEST(StudyLauncher, TheTemplateWrapsTheCommand)
 {
-  EXPECT_EQ(study::launch_command("srun -n {ranks} --label=r{ranks} {command}",
-                                  {"indentsim", "run", "case.yaml"}, 4),
-            (std::vector<std::string>{"srun", "-n", "4", "--label=r4", "indentsim", "run",
-                                      "case.yaml"}));
+  EXPECT_EQ(
+      study::launch_command("srun -n {ranks} --label=r{ranks} {command}",
+                            {"indentsim", "run", "case.yaml"}, 4),
+      (std::vector<std::string>{"srun", "-n", "4", "--label=r4", "indentsim", "run", "case.yaml"}));
   EXPECT_THROW(study::launch_command("srun -n {ranks}", {"indentsim"}, 2), study::StudyFileError);
 }

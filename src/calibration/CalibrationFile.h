@@ -69,7 +69,9 @@ namespace indentsim::calibration
     std::string  label;            // "data[0] load_penetration loading (ph.csv)"
     int          line = -1;        // 0-based line of the entry in the calibration file
 
-    std::vector<double> x;          // the comparison points: depth [um] or log strain
+    std::vector<double> x; // the comparison points: depth [um], log strain or radius [um]
+    // The measured abscissae averaged into each comparison point (CurveData.h).
+    std::vector<std::vector<double>> group_x;
     std::vector<double> measured;   // the measured curve there: force [mN] or stress [GPa]
     double              scale = 1.; // max |measured|: residuals are relative to it
 

@@ -180,26 +180,38 @@ namespace indentsim::calibration
     }
 
     // The measured points within [from, to] (from excluded when `open_from`), in at most
-    // `bins` groups of consecutive points of nearly equal count, each group's mean abscissa and
-    // mean value: every measured point counts once, and the groups' errors are independent.
-    SampledCurve binned(const SampledCurve &curve, const double from, const double to,
-                        const bool open_from, const unsigned int bins)
+    // `bins` groups of consecutive points of nearly equal count: each group's mean abscissa and
+    // mean value, and its members' abscissae. Every measured point counts once, and the groups'
+    // errors are independent.
+    struct Groups
+    {
+      SampledCurve                     means;
+      std::vector<std::vector<double>> members;
+    };
+
+    Groups binned(const SampledCurve &curve, const double from, const double to,
+                  const bool open_from, const unsigned int bins)
     {
       std::vector<std::size_t> inside;
       for (std::size_t i = 0; i < curve.x.size(); ++i)
         if ((open_from ? curve.x[i] > from : curve.x[i] >= from) && curve.x[i] <= to)
           inside.push_back(i);
       const std::size_t groups = std::min<std::size_t>(bins, inside.size());
-      SampledCurve      result;
+      Groups            result;
       for (std::size_t g = 0; g < groups; ++g)
         {
           const std::size_t begin = g * inside.size() / groups,
                             end = (g + 1) * inside.size() / groups;
-          double x = 0., y = 0.;
+          double              x = 0., y = 0.;
+          std::vector<double> members;
           for (std::size_t k = begin; k < end; ++k)
-            x += curve.x[inside[k]], y += curve.y[inside[k]];
-          result.x.push_back(x / double(end - begin));
-          result.y.push_back(y / double(end - begin));
+            {
+              x += curve.x[inside[k]], y += curve.y[inside[k]];
+              members.push_back(curve.x[inside[k]]);
+            }
+          result.means.x.push_back(x / double(end - begin));
+          result.means.y.push_back(y / double(end - begin));
+          result.members.push_back(members);
         }
       return result;
     }
@@ -305,9 +317,9 @@ namespace indentsim::calibration
     const bool from_origin =
         data_set.kind == DataKind::tensile ||
         (data_set.kind == DataKind::load_penetration && data_set.branch == Branch::loading);
-    const SampledCurve points =
-        to > from ? binned(measured, from, to, from_origin, data_set.points) : SampledCurve();
-    const std::size_t inside = points.x.size();
+    const Groups points =
+        to > from ? binned(measured, from, to, from_origin, data_set.points) : Groups();
+    const std::size_t inside = points.means.x.size();
     if (inside < 3)
       throw CalibrationFileError(
           what + ": only " + std::to_string(inside) + " measured point(s) within the range the " +
@@ -316,8 +328,9 @@ namespace indentsim::calibration
                ? std::string("nothing")
                : number_text(measured.x.front()) + " to " + number_text(measured.x.back())) +
           ". A data set must overlap the simulated range with at least 3 points");
-    data_set.x = points.x;
-    data_set.measured = points.y;
+    data_set.x = points.means.x;
+    data_set.measured = points.means.y;
+    data_set.group_x = points.members;
     data_set.scale = 0.;
     for (const double y : data_set.measured)
       data_set.scale = std::max(data_set.scale, std::abs(y));
@@ -366,8 +379,15 @@ namespace indentsim::calibration
                                ", before the last comparison point " +
                                number_text(data_set.x.back()));
     std::vector<double> values;
-    for (const double x : data_set.x)
-      values.push_back(simulated.at(x));
+    // The mean of the simulated curve over each group's measured abscissae, as the measured
+    // value is their mean: the two agree exactly when the curves do, however curved they are.
+    for (const std::vector<double> &members : data_set.group_x)
+      {
+        double sum = 0.;
+        for (const double x : members)
+          sum += simulated.at(x);
+        values.push_back(sum / double(members.size()));
+      }
     return values;
   }
 } // namespace indentsim::calibration

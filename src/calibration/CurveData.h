@@ -13,7 +13,9 @@
 //     maximum depth, loading.max_depth); shallower than the depth at which the simulated unloading
 //     ends, the simulated force is 0 (the tip has left the surface);
 //   tensile: log strains above 0 up to min(largest measured strain, log(1 + loading.max_strain)).
-// The simulated curve is interpolated linearly at the comparison points. Fewer than 3 measured
+// The simulated value of a comparison point is the mean of the simulated curve (interpolated
+// linearly) over the group's measured abscissae, so that a curved curve is compared without the
+// bias of its mean abscissa. Fewer than 3 measured
 // points inside the simulated range is an error (the data set does not overlap what the case
 // simulates).
 #pragma once
@@ -42,7 +44,7 @@ namespace indentsim::calibration
   // naming `where` (the data entry), the file and the ranges.
   void read_measured(DataSet &data_set, const io::Case &simulated_case, const std::string &where);
 
-  // The simulated curve of a finished forward run in `run_directory` at data_set.x
+  // The simulated curve of a finished forward run in `run_directory` at the comparison points
   // (load_penetration.csv or stress_strain.csv). Throws std::runtime_error if the run's file
   // is missing or does not reach the comparison points.
   std::vector<double> simulated_values(const DataSet &data_set, const std::string &run_directory);

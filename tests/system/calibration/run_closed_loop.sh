@@ -77,7 +77,8 @@ cat "$out/second.txt"
 json="$out/exact/calibration.json"
 recovered "$json" 0.005
 [[ $(value "$json" "c['forward_runs_reused']") -gt 0 ]] || fail "nothing of the stopped run reused"
-for file in iterations.csv fit_data0.csv fit_data1.csv; do
+grep -q "Identifiable: NO" "$out/exact/report.md" || fail "report.md does not say NOT identifiable"
+for file in iterations.csv fit_data0.csv fit_data1.csv fit_data0.png iterations.png; do
   [[ -s "$out/exact/$file" ]] || fail "no $file"
 done
 

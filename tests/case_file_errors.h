@@ -1,6 +1,6 @@
 // The case-file tests' view of an error: a YAML text parsed as the file "bad.yaml" and the message
-// it is rejected with. Shared by tests/unit/test_case_file.cc, test_case_hardening.cc and
-// test_mesh_design.cc.
+// it is rejected with. Shared by tests/unit/test_case_file.cc, test_case_hardening.cc,
+// test_mesh_design.cc, test_material_layers.cc and test_damage_profile.cc.
 #pragma once
 
 #include "case/CaseFile.h"
@@ -12,6 +12,16 @@
 
 namespace indentsim::test_case_files
 {
+  // The start of a J2 indentation case with the paper's material (Table 1), for tests that add
+  // the blocks under test (layers, damage profiles).
+  inline const std::string j2_material = "test: indentation\n"
+                                         "material:\n"
+                                         "  model: j2\n"
+                                         "  young_modulus: 69.0\n"
+                                         "  poisson_ratio: 0.26\n"
+                                         "  yield_stress: 0.305\n"
+                                         "  hardening_modulus: 0.5\n";
+
   // Parses `yaml` (as file "bad.yaml") and returns the error message, or "" if none was thrown.
   inline std::string error_of(const std::string &yaml)
   {

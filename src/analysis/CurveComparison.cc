@@ -1,5 +1,7 @@
 #include "analysis/CurveComparison.h"
 
+#include "io/LinearInterpolation.h"
+
 #include "io/JsonText.h"
 
 #include <algorithm>
@@ -27,18 +29,6 @@ namespace indentsim::analysis
           }
     }
 
-    double interpolate(const std::vector<double> &x, const std::vector<double> &y, const double at)
-    {
-      const auto upper = std::upper_bound(x.begin(), x.end(), at);
-      if (upper == x.begin())
-        return y.front();
-      if (upper == x.end())
-        return y.back();
-      const std::size_t i = static_cast<std::size_t>(upper - x.begin());
-      const double      t = (at - x[i - 1]) / (x[i] - x[i - 1]);
-      return (1 - t) * y[i - 1] + t * y[i];
-    }
-
     std::string number(const double value)
     {
       std::ostringstream out;
@@ -62,7 +52,7 @@ namespace indentsim::analysis
       if (h_measured[i] >= h_computed.front() && h_measured[i] <= result.max_depth)
         {
           const double difference =
-              interpolate(h_computed, p_computed, h_measured[i]) - p_measured[i];
+              io::interpolate_clamped(h_computed, p_computed, h_measured[i]) - p_measured[i];
           sum += difference * difference;
           ++result.n_points;
         }
@@ -76,7 +66,7 @@ namespace indentsim::analysis
     result.rms_relative = result.computed_force > 0 ? result.rms_mN / result.computed_force : 0.0;
     if (h_measured.back() >= result.max_depth)
       {
-        result.measured_force = interpolate(h_measured, p_measured, result.max_depth);
+        result.measured_force = io::interpolate_clamped(h_measured, p_measured, result.max_depth);
         if (*result.measured_force != 0)
           result.deviation_at_max_depth_percent =
               100.0 * (result.computed_force - *result.measured_force) / *result.measured_force;

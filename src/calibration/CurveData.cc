@@ -2,6 +2,8 @@
 // Units: depth um, force mN, stress GPa, strain dimensionless.
 #include "calibration/CurveData.h"
 
+#include "io/LinearInterpolation.h"
+
 #include "case/OutputDirectory.h"
 #include "io/CsvTable.h"
 #include "io/LoadCurveCsv.h"
@@ -219,15 +221,7 @@ namespace indentsim::calibration
 
   double SampledCurve::at(const double at) const
   {
-    if (x.empty())
-      return 0.;
-    if (at <= x.front())
-      return y.front();
-    if (at >= x.back())
-      return y.back();
-    const std::size_t upper = std::upper_bound(x.begin(), x.end(), at) - x.begin();
-    const double      t = (at - x[upper - 1]) / (x[upper] - x[upper - 1]);
-    return (1. - t) * y[upper - 1] + t * y[upper];
+    return x.empty() ? 0. : io::interpolate_clamped(x, y, at);
   }
 
   SampledCurve sorted_curve(std::vector<double> x, std::vector<double> y)

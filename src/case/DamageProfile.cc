@@ -1,6 +1,8 @@
 // Depth-graded materials from a damage profile (see DamageProfile.h).
 #include "case/DamageProfile.h"
 
+#include "io/LinearInterpolation.h"
+
 #include "case/MaterialLayers.h"
 
 #include <algorithm>
@@ -10,18 +12,6 @@ namespace indentsim::io
 {
   namespace
   {
-    // Linear interpolation in a table of increasing abscissae; the end values beyond it.
-    double interpolate(const std::vector<double> &x, const std::vector<double> &y, const double at)
-    {
-      if (at <= x.front())
-        return y.front();
-      if (at >= x.back())
-        return y.back();
-      const std::size_t i = std::upper_bound(x.begin(), x.end(), at) - x.begin();
-      const double      t = (at - x[i - 1]) / (x[i] - x[i - 1]);
-      return (1 - t) * y[i - 1] + t * y[i];
-    }
-
     // The material of a slab at dose d: the block without its layers and profile, its
     // strength raised by the profile's law.
     MaterialParameters slab_material(const MaterialParameters &material, const double dose)
@@ -49,7 +39,7 @@ namespace indentsim::io
   {
     if (profile.depth.empty() || depth > profile.depth.back())
       return 0.0;
-    return interpolate(profile.depth, profile.dpa, depth);
+    return io::interpolate_clamped(profile.depth, profile.dpa, depth);
   }
 
   double yield_stress_increment(const DamageProfileParameters &profile, const double dose)
@@ -57,7 +47,8 @@ namespace indentsim::io
     if (profile.law == DamageLaw::table)
       return profile.table_dpa.empty()
                  ? 0.0
-                 : interpolate(profile.table_dpa, profile.table_delta_yield_stress, dose);
+                 : io::interpolate_clamped(profile.table_dpa, profile.table_delta_yield_stress,
+                                           dose);
     return profile.saturation_increment *
            std::pow(-std::expm1(-dose / profile.saturation_dose), profile.exponent);
   }

@@ -32,13 +32,7 @@ namespace
     std::ofstream(path) << text;
   }
 
-  const std::string j2_material = "test: indentation\n"
-                                  "material:\n"
-                                  "  model: j2\n"
-                                  "  young_modulus: 69.0\n"
-                                  "  poisson_ratio: 0.26\n"
-                                  "  yield_stress: 0.305\n"
-                                  "  hardening_modulus: 0.5\n";
+  using test_case_files::j2_material;
 
   // A triangular profile: 0 at the surface, 1 dpa at 1 um, 0 at 2 um.
   const std::string triangle = "{depth: [0, 1, 2], dpa: [0, 1, 0], law: {form: saturation, "

@@ -23,13 +23,7 @@ namespace
   using namespace indentsim::io;
   using test_case_files::expect_rejected;
 
-  const std::string j2_material = "test: indentation\n"
-                                  "material:\n"
-                                  "  model: j2\n"
-                                  "  young_modulus: 69.0\n"
-                                  "  poisson_ratio: 0.26\n"
-                                  "  yield_stress: 0.305\n"
-                                  "  hardening_modulus: 0.5\n";
+  using test_case_files::j2_material;
 
   std::string with_layers(const std::string &layers)
   {

@@ -39,6 +39,8 @@ from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 DASH = "—"
 AXES = {"load_penetration": ("depth [um]", "force [mN]"),
+        "pileup_profile": ("radius [um]", "height [um]"),
+        "hardness_depth": ("depth [um]", "hardness [GPa]"),
         "tensile": ("log strain [-]", "true stress [GPa]")}
 
 
@@ -89,9 +91,37 @@ def save(figure, directory, name):
     return name
 
 
+def plot_features(directory, entry, index, header, columns):
+    """fit_data<k>.png of indentation features: every test's value and the simulated one at the
+    start and at the fit, each relative to its feature's mean measured value."""
+    feature, measured, start, fitted = (columns[name] for name in header[:4])
+    labels = entry.get("features") or []
+    figure, axes = plt.subplots(figsize=(6.4, 4.2), dpi=150)
+    for k in sorted(set(int(f) for f in feature)):
+        rows = feature == k
+        mean = np.mean(np.abs(measured[rows]))
+        spread = np.linspace(-0.15, 0.15, rows.sum()) if rows.sum() > 1 else np.zeros(1)
+        axes.plot(k + spread, measured[rows] / mean, "o", markersize=4, color="k",
+                  label="measured (each test)" if k == 0 else None)
+        axes.plot(k - 0.3, np.mean(start[rows]) / mean, "s", markersize=6, color="tab:blue",
+                  label="simulated at the start" if k == 0 else None)
+        axes.plot(k + 0.3, np.mean(fitted[rows]) / mean, "D", markersize=6, color="tab:red",
+                  label="fitted" if k == 0 else None)
+    axes.axhline(1.0, color="0.6", linewidth=0.8)
+    axes.set_xticks(range(len(labels)))
+    axes.set_xticklabels([label.replace(" [", "\n[") for label in labels], fontsize="small")
+    axes.set_ylabel("value / mean measured value [-]")
+    axes.set_title(entry.get("label", f"data[{index}]"), fontsize="medium")
+    axes.legend(fontsize="small")
+    axes.grid(True, alpha=0.3)
+    return save(figure, directory, f"fit_data{index}.png")
+
+
 def plot_fit(directory, entry, index):
     """fit_data<k>.png of one data set; returns its file name."""
     header, columns = read_table(os.path.join(directory, entry.get("curve")))
+    if entry.get("kind") == "indentation_features":
+        return plot_features(directory, entry, index, header, columns)
     x_label, y_label = AXES.get(entry.get("kind"), (header[0], "value"))
     x, measured, start, fitted = (columns[name] for name in header[:4])  # may raise ValueError
     if not x.size:

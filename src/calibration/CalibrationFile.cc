@@ -3,6 +3,7 @@
 
 #include "calibration/CurveData.h"
 #include "calibration/ForwardRuns.h"
+#include "calibration/IndentationFeatures.h"
 #include "case/Schema.h"
 #include "io/TextNumber.h"
 
@@ -23,13 +24,13 @@ namespace indentsim::calibration
     const std::vector<std::string> top_keys = {"base_case", "output", "parameters", "data",
                                                "solver"};
     const std::vector<std::string> bound_keys = {"start", "min", "max"};
-    const std::vector<std::string> data_keys = {"kind", "file",   "branch",     "weight",
-                                                "case", "points", "azimuth_deg"};
+    const std::vector<std::string> data_keys = {"kind",        "file",     "branch",
+                                                "weight",      "case",     "points",
+                                                "azimuth_deg", "features", "stiffness_scale"};
     const std::vector<std::string> solver_keys = {"max_iterations", "finite_difference_step",
                                                   "function_tolerance", "parameter_tolerance"};
-    const std::vector<std::string> kinds = {"load_penetration", "tensile", "pileup_profile"};
-    // Recognised, but not computed yet: refused by name.
-    const std::vector<std::string> kinds_not_yet = {"hardness_depth"};
+    const std::vector<std::string> kinds = {"load_penetration", "tensile", "pileup_profile",
+                                            "indentation_features", "hardness_depth"};
 
     class Reader
     {
@@ -197,15 +198,13 @@ namespace indentsim::calibration
             DataSet d;
             d.line = entry.Mark().is_null() ? -1 : entry.Mark().line;
             const std::string kind = word(required(entry, "kind"), where + ".kind", "a kind");
-            if (std::find(kinds_not_yet.begin(), kinds_not_yet.end(), kind) != kinds_not_yet.end())
-              fail(entry["kind"],
-                   where + ".kind = " + kind +
-                       ": not available yet in this version; available: " + io::join(kinds));
             if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end())
               fail(entry["kind"], where + ".kind = " + kind + ": allowed: " + io::join(kinds));
-            d.kind = kind == "tensile"          ? DataKind::tensile
-                     : kind == "pileup_profile" ? DataKind::pileup_profile
-                                                : DataKind::load_penetration;
+            d.kind = kind == "tensile"                ? DataKind::tensile
+                     : kind == "pileup_profile"       ? DataKind::pileup_profile
+                     : kind == "indentation_features" ? DataKind::indentation_features
+                     : kind == "hardness_depth"       ? DataKind::hardness_depth
+                                                      : DataKind::load_penetration;
             d.file = path_of(required(entry, "file"), where + ".file", "a CSV file");
             if (const YAML::Node branch = entry["branch"]; branch.IsDefined())
               {
@@ -228,8 +227,12 @@ namespace indentsim::calibration
                   fail(azimuth, where + ".azimuth_deg: only for kind: pileup_profile");
                 d.azimuth_deg = number(azimuth, where + ".azimuth_deg");
               }
+            read_feature_keys(entry, where, d);
             if (const YAML::Node points = entry["points"]; points.IsDefined())
               {
+                if (d.kind == DataKind::indentation_features)
+                  fail(points, where + ".points: not for kind: indentation_features (every test "
+                                       "is compared)");
                 const double n = number(points, where + ".points");
                 if (n != std::floor(n) || n < 3 || n > 1000)
                   fail(points, where + ".points = " + points.Scalar() +
@@ -249,6 +252,38 @@ namespace indentsim::calibration
                            : std::string()) +
                       " (" + fs::path(d.file).filename().string() + ")";
             c.data.push_back(d);
+          }
+      }
+
+      // features: [C, S, Wp/Wt] (a subset) and stiffness_scale, for indentation_features only.
+      void read_feature_keys(const YAML::Node &entry, const std::string &where, DataSet &d) const
+      {
+        const bool features_kind = d.kind == DataKind::indentation_features;
+        for (const char *key : {"features", "stiffness_scale"})
+          if (entry[key].IsDefined() && !features_kind)
+            fail(entry[key], where + "." + key + ": only for kind: indentation_features");
+        if (const YAML::Node list = entry["features"]; list.IsDefined())
+          {
+            if (!list.IsSequence() || list.size() == 0)
+              fail(list, where + ".features = " + io::node_text(list) +
+                             ": expected a list of C, S, Wp/Wt");
+            for (const YAML::Node &item : list)
+              {
+                const auto f = item.IsScalar() ? feature_from_name(item.Scalar()) : std::nullopt;
+                if (!f)
+                  fail(item, where + ".features: " + io::node_text(item) +
+                                 ": allowed: C (loading_curvature), S (dP/dh, "
+                                 "unloading_stiffness), Wp/Wt (plastic_work_ratio)");
+                if (std::find(d.features.begin(), d.features.end(), *f) != d.features.end())
+                  fail(item, where + ".features: " + item.Scalar() + " given twice");
+                d.features.push_back(*f);
+              }
+          }
+        if (const YAML::Node scale = entry["stiffness_scale"]; scale.IsDefined())
+          {
+            d.stiffness_scale = number(scale, where + ".stiffness_scale");
+            if (!(d.stiffness_scale > 0.))
+              fail(scale, where + ".stiffness_scale = " + scale.Scalar() + ": must be > 0");
           }
       }
 
@@ -335,29 +370,42 @@ namespace indentsim::calibration
 
   std::string DataSet::x_name() const
   {
-    return kind == DataKind::tensile          ? "log_strain"
-           : kind == DataKind::pileup_profile ? "r_um"
-                                              : "depth_um";
+    return kind == DataKind::tensile                ? "log_strain"
+           : kind == DataKind::pileup_profile       ? "r_um"
+           : kind == DataKind::indentation_features ? "feature"
+                                                    : "depth_um";
   }
 
   std::string DataSet::y_name() const
   {
-    return kind == DataKind::tensile          ? "true_stress_GPa"
-           : kind == DataKind::pileup_profile ? "height_um"
-                                              : "force_mN";
+    return kind == DataKind::tensile                ? "true_stress_GPa"
+           : kind == DataKind::pileup_profile       ? "height_um"
+           : kind == DataKind::indentation_features ? "value"
+           : kind == DataKind::hardness_depth       ? "hardness_GPa"
+                                                    : "force_mN";
   }
 
   std::string DataSet::kind_name() const
   {
-    return kind == DataKind::tensile          ? "tensile"
-           : kind == DataKind::pileup_profile ? "pileup_profile"
-                                              : "load_penetration";
+    return kind == DataKind::tensile                ? "tensile"
+           : kind == DataKind::pileup_profile       ? "pileup_profile"
+           : kind == DataKind::indentation_features ? "indentation_features"
+           : kind == DataKind::hardness_depth       ? "hardness_depth"
+                                                    : "load_penetration";
   }
 
   std::string DataSet::units() const
   {
+    if (kind == DataKind::indentation_features)
+      {
+        std::string text = "feature";
+        for (std::size_t k = 0; k < features.size(); ++k)
+          text += " " + std::to_string(k) + " = " + feature_label(features[k]);
+        return text + "; value in the feature's unit";
+      }
     return kind == DataKind::tensile          ? "log strain, true stress GPa"
            : kind == DataKind::pileup_profile ? "radius um, height um"
+           : kind == DataKind::hardness_depth ? "depth um, hardness GPa"
                                               : "depth um, force mN";
   }
 

@@ -12,6 +12,8 @@
 //     - {kind: load_penetration, file: measured/ph.csv, branch: unloading, weight: 0.5}
 //     - {kind: tensile, file: measured/tensile.csv, case: tensile.yaml}
 //     - {kind: pileup_profile, file: measured/afm_line.csv}
+//     - {kind: indentation_features, file: measured/tests.csv}    # C, dP/dh, Wp/Wt per test
+//     - {kind: hardness_depth, file: measured/csm.csv}            # needs partial unloads
 //   solver: {max_iterations: 30, finite_difference_step: 1.0e-3}
 //
 // Every parameter is a `number` key of the case-file schema (docs/case-file-reference.md); the
@@ -45,9 +47,19 @@ namespace indentsim::calibration
 
   enum class DataKind
   {
-    load_penetration, // force [mN] against depth [um], one branch of the base case's curve
-    tensile,          // true stress [GPa] against log strain, of its own tensile case
-    pileup_profile    // height [um] against radius [um] of the imprint after unloading
+    load_penetration,     // force [mN] against depth [um], one branch of the base case's curve
+    tensile,              // true stress [GPa] against log strain, of its own tensile case
+    pileup_profile,       // height [um] against radius [um] of the imprint after unloading
+    indentation_features, // C [GPa], S [mN/um], W_p/W_t per test (IndentationFeatures.h)
+    hardness_depth        // Oliver-Pharr hardness [GPa] against depth [um] (partial unloads)
+  };
+
+  // The scalar features of a load-penetration curve with unloading (IndentationFeatures.h).
+  enum class Feature
+  {
+    loading_curvature,   // C of P = C h^2 [GPa]
+    unloading_stiffness, // S = dP/dh at h_max [mN/um]
+    plastic_work_ratio   // W_p/W_t [-]
   };
 
   enum class Branch
@@ -59,24 +71,33 @@ namespace indentsim::calibration
   // A measured curve resampled onto the points where the simulation is compared with it.
   struct DataSet
   {
-    DataKind     kind = DataKind::load_penetration;
-    Branch       branch = Branch::loading; // load_penetration only
-    std::string  file;                     // absolute
-    std::string  case_file;                // the case that simulates it (absolute)
-    double       weight = 1.;
-    double       azimuth_deg = 0.; // pileup_profile: the simulated profile's nearest azimuth
-    unsigned int points = 40;      // at most this many comparison points (CurveData.h)
-    std::string  label;            // "data[0] load_penetration loading (ph.csv)"
-    int          line = -1;        // 0-based line of the entry in the calibration file
+    DataKind    kind = DataKind::load_penetration;
+    Branch      branch = Branch::loading; // load_penetration only
+    std::string file;                     // absolute
+    std::string case_file;                // the case that simulates it (absolute)
+    double      weight = 1.;
+    double      azimuth_deg = 0.; // pileup_profile: the simulated profile's nearest azimuth
+    // indentation_features: the features compared (in this order within each test), and the
+    // factor on the measured stiffness (a Berkovich S brought to the equivalent cone's).
+    std::vector<Feature> features;
+    double               stiffness_scale = 1.;
+    unsigned int         points = 40; // at most this many comparison points (CurveData.h)
+    std::string          label;       // "data[0] load_penetration loading (ph.csv)"
+    int                  line = -1;   // 0-based line of the entry in the calibration file
 
     std::vector<double> x; // the comparison points: depth [um], log strain or radius [um]
     // The measured abscissae averaged into each comparison point (CurveData.h).
     std::vector<std::vector<double>> group_x;
     std::vector<double> measured;   // the measured curve there: force [mN] or stress [GPa]
     double              scale = 1.; // max |measured|: residuals are relative to it
+    // indentation_features: each point's own scale (its feature's mean measured |value|),
+    // replacing `scale`.
+    std::vector<double> point_scale;
+    double scale_at(std::size_t i) const { return point_scale.empty() ? scale : point_scale[i]; }
 
-    std::string x_name() const; // "depth_um" | "log_strain" | "r_um"
-    std::string y_name() const; // "force_mN" | "true_stress_GPa" | "height_um"
+    std::string x_name() const; // "depth_um" | "log_strain" | "r_um" | "feature"
+    // "force_mN" | "true_stress_GPa" | "height_um" | "value" | "hardness_GPa"
+    std::string y_name() const;
     std::string kind_name() const;
     std::string units() const; // of the comparison points and values, for files' headers
   };

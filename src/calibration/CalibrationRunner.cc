@@ -4,6 +4,7 @@
 #include "calibration/CurveData.h"
 #include "calibration/FitStatistics.h"
 #include "calibration/ForwardRuns.h"
+#include "calibration/IndentationFeatures.h"
 #include "calibration/LeastSquaresFit.h"
 #include "io/JsonText.h"
 #include "io/Version.h"
@@ -31,9 +32,15 @@ namespace indentsim::calibration
     {
       std::set<std::string> have;
       for (const DataSet &d : c.data)
-        have.insert(d.kind != DataKind::load_penetration ? d.kind_name()
-                    : d.branch == Branch::loading        ? "loading"
-                                                         : "unloading");
+        {
+          have.insert(d.kind != DataKind::load_penetration ? d.kind_name()
+                      : d.branch == Branch::loading        ? "loading"
+                                                           : "unloading");
+          // S and W_p/W_t come from the unloading.
+          if (d.kind == DataKind::indentation_features &&
+              (d.features.size() > 1 || d.features.front() != Feature::loading_curvature))
+            have.insert("unloading");
+        }
       std::vector<std::string> add;
       if (!have.count("unloading"))
         add.push_back("the unloading branch of the curve (kind: load_penetration, branch: "
@@ -132,15 +139,25 @@ namespace indentsim::calibration
           for (std::size_t i = 0; i < d.x.size(); ++i)
             sum += fit.residuals[offset + i] * fit.residuals[offset + i];
           offset += d.x.size();
-          // sum = w * mean square relative misfit.
+          // sum = w * mean square relative misfit; features have no common unit.
+          const bool   features = d.kind == DataKind::indentation_features;
+          const double rms_relative = std::sqrt(sum / d.weight);
           out << (k == 0 ? "\n" : ",\n") << "    {\"label\": " << json_string(d.label)
               << ", \"kind\": " << json_string(d.kind_name())
               << ", \"file\": " << json_string(d.file) << ", \"weight\": " << json_number(d.weight)
               << ", \"points\": " << d.x.size()
-              << ", \"rms_relative_misfit\": " << json_number(std::sqrt(sum / d.weight))
-              << ", \"rms_misfit\": " << json_number(std::sqrt(sum / d.weight) * d.scale)
-              << ", \"misfit_unit\": " << json_string(d.y_name().substr(d.y_name().rfind('_') + 1))
-              << ", \"curve\": " << json_string("fit_data" + std::to_string(k) + ".csv") << "}";
+              << ", \"rms_relative_misfit\": " << json_number(rms_relative)
+              << ", \"rms_misfit\": " << json_number(features ? NAN : rms_relative * d.scale)
+              << ", \"misfit_unit\": "
+              << json_string(features ? "-" : d.y_name().substr(d.y_name().rfind('_') + 1));
+          if (features)
+            {
+              out << ", \"features\": [";
+              for (std::size_t f = 0; f < d.features.size(); ++f)
+                out << (f == 0 ? "" : ", ") << json_string(feature_label(d.features[f]));
+              out << "]";
+            }
+          out << ", \"curve\": " << json_string("fit_data" + std::to_string(k) + ".csv") << "}";
         }
       out << "\n  ],\n  \"initial_cost\": " << json_number(fit.initial_cost)
           << ",\n  \"cost\": " << json_number(fit.cost) << ",\n  \"iterations\": " << fit.iterations
@@ -164,8 +181,19 @@ namespace indentsim::calibration
         << c.data.size() << " data set(s), " << c.forward_cases().size()
         << " forward case(s) per point; output " << c.output_directory << "\n";
     for (const DataSet &d : c.data)
-      out << "  " << d.label << ": " << d.x.size() << " points from " << d.x.front() << " to "
-          << d.x.back() << ", weight " << d.weight << "\n";
+      {
+        out << "  " << d.label << ": " << d.x.size();
+        if (d.kind == DataKind::indentation_features)
+          {
+            out << " values (" << d.x.size() / d.features.size() << " tests:";
+            for (const Feature f : d.features)
+              out << " " << feature_name(f);
+            out << ")";
+          }
+        else
+          out << " points from " << d.x.front() << " to " << d.x.back();
+        out << ", weight " << d.weight << "\n";
+      }
     out << std::flush;
 
     ForwardRuns   runs(c, settings, log);
@@ -205,6 +233,10 @@ namespace indentsim::calibration
                                  "(widen the bounds if the physics allows)");
     if (!fit.converged)
       warnings.push_back("the minimiser did not converge: " + fit.termination);
+    if (runs.runs_failed() > 0)
+      warnings.push_back(std::to_string(runs.runs_failed()) +
+                         " forward run(s) failed and the steps through them were rejected; "
+                         "forward_runs.log names each with its last lines");
 
     const auto   at_start = model.simulated(start), at_fit = model.simulated(fit.x);
     const double wall_time =

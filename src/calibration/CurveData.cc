@@ -4,6 +4,8 @@
 
 #include "io/LinearInterpolation.h"
 
+#include "calibration/IndentationFeatures.h"
+#include "calibration/NumberTable.h"
 #include "case/OutputDirectory.h"
 #include "io/CsvTable.h"
 #include "io/LoadCurveCsv.h"
@@ -26,69 +28,6 @@ namespace indentsim::calibration
       out << value;
       return out.str();
     }
-
-    // A CSV whose columns are found by the start of their names and read as numbers; every
-    // error names the file, the line and the column.
-    class NumberTable
-    {
-    public:
-      explicit NumberTable(const std::string &path)
-        : path_(path)
-      {
-        try
-          {
-            csv_ = io::read_csv_table(path);
-          }
-        catch (const std::invalid_argument &error)
-          {
-            throw std::invalid_argument(path + ": " + error.what());
-          }
-      }
-
-      std::size_t column(std::initializer_list<const char *> prefixes,
-                         const std::string                  &what) const
-      {
-        for (const char *prefix : prefixes)
-          for (std::size_t c = 0; c < csv_.header.size(); ++c)
-            if (io::lowered(csv_.header[c]).rfind(prefix, 0) == 0)
-              return c;
-        throw std::invalid_argument(path_ + ": no " + what + " column in the header '" +
-                                    io::join_fields(csv_.header) + "'");
-      }
-
-      // The factor of the unit in column c's name (`factor_of` returns 0 for an unknown one).
-      double unit_factor(const std::size_t  c, double (*factor_of)(const std::string &),
-                         const std::string &spellings) const
-      {
-        const double factor = factor_of(io::unit_in_name(csv_.header[c]));
-        if (factor == 0.)
-          throw std::invalid_argument(path_ + ": column '" + csv_.header[c] +
-                                      "': no known unit in the name; write it as " + spellings);
-        return factor;
-      }
-
-      std::size_t        rows() const { return csv_.rows.size(); }
-      const std::string &text(const std::size_t r, const std::size_t c) const
-      {
-        if (c >= csv_.rows[r].size())
-          throw std::invalid_argument(path_ + ", " + csv_.row_name(r) + ": no value in column '" +
-                                      csv_.header[c] + "'");
-        return csv_.rows[r][c];
-      }
-      double number(const std::size_t r, const std::size_t c) const
-      {
-        const auto value = io::parse_finite_number(text(r, c));
-        if (!value)
-          throw std::invalid_argument(path_ + ", " + csv_.row_name(r) + ", column '" +
-                                      csv_.header[c] + "': '" + text(r, c) +
-                                      "' is not a finite number");
-        return *value;
-      }
-
-    private:
-      std::string  path_;
-      io::CsvTable csv_;
-    };
 
     double strain_factor(const std::string &unit)
     {
@@ -134,6 +73,27 @@ namespace indentsim::calibration
         {
           x.push_back(std::abs(table.number(r, radius) * to_um_r));
           y.push_back(table.number(r, height) * to_um_h);
+        }
+      return sorted_curve(x, y);
+    }
+
+    // A hardness-depth profile: the first column named depth*, displacement* or h_* with its
+    // length unit (um, nm, mm) and the first named hardness* with its stress unit (GPa, MPa):
+    // a measured one (continuous stiffness measurement) or a run's hardness_depth.csv.
+    SampledCurve read_hardness_profile(const std::string &path)
+    {
+      const NumberTable table(path);
+      const std::size_t depth = table.column({"depth", "displacement", "h_", "h ("},
+                                             "depth (depth_nm, depth_um, displacement (nm))");
+      const std::size_t hardness = table.column({"hardness"}, "hardness (hardness_GPa, H_MPa)");
+      const double      to_um = table.unit_factor(depth, io::length_factor, "depth_um or depth_nm");
+      const double      to_GPa =
+          table.unit_factor(hardness, io::stress_factor, "hardness_GPa or hardness_MPa");
+      std::vector<double> x, y;
+      for (std::size_t r = 0; r < table.rows(); ++r)
+        {
+          x.push_back(table.number(r, depth) * to_um);
+          y.push_back(table.number(r, hardness) * to_GPa);
         }
       return sorted_curve(x, y);
     }
@@ -246,6 +206,8 @@ namespace indentsim::calibration
 
   void read_measured(DataSet &data_set, const io::Case &simulated_case, const std::string &where)
   {
+    if (data_set.kind == DataKind::indentation_features)
+      return read_measured_features(data_set, simulated_case, where);
     const std::string what = where + ": file " + data_set.file;
     SampledCurve      measured;
     double            from = 0., to = 0.;
@@ -292,6 +254,27 @@ namespace indentsim::calibration
             simulated_range = "r from 0 to " + number_text(outer) + " um (the specimen's radius)";
             to = std::min(measured.x.empty() ? 0. : measured.x.back(), outer);
           }
+        else if (data_set.kind == DataKind::hardness_depth)
+          {
+            // The simulated profile: a point at every multiple of partial_unloads.every below
+            // the maximum depth.
+            const io::PartialUnloads &partial = simulated_case.loading.partial_unloads;
+            if (!partial.enabled())
+              throw CalibrationFileError(where +
+                                         ": kind: hardness_depth needs partial unloads, "
+                                         "but the case " +
+                                         data_set.case_file +
+                                         " has none (loading.partial_unloads.every: 0)");
+            measured = read_hardness_profile(data_set.file);
+            const double max_depth = simulated_case.loading.max_depth;
+            from = partial.every;
+            to = partial.every * std::ceil(max_depth / partial.every - 1. - 1e-9);
+            simulated_range = "depths " + number_text(from) + " to " + number_text(to) +
+                              " um (the partial unloads, loading.partial_unloads.every " +
+                              number_text(partial.every) + " um)";
+            if (!measured.x.empty())
+              to = std::min(to, measured.x.back());
+          }
         else
           {
             measured = read_stress_strain(data_set.file);
@@ -307,7 +290,7 @@ namespace indentsim::calibration
         throw CalibrationFileError(where + ": " + error.what());
       }
     // Loading and tensile curves from above 0 (the origin says nothing), unloading from the
-    // shallowest measured unloading point.
+    // shallowest measured unloading point, hardness from the first partial unload.
     const bool from_origin =
         data_set.kind == DataKind::tensile ||
         (data_set.kind == DataKind::load_penetration && data_set.branch == Branch::loading);
@@ -335,6 +318,8 @@ namespace indentsim::calibration
 
   std::vector<double> simulated_values(const DataSet &data_set, const std::string &run_directory)
   {
+    if (data_set.kind == DataKind::indentation_features)
+      return simulated_features(data_set, run_directory);
     SampledCurve simulated;
     double       end = 0.;
     if (data_set.kind == DataKind::load_penetration)
@@ -354,6 +339,17 @@ namespace indentsim::calibration
                 simulated.y.insert(simulated.y.begin() + 1, 0.);
               }
           }
+      }
+    else if (data_set.kind == DataKind::hardness_depth)
+      {
+        simulated =
+            read_hardness_profile(run_directory + "/" + io::output_files::hardness_depth_csv);
+        end = simulated.x.empty() ? 0. : simulated.x.back();
+        if (!simulated.x.empty() && simulated.x.front() > data_set.x.front() * (1. + 1e-9))
+          throw std::runtime_error(run_directory + ": the simulated hardness starts at " +
+                                   number_text(simulated.x.front()) +
+                                   " um, after the first comparison point " +
+                                   number_text(data_set.x.front()));
       }
     else if (data_set.kind == DataKind::pileup_profile)
       {

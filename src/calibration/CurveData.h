@@ -12,7 +12,12 @@
 //   load_penetration, unloading: from the shallowest measured unloading point to min(measured
 //     maximum depth, loading.max_depth); shallower than the depth at which the simulated unloading
 //     ends, the simulated force is 0 (the tip has left the surface);
-//   tensile: log strains above 0 up to min(largest measured strain, log(1 + loading.max_strain)).
+//   tensile: log strains above 0 up to min(largest measured strain, log(1 + loading.max_strain));
+//   hardness_depth: from the first partial unload's depth (loading.partial_unloads.every) to the
+//     smaller of the last one's and the deepest measured point; the simulated hardness is the
+//     Oliver-Pharr hardness of the run's partial unloads (hardness_depth.csv), linear between them.
+// indentation_features are scalars per test, not curves: IndentationFeatures.h reads and
+// simulates them.
 // The simulated value of a comparison point is the mean of the simulated curve (interpolated
 // linearly) over the group's measured abscissae, so that a curved curve is compared without the
 // bias of its mean abscissa. Fewer than 3 measured

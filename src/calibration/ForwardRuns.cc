@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <stdexcept>
 
 namespace indentsim::calibration
 {
@@ -136,6 +137,14 @@ namespace indentsim::calibration
       }
     for (std::size_t c = 0; c < batch.cases.size(); ++c)
       {
+        // A process that never ran (no executable, a launcher not found) is no numerical
+        // failure the minimiser could step around: the calibration stops.
+        const int exit_code = study::case_exit_code(batch.cases[c]);
+        if (exit_code == study::exit_not_found || exit_code == study::exit_cannot_execute)
+          throw std::runtime_error(
+              "the forward case " + batch.cases[c].directory + " could not be started (exit code " +
+              std::to_string(exit_code) +
+              "; its console.log says why): " + "check the program and the --launcher template");
         const bool finished = study::case_state(batch.cases[c]) == study::CaseState::finished;
         if (before[c] == study::CaseState::finished)
           ++reused_;

@@ -38,7 +38,8 @@ namespace indentsim::calibration
                 std::ostream &log);
 
     // For each point, the run directory of each forward case, or nullopt for a point whose
-    // cases did not all finish. Throws study::StudyFileError when interrupted (SIGINT/SIGTERM).
+    // cases did not all finish. Throws study::StudyFileError when interrupted (SIGINT/SIGTERM),
+    // std::runtime_error when a case's process could not be started at all (exit code 126/127).
     std::vector<std::optional<std::vector<std::string>>> run(const std::vector<Point> &points);
 
     unsigned int runs_computed() const { return computed_; } // processes that ran and finished

@@ -29,9 +29,9 @@ namespace indentsim::calibration
     for (std::size_t d = 0; d < calibration_.data.size(); ++d)
       {
         const DataSet &data = calibration_.data[d];
-        const double   factor = std::sqrt(data.weight / double(data.x.size())) / data.scale;
+        const double   factor = std::sqrt(data.weight / double(data.x.size()));
         for (std::size_t i = 0; i < data.x.size(); ++i)
-          r.push_back(factor * (simulated[d][i] - data.measured[i]));
+          r.push_back(factor * (simulated[d][i] - data.measured[i]) / data.scale_at(i));
       }
     return r;
   }
@@ -56,9 +56,10 @@ namespace indentsim::calibration
                   simulated_values(d, of_point->at(calibration_.forward_case_of(d))));
             result.emplace_back(residuals_of(simulated));
           }
-        catch (const std::exception &)
+        catch (const std::exception &error)
           {
             result.emplace_back(std::nullopt); // a curve cut short: a failed point
+            last_failure_ = error.what();
           }
       }
     return result;
@@ -209,9 +210,11 @@ namespace indentsim::calibration
     for (std::size_t j = 0; j < p; ++j)
       result.x[j] = calibration.parameters[j].start;
     if (!model.residuals({result.x}).front())
-      throw std::runtime_error("the forward runs at the start point failed; the console output "
-                               "of each is in its directory under " +
-                               calibration.output_directory + "/forward/cases/");
+      throw std::runtime_error(
+          "the forward runs at the start point failed" +
+          (model.last_failure().empty() ? std::string() : " (" + model.last_failure() + ")") +
+          "; the console output of each is in its directory under " + calibration.output_directory +
+          "/forward/cases/");
 
     ceres::Problem problem;
     problem.AddResidualBlock(new ForwardModelCost(calibration, model), nullptr, result.x.data());

@@ -7,7 +7,8 @@
 // measured values y_i and the scale s_d = max |y_i|,
 //   r_i = sqrt(w_d / n_d) (y_sim(x_i) - y_i) / s_d,
 // so that each data set adds w_d times its mean square relative misfit, whatever its number of
-// points and its unit. Units: those of the parameters.
+// points and its unit; indentation features take each feature's mean measured |value| for s_d.
+// Units: those of the parameters.
 #pragma once
 
 #include "calibration/CalibrationFile.h"
@@ -37,10 +38,15 @@ namespace indentsim::calibration
     // Residuals of simulated values (per data set) as defined above.
     std::vector<double> residuals_of(const std::vector<std::vector<double>> &simulated) const;
 
+    // Why the last point whose runs finished gave no residuals (a curve cut short, a feature
+    // that could not be computed); empty if none failed so.
+    const std::string &last_failure() const { return last_failure_; }
+
   private:
     const Calibration &calibration_;
     ForwardRuns       &runs_;
     std::size_t        n_residuals_ = 0;
+    std::string        last_failure_;
   };
 
   struct IterationRecord

@@ -245,6 +245,18 @@ namespace indentsim::study
     return completed ? CaseState::unfinished : CaseState::failed;
   }
 
+  int case_exit_code(const StudyCase &study_case)
+  {
+    const fs::path  mark = fs::path(study_case.directory) / study_files::case_mark;
+    std::error_code error;
+    if (!fs::exists(mark, error))
+      return -1;
+    const std::string text = read_text(mark);
+    const std::string key = "\"exit_code\": ";
+    const auto        at = text.find(key);
+    return at == std::string::npos ? -1 : std::atoi(text.c_str() + at + key.size());
+  }
+
   StudyRunner::StudyRunner(const Study &study, const StudyRunSettings &settings, std::ostream &out)
     : study_(study)
     , settings_(settings)
@@ -256,7 +268,7 @@ namespace indentsim::study
                      settings_.ranks); // refuses a template without {command}
     if (settings_.executable.empty())
       settings_.executable = self_executable();
-    if (settings_.report_script.empty())
+    if (settings_.report_script.empty() && !settings_.batch) // a batch writes no report
       settings_.report_script = indentsim::output::python_script("study_report.py");
     for (const auto &name : settings_.only)
       {

@@ -74,6 +74,13 @@ namespace indentsim::study
   // The state of a case from the files in its directory.
   CaseState case_state(const StudyCase &study_case);
 
+  // The exit code a failed or finished case's process ended with (its study_case.json), or -1
+  // if it has none (not run, unfinished).
+  int case_exit_code(const StudyCase &study_case);
+  // Exit codes of a process that never ran (the shell's: not executable, not found).
+  inline constexpr int exit_cannot_execute = 126;
+  inline constexpr int exit_not_found = 127;
+
   // Exit codes of StudyRunner::run().
   inline constexpr int exit_ok = 0;
   inline constexpr int exit_case_failed = 3;   // at least one case failed (the others ran)

@@ -6,6 +6,7 @@
 #include "calibration/CalibrationFile.h"
 #include "calibration/CurveData.h"
 #include "calibration/FitStatistics.h"
+#include "calibration/IndentationFeatures.h"
 #include "study/StudyRunner.h"
 
 #include <gtest/gtest.h>
@@ -35,6 +36,23 @@ namespace
       curve << 1000 - 20 * i << "," << 30. * (1. - 0.2 * i) << "\n";
     std::ofstream deep(dir / "deep.csv");
     deep << "depth_um,force_mN\n2,10\n2.5,20\n3,30\n";
+    // Two tests' features in other units than the program's, at depths around the case's 1 um.
+    std::ofstream features(dir / "features.csv");
+    features << "# two tests\nTest,C_MPa,S (uN/nm),plastic_work_ratio,h_max_nm\n"
+             << "1,30000,110,0.50,1000\n2,32000,100,0.54,950\n";
+    std::ofstream(dir / "shallow.csv") << "C (GPa),Wp/Wt,hm (um)\n30,0.5,0.8\n"; // 20 % short
+    std::ofstream(dir / "ratio.csv") << "Wp/Wt\n1.2\n";
+    // A continuous-stiffness profile in nm and MPa, H = 2 + h GPa, from 100 to 1000 nm.
+    std::ofstream csm(dir / "csm.csv");
+    csm << "Displacement (nm),Hardness (MPa)\n";
+    for (int i = 1; i <= 10; ++i)
+      csm << 100 * i << "," << 1000. * (2. + 0.1 * i) << "\n";
+    // The forward case with a partial unload every 0.25 um.
+    std::string       with_partial_unloads = test_files::read_text(dir / "cone_j2.yaml");
+    const std::string loading = "unload: true}";
+    with_partial_unloads.replace(with_partial_unloads.find(loading), loading.size(),
+                                 "unload: true, partial_unloads: {every: 0.25}}");
+    std::ofstream(dir / "cone_csm.yaml") << with_partial_unloads;
     return dir;
   }
 
@@ -126,9 +144,12 @@ TEST(CalibrationFile, BadConfigurationsAreRefusedBeforeAnyRunNamingTheKey)
   expect_refused(base + good_parameters + "data:\n  - {kind: load_penetration, file: deep.csv}\n",
                  {"data[0]", "deep.csv", "0 measured point(s) within the range",
                   "0 to 1 um (loading.max_depth)", "spans 2 to 3"});
-  expect_refused(base + good_parameters + "data:\n  - {kind: hardness_depth, file: curve.csv}\n",
-                 {"data[0].kind = hardness_depth", "not available yet",
-                  "load_penetration, tensile, pileup_profile"});
+  expect_refused(base + good_parameters + "data:\n  - {kind: hardness, file: curve.csv}\n",
+                 {"data[0].kind = hardness", "allowed: load_penetration, tensile, pileup_profile, "
+                                             "indentation_features, hardness_depth"});
+  expect_refused(base + good_parameters + "data:\n  - {kind: hardness_depth, file: csm.csv}\n",
+                 {"data[0]", "kind: hardness_depth needs partial unloads", "cone_j2.yaml",
+                  "loading.partial_unloads.every: 0"});
   expect_refused(base + good_parameters +
                      "data:\n  - {kind: load_penetration, file: curve.csv, azimuth_deg: 10}\n",
                  {"data[0].azimuth_deg", "only for kind: pileup_profile"});
@@ -142,8 +163,116 @@ TEST(CalibrationFile, BadConfigurationsAreRefusedBeforeAnyRunNamingTheKey)
                  {"data[0].branch = up", "loading, unloading"});
   expect_refused("base_case: missing.yaml\n" + good_parameters + data,
                  {"base_case = missing.yaml", "no file"});
+  const std::string features = "data:\n  - {kind: indentation_features, file: ";
+  expect_refused(base + good_parameters + features + "curve.csv}\n",
+                 {"data[0]", "curve.csv", "no feature column", "C (GPa), dP/dh (N/m) or Wp/Wt"});
+  expect_refused(base + good_parameters + features + "features.csv, features: [C, H]}\n",
+                 {"data[0].features: H", "allowed: C (loading_curvature)"});
+  expect_refused(base + good_parameters + features + "features.csv, points: 5}\n",
+                 {"data[0].points", "not for kind: indentation_features"});
+  expect_refused(base + good_parameters + features + "features.csv, stiffness_scale: -1}\n",
+                 {"data[0].stiffness_scale = -1", "must be > 0"});
+  expect_refused(base + good_parameters +
+                     "data:\n  - {kind: load_penetration, file: curve.csv, features: [C]}\n",
+                 {"data[0].features", "only for kind: indentation_features"});
   expect_refused(base + good_parameters + data + "solver: {max_iterations: 0}\n",
                  {"solver.max_iterations = 0", "between 1 and 1000"});
+}
+
+// The features of a curve with a closed form: loading P = 30 h^2 to 1 um (C = 30 GPa, W_t = 10
+// mN um), unloading P = 30 ((h - 0.6) / 0.4)^1.5 (S = 30 * 1.5 / 0.4 = 112.5 mN/um, W_e =
+// 30 * 0.4 / 2.5 = 4.8 mN um, W_p/W_t = 0.52); a partial unload on the way is left out.
+TEST(IndentationFeatures, OfACurveAgainstTheirClosedForms)
+{
+  io::LoadCurve curve;
+  curve.source = "closed form";
+  const auto add = [&](const double h, const double P, const char *segment) {
+    curve.depth.push_back(h), curve.force.push_back(P), curve.segment.push_back(segment);
+  };
+  for (int i = 0; i <= 400; ++i)
+    {
+      const double h = 0.0025 * i;
+      add(h, 30. * h * h, "load");
+      if (i == 200) // a partial unload to 80 % of the force at 0.5 um, and the reload
+        {
+          add(0.49, 0.8 * 7.5, "partial_unload");
+          add(0.5, 7.5, "reload");
+        }
+    }
+  for (int i = 1; i <= 400; ++i)
+    {
+      const double h = 1. - 0.001 * i;
+      add(h, 30. * std::pow((h - 0.6) / 0.4, 1.5), "unload");
+    }
+  const CurveFeatures f = curve_features(curve);
+  EXPECT_NEAR(f.max_depth, 1., 1e-12);
+  EXPECT_NEAR(f.value[0], 30., 1e-9);
+  EXPECT_NEAR(f.value[1], 112.5, 112.5 * 1e-6);
+  EXPECT_NEAR(f.value[2], 0.52, 1e-4); // trapezoid rule on steps of 2.5 and 1 nm
+}
+
+// A table in MPa, uN/nm and nm: converted, S brought to the case's depth (1 um) and scaled.
+TEST(IndentationFeatures, MeasuredTableInItsUnitsScaledToTheSimulatedDepth)
+{
+  const fs::path    dir = calibration_folder();
+  const Calibration c = parse_calibration_yaml(
+      "base_case: cone_j2.yaml\n" + good_parameters +
+          "data:\n  - {kind: indentation_features, file: features.csv, stiffness_scale: 0.5}\n",
+      (dir / "calibrate.yaml").string());
+  const DataSet &d = c.data.at(0);
+  ASSERT_EQ(d.features.size(), 3u);
+  EXPECT_EQ(d.features[1], Feature::unloading_stiffness);
+  ASSERT_EQ(d.measured.size(), 6u);
+  const std::vector<double> expected = {30., 110. * 0.5, 0.50, 32., 100. * 0.5 / 0.95, 0.54};
+  for (std::size_t i = 0; i < 6; ++i)
+    {
+      EXPECT_EQ(d.x[i], double(i % 3));
+      EXPECT_NEAR(d.measured[i], expected[i], 1e-9) << i;
+      EXPECT_NEAR(d.scale_at(i), (expected[i % 3] + expected[i % 3 + 3]) / 2., 1e-9) << i;
+    }
+
+  // A chosen subset; a test 20 % shallower than the case is refused.
+  const Calibration subset = parse_calibration_yaml(
+      "base_case: cone_j2.yaml\n" + good_parameters +
+          "data:\n  - {kind: indentation_features, file: features.csv, features: [Wp/Wt, C]}\n",
+      (dir / "calibrate.yaml").string());
+  EXPECT_EQ(subset.data[0].features,
+            (std::vector<Feature>{Feature::loading_curvature, Feature::plastic_work_ratio}));
+  EXPECT_EQ(subset.data[0].measured.size(), 4u);
+  expect_refused("base_case: cone_j2.yaml\n" + good_parameters +
+                     "data:\n  - {kind: indentation_features, file: shallow.csv}\n",
+                 {"data[0]", "shallow.csv", "line 2", "depth 0.8 um", "within 10 %",
+                  "loading.max_depth 1 um"});
+  expect_refused("base_case: cone_j2.yaml\n" + good_parameters +
+                     "data:\n  - {kind: indentation_features, file: ratio.csv}\n",
+                 {"ratio.csv", "column 'Wp/Wt'", "1.2", "not a ratio between 0 and 1"});
+}
+
+// A measured hardness profile against the partial unloads at 0.25, 0.5 and 0.75 um: the
+// measured points from 0.25 to 0.75 um, and a run's profile interpolated at them.
+TEST(CurveData, HardnessProfilesBetweenThePartialUnloads)
+{
+  const fs::path    dir = calibration_folder();
+  const Calibration c =
+      parse_calibration_yaml("base_case: cone_csm.yaml\n" + good_parameters +
+                                 "data:\n  - {kind: hardness_depth, file: csm.csv}\n",
+                             (dir / "calibrate.yaml").string());
+  const DataSet &d = c.data.at(0);
+  EXPECT_EQ(d.x_name(), "depth_um");
+  ASSERT_EQ(d.x.size(), 5u);
+  for (std::size_t i = 0; i < 5; ++i)
+    EXPECT_NEAR(d.x[i], 0.3 + 0.1 * double(i), 1e-12) << i;
+  EXPECT_NEAR(d.measured.front(), 2.3, 1e-12);
+  EXPECT_NEAR(d.measured.back(), 2.7, 1e-12);
+  const fs::path run = dir / "run";
+  fs::create_directories(run);
+  std::ofstream(run / "hardness_depth.csv")
+      << "depth_um,force_mN,hardness_GPa\n0.25,1,3.0\n0.5,4,2.0\n0.75,9,2.5\n";
+  const std::vector<double> simulated = simulated_values(d, run.string());
+  const std::vector<double> expected = {2.8, 2.4, 2.0, 2.2, 2.4};
+  ASSERT_EQ(simulated.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    EXPECT_NEAR(simulated[i], expected[i], 1e-12) << i;
 }
 
 // The statistics of y = a + b t fitted to 8 points: the residuals r_i = a + b t_i - y_i have

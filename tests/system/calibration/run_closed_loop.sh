@@ -13,7 +13,10 @@
 #      probability of 5-10 % for true 95 % intervals, two draws of five with 2-8 %;
 #   5. the curve of one noisy draw alone leaves the two not identifiable (the warning names both);
 #      with a tensile curve added (tensile_j2.yaml at the true values) they are identifiable,
-#      within 2 % of the truth and inside their 95 % intervals.
+#      within 2 % of the truth and inside their 95 % intervals;
+#   6. the scalar features of the true curve (C = P/h^2 fitted here to the loading branch, S and
+#      Wp/Wt from the run's Oliver-Pharr analysis, S written in N/m; 40 unloading points) in
+#      place of the curve give both parameters back within 0.5 %.
 # Usage: run_closed_loop.sh INDENTSIM_EXECUTABLE SCRATCH_DIRECTORY
 # Units: lengths um, forces mN, stresses GPa.
 set -euo pipefail
@@ -115,4 +118,34 @@ grep -A2 "^Fitted" "$out/both.txt"
 recovered "$out/both/calibration.json" 0.02
 [[ $(inside "$out/both/calibration.json") -eq 2 ]] \
   || fail "with the tensile curve a 95 % interval misses the true value"
+
+# The same case with 40 unloading points (Oliver-Pharr fits S to those above 0.5 P_max); C by
+# least squares of P = C h^2 over the loading rows (segment load), independently of the
+# program's own fit.
+sed 's/unload: true}/unload: true, unload_points: 40}/' "$here/cone_j2.yaml" \
+  > "$out/cone_features.yaml"
+grep -q "unload_points: 40" "$out/cone_features.yaml" || fail "no unload_points in the case"
+"$indentsim" run "$out/cone_features.yaml" --output "$out/features_truth" \
+  > "$out/features_truth.txt" 2>&1 || { cat "$out/features_truth.txt"; fail "the run failed"; }
+"$python" - "$out/features_truth" "$out/features.csv" <<'PY'
+import csv, json, sys
+rows = list(csv.DictReader(open(sys.argv[1] + "/load_penetration.csv")))
+loading = [(float(r["depth_um"]), float(r["force_mN"])) for r in rows if r["segment"] == "load"]
+C = sum(P * h * h for h, P in loading) / sum(h ** 4 for h, P in loading)
+op = json.load(open(sys.argv[1] + "/oliver_pharr.json"))
+with open(sys.argv[2], "w") as out:
+    out.write("C (GPa),dP/dh (N/m),Wp/Wt,hm (um)\n")
+    out.write(f"{C!r},{op['stiffness_mN_per_um'] * 1e3!r},{op['plastic_work_ratio']!r},"
+              f"{op['max_depth_um']!r}\n")
+PY
+cat "$out/features.csv"
+calibration_file features "$out/features.csv"
+sed -i -e '/kind: load_penetration/d' -e "s#^base_case: .*#base_case: $out/cone_features.yaml#" \
+  "$out/features.yaml"
+echo "  - {kind: indentation_features, file: $out/features.csv}" >> "$out/features.yaml"
+"$indentsim" calibrate "$out/features.yaml" --jobs 2 > "$out/features.txt" 2>&1 \
+  || { cat "$out/features.txt"; fail "the calibration to the features failed"; }
+grep -A2 "^Fitted" "$out/features.txt"
+recovered "$out/features/calibration.json" 0.005
+[[ -s "$out/features/fit_data0.png" ]] || fail "no figure of the features"
 echo "PASS"

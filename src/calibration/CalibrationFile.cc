@@ -23,12 +23,13 @@ namespace indentsim::calibration
 
     const std::vector<std::string> top_keys = {"base_case", "output", "parameters", "data",
                                                "solver"};
-    const std::vector<std::string> bound_keys = {"start", "min", "max"};
-    const std::vector<std::string> data_keys = {"kind",        "file",     "branch",
-                                                "weight",      "case",     "points",
-                                                "azimuth_deg", "features", "stiffness_scale"};
+    const std::vector<std::string> bound_keys = {"start", "min", "max", "step"};
+    const std::vector<std::string> data_keys = {
+        "kind",   "file",        "branch",   "weight",          "case",
+        "points", "azimuth_deg", "features", "stiffness_scale", "range"};
     const std::vector<std::string> solver_keys = {"max_iterations", "finite_difference_step",
-                                                  "function_tolerance", "parameter_tolerance"};
+                                                  "function_tolerance", "parameter_tolerance",
+                                                  "statistics_step"};
     const std::vector<std::string> kinds = {"load_penetration", "tensile", "pileup_profile",
                                             "indentation_features", "hardness_depth"};
 
@@ -176,6 +177,14 @@ namespace indentsim::calibration
               fail(bounds, where + ".start = " + io::format_number(p.start) +
                                ": outside the bounds [" + io::format_number(p.min) + ", " +
                                io::format_number(p.max) + "]");
+            if (const YAML::Node step = bounds["step"]; step.IsDefined())
+              {
+                p.step = number(step, where + ".step");
+                if (!(p.step > 0. && p.step <= 0.5 * (p.max - p.min)))
+                  fail(step, where + ".step = " + step.Scalar() +
+                                 ": must be > 0 and at most half the bounds' width, " +
+                                 io::format_number(0.5 * (p.max - p.min)));
+              }
             for (const Parameter &other : c.parameters)
               if (other.key == p.key)
                 fail(entry.first, where + ": given twice");
@@ -228,6 +237,21 @@ namespace indentsim::calibration
                 d.azimuth_deg = number(azimuth, where + ".azimuth_deg");
               }
             read_feature_keys(entry, where, d);
+            if (const YAML::Node range = entry["range"]; range.IsDefined())
+              {
+                if (d.kind == DataKind::indentation_features)
+                  fail(range, where + ".range: not for kind: indentation_features");
+                if (!range.IsSequence() || range.size() != 2)
+                  fail(range, where + ".range = " + io::node_text(range) +
+                                  ": expected [lo, hi] in the abscissa's unit (depth um, log "
+                                  "strain, radius um)");
+                const double lo = number(range[0], where + ".range[0]"),
+                             hi = number(range[1], where + ".range[1]");
+                if (!(lo < hi))
+                  fail(range, where + ".range = [" + range[0].Scalar() + ", " + range[1].Scalar() +
+                                  "]: must satisfy lo < hi");
+                d.range = std::array<double, 2>{lo, hi};
+              }
             if (const YAML::Node points = entry["points"]; points.IsDefined())
               {
                 if (d.kind == DataKind::indentation_features)
@@ -313,6 +337,8 @@ namespace indentsim::calibration
           s.function_tolerance = in("function_tolerance", 1e-16, 0.1);
         if (node["parameter_tolerance"].IsDefined())
           s.parameter_tolerance = in("parameter_tolerance", 1e-16, 0.1);
+        if (node["statistics_step"].IsDefined())
+          s.statistics_step = in("statistics_step", 1e-6, 0.3);
       }
 
       // Every forward case at the start and with each parameter at each bound goes through the

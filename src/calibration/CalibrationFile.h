@@ -6,7 +6,7 @@
 //   output: results/calibration                          # relative to the working directory
 //   parameters:                                          # numeric keys of the case
 //     material.yield_stress:      {start: 0.25, min: 0.05, max: 1.0}
-//     material.hardening_modulus: {start: 1.0,  min: 0.0,  max: 5.0}
+//     material.hardening_modulus: {start: 1.0,  min: 0.0,  max: 5.0, step: 0.05}
 //   data:
 //     - {kind: load_penetration, file: measured/ph.csv, branch: loading, weight: 1.0}
 //     - {kind: load_penetration, file: measured/ph.csv, branch: unloading, weight: 0.5}
@@ -25,6 +25,8 @@
 
 #include "case/CaseFile.h"
 
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +45,10 @@ namespace indentsim::calibration
     std::string key; // "material.yield_stress"
     std::string unit;
     double      start = 0., min = 0., max = 0.;
+    // The finite-difference step in the key's unit, or 0: solver.finite_difference_step
+    // relative to the value (LeastSquaresFit.h). A forward model whose output moves in small
+    // jumps (contact nodes) needs a step that sees through them.
+    double step = 0.;
   };
 
   enum class DataKind
@@ -82,8 +88,11 @@ namespace indentsim::calibration
     std::vector<Feature> features;
     double               stiffness_scale = 1.;
     unsigned int         points = 40; // at most this many comparison points (CurveData.h)
-    std::string          label;       // "data[0] load_penetration loading (ph.csv)"
-    int                  line = -1;   // 0-based line of the entry in the calibration file
+    // Compare only within [lo, hi] of the abscissa (depth um, log strain, radius um), e.g. the
+    // pile-up beyond the imprint, or a curve without its shallow part.
+    std::optional<std::array<double, 2>> range;
+    std::string                          label; // "data[0] load_penetration loading (ph.csv)"
+    int line = -1;                              // 0-based line of the entry in the calibration file
 
     std::vector<double> x; // the comparison points: depth [um], log strain or radius [um]
     // The measured abscissae averaged into each comparison point (CurveData.h).
@@ -110,6 +119,10 @@ namespace indentsim::calibration
     // Ceres' convergence tolerances (relative change of the cost, and of the parameters).
     double function_tolerance = 1.e-6;
     double parameter_tolerance = 1.e-4;
+    // The step of the central differences of the Jacobian behind the statistics, relative to
+    // max(|x|, 1e-3 (max - min)) (a parameter's own `step` if that is larger): wide enough that
+    // the small jumps of a forward model do not decorrelate the columns (LeastSquaresFit.h).
+    double statistics_step = 0.1;
   };
 
   struct Calibration

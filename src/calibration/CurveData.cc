@@ -34,26 +34,49 @@ namespace indentsim::calibration
       return unit.empty() || unit == "strain" ? 1. : unit == "%" || unit == "percent" ? 0.01 : 0.;
     }
 
+    // A column of a measured curve: the first whose name starts with one of `prefixes`, its
+    // unit (in the name) converted by `factor_of`; `what` and `spellings` for the messages.
+    struct ColumnSpec
+    {
+      std::initializer_list<const char *> prefixes;
+      const char                         *what;
+      double (*factor_of)(const std::string &);
+      const char *spellings;
+    };
+
+    // The curve y(x) of two columns in their units, sorted by x (|x| if `fold_x`).
+    SampledCurve read_curve(const std::string &path, const ColumnSpec &x_column,
+                            const ColumnSpec &y_column, const bool fold_x = false)
+    {
+      const NumberTable   table(path);
+      const std::size_t   cx = table.column(x_column.prefixes, x_column.what);
+      const std::size_t   cy = table.column(y_column.prefixes, y_column.what);
+      const double        to_x = table.unit_factor(cx, x_column.factor_of, x_column.spellings);
+      const double        to_y = table.unit_factor(cy, y_column.factor_of, y_column.spellings);
+      std::vector<double> x, y;
+      for (std::size_t r = 0; r < table.rows(); ++r)
+        {
+          const double value = table.number(r, cx) * to_x;
+          x.push_back(fold_x ? std::abs(value) : value);
+          y.push_back(table.number(r, cy) * to_y);
+        }
+      return sorted_curve(x, y);
+    }
+
     // A measured or simulated stress-strain curve: the first column named log_strain*,
     // true_strain*, strain* or eps* (dimensionless, or in % when the name says so) and the first
     // named true_stress*, stress* or sigma* with its unit (GPa or MPa) in the name.
     SampledCurve read_stress_strain(const std::string &path)
     {
-      const NumberTable table(path);
-      const std::size_t strain = table.column({"log_strain", "true_strain", "strain", "eps"},
-                                              "strain (log_strain, true_strain, strain)");
-      const std::size_t stress = table.column({"true_stress", "stress", "sigma"},
-                                              "stress (stress_GPa, true_stress_MPa, ...)");
-      const double      to_strain = table.unit_factor(strain, strain_factor, "strain or strain_%");
-      const double      to_stress =
-          table.unit_factor(stress, io::stress_factor, "stress_GPa or stress_MPa");
-      std::vector<double> x, y;
-      for (std::size_t r = 0; r < table.rows(); ++r)
-        {
-          x.push_back(table.number(r, strain) * to_strain);
-          y.push_back(table.number(r, stress) * to_stress);
-        }
-      return sorted_curve(x, y);
+      return read_curve(path,
+                        {{"log_strain", "true_strain", "strain", "eps"},
+                         "strain (log_strain, true_strain, strain)",
+                         strain_factor,
+                         "strain or strain_%"},
+                        {{"true_stress", "stress", "sigma"},
+                         "stress (stress_GPa, true_stress_MPa, ...)",
+                         io::stress_factor,
+                         "stress_GPa or stress_MPa"});
     }
 
     // A measured height profile across the residual imprint: the first column named radius*,
@@ -62,19 +85,16 @@ namespace indentsim::calibration
     // profile is taken against |position|.
     SampledCurve read_height_profile(const std::string &path)
     {
-      const NumberTable table(path);
-      const std::size_t radius = table.column({"radius", "r_", "distance", "x_", "position"},
-                                              "radius (radius_um, r_um, x_nm, distance_um)");
-      const std::size_t height = table.column({"height", "z_"}, "height (height_nm, z_um)");
-      const double      to_um_r = table.unit_factor(radius, io::length_factor, "r_um or r_nm");
-      const double to_um_h = table.unit_factor(height, io::length_factor, "height_um or height_nm");
-      std::vector<double> x, y;
-      for (std::size_t r = 0; r < table.rows(); ++r)
-        {
-          x.push_back(std::abs(table.number(r, radius) * to_um_r));
-          y.push_back(table.number(r, height) * to_um_h);
-        }
-      return sorted_curve(x, y);
+      return read_curve(path,
+                        {{"radius", "r_", "distance", "x_", "position"},
+                         "radius (radius_um, r_um, x_nm, distance_um)",
+                         io::length_factor,
+                         "r_um or r_nm"},
+                        {{"height", "z_"},
+                         "height (height_nm, z_um)",
+                         io::length_factor,
+                         "height_um or height_nm"},
+                        true);
     }
 
     // A hardness-depth profile: the first column named depth*, displacement* or h_* with its
@@ -82,20 +102,15 @@ namespace indentsim::calibration
     // a measured one (continuous stiffness measurement) or a run's hardness_depth.csv.
     SampledCurve read_hardness_profile(const std::string &path)
     {
-      const NumberTable table(path);
-      const std::size_t depth = table.column({"depth", "displacement", "h_", "h ("},
-                                             "depth (depth_nm, depth_um, displacement (nm))");
-      const std::size_t hardness = table.column({"hardness"}, "hardness (hardness_GPa, H_MPa)");
-      const double      to_um = table.unit_factor(depth, io::length_factor, "depth_um or depth_nm");
-      const double      to_GPa =
-          table.unit_factor(hardness, io::stress_factor, "hardness_GPa or hardness_MPa");
-      std::vector<double> x, y;
-      for (std::size_t r = 0; r < table.rows(); ++r)
-        {
-          x.push_back(table.number(r, depth) * to_um);
-          y.push_back(table.number(r, hardness) * to_GPa);
-        }
-      return sorted_curve(x, y);
+      return read_curve(path,
+                        {{"depth", "displacement", "h_", "h ("},
+                         "depth (depth_nm, depth_um, displacement (nm))",
+                         io::length_factor,
+                         "depth_um or depth_nm"},
+                        {{"hardness"},
+                         "hardness (hardness_GPa, H_MPa)",
+                         io::stress_factor,
+                         "hardness_GPa or hardness_MPa"});
     }
 
     // The simulated profile after unloading (pileup_profiles.csv of a run, stage `unloaded`)
@@ -291,9 +306,21 @@ namespace indentsim::calibration
       }
     // Loading and tensile curves from above 0 (the origin says nothing), unloading from the
     // shallowest measured unloading point, hardness from the first partial unload.
-    const bool from_origin =
+    bool from_origin =
         data_set.kind == DataKind::tensile ||
         (data_set.kind == DataKind::load_penetration && data_set.branch == Branch::loading);
+    // The user's range narrows the simulated one (both ends included).
+    if (data_set.range)
+      {
+        // Both ends included, whatever the rounding of a unit conversion (700 nm to um).
+        const auto [lo, hi] = *data_set.range;
+        const double slack = 1e-9 * (hi - lo);
+        if (lo - slack >= from)
+          from = lo - slack, from_origin = false;
+        to = std::min(to, hi + slack);
+        simulated_range += ", within range [" + number_text((*data_set.range)[0]) + ", " +
+                           number_text((*data_set.range)[1]) + "]";
+      }
     const Groups points =
         to > from ? binned(measured, from, to, from_origin, data_set.points) : Groups();
     const std::size_t inside = points.means.x.size();

@@ -18,6 +18,7 @@
 //     Oliver-Pharr hardness of the run's partial unloads (hardness_depth.csv), linear between them.
 // indentation_features are scalars per test, not curves: IndentationFeatures.h reads and
 // simulates them.
+// A data set's `range` narrows this range further (both ends included).
 // The simulated value of a comparison point is the mean of the simulated curve (interpolated
 // linearly) over the group's measured abscissae, so that a curved curve is compared without the
 // bias of its mean abscissa. Fewer than 3 measured

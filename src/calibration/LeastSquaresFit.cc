@@ -86,8 +86,10 @@ namespace indentsim::calibration
     for (std::size_t j = 0; j < p; ++j)
       {
         const Parameter &parameter = calibration.parameters[j];
-        step[j] = calibration.solver.finite_difference_step *
-                  std::max(std::abs(x[j]), 1e-3 * (parameter.max - parameter.min));
+        step[j] = parameter.step > 0.
+                      ? parameter.step
+                      : calibration.solver.finite_difference_step *
+                            std::max(std::abs(x[j]), 1e-3 * (parameter.max - parameter.min));
         if (x[j] + step[j] > parameter.max)
           step[j] = -step[j];
         Point shifted = x;
@@ -103,6 +105,51 @@ namespace indentsim::calibration
     for (std::size_t j = 0; j < p; ++j)
       for (std::size_t i = 0; i < m; ++i)
         jacobian[i * p + j] = ((*r[j + 1])[i] - (*r[0])[i]) / step[j];
+    return std::make_pair(*r[0], jacobian);
+  }
+
+  std::optional<std::pair<std::vector<double>, std::vector<double>>>
+  statistics_jacobian(const Calibration &calibration, ResidualModel &model, const Point &x)
+  {
+    const std::size_t  p = x.size();
+    std::vector<Point> points = {x};
+    // Per parameter the two points of its difference, and their distance.
+    std::vector<std::array<std::size_t, 2>> ends(p);
+    std::vector<double>                     span(p);
+    for (std::size_t j = 0; j < p; ++j)
+      {
+        const Parameter &parameter = calibration.parameters[j];
+        const double     h = std::max(
+                parameter.step, calibration.solver.statistics_step *
+                                    std::max(std::abs(x[j]), 1e-3 * (parameter.max - parameter.min)));
+        // Central where both sides lie within the bounds, else one-sided from x toward the
+        // farther bound (clipped to it).
+        const bool   central = x[j] - h >= parameter.min && x[j] + h <= parameter.max;
+        const bool   upward = parameter.max - x[j] >= x[j] - parameter.min;
+        const double below = central ? x[j] - h : upward ? x[j] : std::max(x[j] - h, parameter.min);
+        const double above = central ? x[j] + h : upward ? std::min(x[j] + h, parameter.max) : x[j];
+        // Index 0 of `points` is x itself.
+        const auto point_at = [&](const double value) -> std::size_t {
+          if (value == x[j])
+            return 0;
+          Point shifted = x;
+          shifted[j] = value;
+          points.push_back(shifted);
+          return points.size() - 1;
+        };
+        ends[j][0] = point_at(below);
+        ends[j][1] = point_at(above);
+        span[j] = above - below;
+      }
+    const auto r = model.residuals(points);
+    for (const auto &one : r)
+      if (!one)
+        return std::nullopt;
+    const std::size_t   m = r[0]->size();
+    std::vector<double> jacobian(m * p);
+    for (std::size_t j = 0; j < p; ++j)
+      for (std::size_t i = 0; i < m; ++i)
+        jacobian[i * p + j] = ((*r[ends[j][1]])[i] - (*r[ends[j][0]])[i]) / span[j];
     return std::make_pair(*r[0], jacobian);
   }
 
@@ -129,6 +176,11 @@ namespace indentsim::calibration
         const std::size_t   p = calibration_.parameters.size();
         const Point         x(parameters[0], parameters[0] + p);
         std::vector<double> r, jacobian;
+        // A trial point outside the bounds (the trust region's step is not projected onto them)
+        // is rejected like a failed run, without running.
+        for (std::size_t j = 0; j < p; ++j)
+          if (x[j] < calibration_.parameters[j].min || x[j] > calibration_.parameters[j].max)
+            return false;
         if (jacobians != nullptr && jacobians[0] != nullptr)
           {
             const auto both = residuals_and_jacobian(calibration_, model_, x);
@@ -231,6 +283,9 @@ namespace indentsim::calibration
     options.function_tolerance = calibration.solver.function_tolerance;
     options.parameter_tolerance = calibration.solver.parameter_tolerance;
     options.gradient_tolerance = 1e-14;
+    // No projected line search on the bounds: each of its trials would need a Jacobian, p + 1
+    // forward runs, where a rejected trust-region step costs one.
+    options.max_num_line_search_step_size_iterations = 0;
     options.num_threads = 1; // the parallelism is in the forward runs
     options.logging_type = ceres::SILENT;
     options.update_state_every_iteration = true;
@@ -244,7 +299,7 @@ namespace indentsim::calibration
     result.iterations = static_cast<unsigned int>(summary.iterations.size());
     result.converged = summary.termination_type == ceres::CONVERGENCE;
     result.termination = summary.message;
-    const auto both = residuals_and_jacobian(calibration, model, result.x);
+    const auto both = statistics_jacobian(calibration, model, result.x);
     if (!both)
       throw std::runtime_error("the forward runs for the Jacobian at the optimum failed");
     result.residuals = both->first;

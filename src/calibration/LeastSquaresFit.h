@@ -3,6 +3,9 @@
 // bounds as box constraints), the Jacobian by forward differences whose p + 1 runs go out as one
 // batch (side by side with --jobs).
 //
+// The difference step of a parameter is its own `step` if given, else
+// solver.finite_difference_step * max(|x|, 1e-3 (max - min)); it points inward at an upper bound.
+//
 // Residuals (docs/calibration.md): for data set d with weight w_d, n_d comparison points,
 // measured values y_i and the scale s_d = max |y_i|,
 //   r_i = sqrt(w_d / n_d) (y_sim(x_i) - y_i) / s_d,
@@ -77,6 +80,15 @@ namespace indentsim::calibration
   // fail (nothing to minimise).
   FitResult fit(const Calibration &calibration, ResidualModel &model, ForwardRuns &runs,
                 std::ostream &progress);
+
+  // The Jacobian behind the statistics at the optimum: central differences with the step
+  // solver.statistics_step * max(|x|, 1e-3 (max - min)), or the parameter's own `step` if that is
+  // larger, one-sided from x where a side leaves the bounds; with the residuals at x, from one
+  // batch of up to 2p + 1 points. A step this wide sees through the small jumps of a forward
+  // model (contact nodes) that decorrelate the columns of a narrow difference and would hide
+  // parameters the data cannot separate. nullopt if a run failed.
+  std::optional<std::pair<std::vector<double>, std::vector<double>>>
+  statistics_jacobian(const Calibration &calibration, ResidualModel &model, const Point &x);
 
   // Forward-difference Jacobian at `x` (row-major), with the residuals there, from one batch of
   // p + 1 points; steps point inward at an upper bound. nullopt if a run failed.

@@ -59,7 +59,7 @@ namespace
   const std::string good_parameters =
       "parameters:\n"
       "  material.yield_stress: {start: 0.25, min: 0.05, max: 1.0}\n"
-      "  material.hardening_modulus: {start: 1.0, min: 0.0, max: 5.0}\n";
+      "  material.hardening_modulus: {start: 1.0, min: 0.0, max: 5.0, step: 0.05}\n";
 
   std::string error_of(const std::string &yaml, const fs::path &dir)
   {
@@ -98,6 +98,8 @@ TEST(CalibrationFile, AGoodFileResolvesItsPathsAndComparisonPoints)
   ASSERT_EQ(c.parameters.size(), 2u);
   EXPECT_EQ(c.parameters[0].key, "material.yield_stress");
   EXPECT_EQ(c.parameters[0].unit, "GPa");
+  EXPECT_EQ(c.parameters[0].step, 0.); // relative to the value (solver.finite_difference_step)
+  EXPECT_EQ(c.parameters[1].step, 0.05);
   EXPECT_EQ(c.base_case_file, (dir / "cone_j2.yaml").string());
   ASSERT_EQ(c.data.size(), 2u);
   // Loading: the 20 measured points above 0 (nm read as such) in 10 pairs, each pair's means.
@@ -114,6 +116,15 @@ TEST(CalibrationFile, AGoodFileResolvesItsPathsAndComparisonPoints)
   EXPECT_EQ(c.data[1].weight, 0.5);
   EXPECT_EQ(c.forward_cases().size(), 1u);
   EXPECT_FALSE(fs::exists(dir / "out")) << "reading a calibration file writes nothing";
+
+  // A range keeps the measured points inside it, both ends included: 0.3 to 0.7 um.
+  const Calibration narrow = parse_calibration_yaml(
+      "base_case: cone_j2.yaml\n" + good_parameters +
+          "data:\n  - {kind: load_penetration, file: curve.csv, range: [0.3, 0.7]}\n",
+      (dir / "calibrate.yaml").string());
+  ASSERT_EQ(narrow.data[0].x.size(), 9u);
+  EXPECT_NEAR(narrow.data[0].x.front(), 0.3, 1e-12);
+  EXPECT_NEAR(narrow.data[0].x.back(), 0.7, 1e-12);
 }
 
 TEST(CalibrationFile, BadConfigurationsAreRefusedBeforeAnyRunNamingTheKey)
@@ -137,6 +148,12 @@ TEST(CalibrationFile, BadConfigurationsAreRefusedBeforeAnyRunNamingTheKey)
                      data,
                  {"parameters.material.yield_stress.min = -0.1", "is refused by a case",
                   "material.yield_stress"});
+  expect_refused(base +
+                     "parameters:\n  material.yield_stress: {start: 0.3, min: 0.1, max: 1, "
+                     "step: 0.5}\n" +
+                     data,
+                 {"parameters.material.yield_stress.step = 0.5", "at most half the bounds' width, "
+                                                                 "0.45"});
   expect_refused(base + "parameters:\n  material.yield_stress: {start: 0.3, max: 1}\n" + data,
                  {"missing key 'min'"});
   expect_refused(base + good_parameters + "data:\n  - {kind: load_penetration, file: nope.csv}\n",
@@ -163,6 +180,12 @@ TEST(CalibrationFile, BadConfigurationsAreRefusedBeforeAnyRunNamingTheKey)
                  {"data[0].branch = up", "loading, unloading"});
   expect_refused("base_case: missing.yaml\n" + good_parameters + data,
                  {"base_case = missing.yaml", "no file"});
+  expect_refused(base + good_parameters +
+                     "data:\n  - {kind: load_penetration, file: curve.csv, range: [0.7, 0.3]}\n",
+                 {"data[0].range = [0.7, 0.3]", "lo < hi"});
+  expect_refused(base + good_parameters +
+                     "data:\n  - {kind: load_penetration, file: curve.csv, range: [2, 3]}\n",
+                 {"data[0]", "0 measured point(s)", "within range [2, 3]"});
   const std::string features = "data:\n  - {kind: indentation_features, file: ";
   expect_refused(base + good_parameters + features + "curve.csv}\n",
                  {"data[0]", "curve.csv", "no feature column", "C (GPa), dP/dh (N/m) or Wp/Wt"});

@@ -16,7 +16,8 @@
 #      within 2 % of the truth and inside their 95 % intervals;
 #   6. the scalar features of the true curve (C = P/h^2 fitted here to the loading branch, S and
 #      Wp/Wt from the run's Oliver-Pharr analysis, S written in N/m; 40 unloading points) in
-#      place of the curve give both parameters back within 0.5 %.
+#      place of the curve give both parameters back within 0.5 %, and the warning that one test's
+#      three numbers do not identify the two (they correlate at about -0.99).
 # Usage: run_closed_loop.sh INDENTSIM_EXECUTABLE SCRATCH_DIRECTORY
 # Units: lengths um, forces mN, stresses GPa.
 set -euo pipefail
@@ -147,5 +148,6 @@ echo "  - {kind: indentation_features, file: $out/features.csv}" >> "$out/featur
   || { cat "$out/features.txt"; fail "the calibration to the features failed"; }
 grep -A2 "^Fitted" "$out/features.txt"
 recovered "$out/features/calibration.json" 0.005
+grep -q "NOT identifiable" "$out/features.txt" || fail "one test's C, S and Wp/Wt identify both"
 [[ -s "$out/features/fit_data0.png" ]] || fail "no figure of the features"
 echo "PASS"

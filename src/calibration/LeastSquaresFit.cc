@@ -6,6 +6,7 @@
 
 #include <ceres/ceres.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -77,6 +78,28 @@ namespace indentsim::calibration
     return values;
   }
 
+  namespace
+  {
+    // The residuals at points[0] and the Jacobian of differences: column j is
+    // (r(points[ends[j][1]]) - r(points[ends[j][0]])) / span[j]. nullopt if a run failed.
+    std::optional<std::pair<std::vector<double>, std::vector<double>>>
+    difference_jacobian(ResidualModel &model, const std::vector<Point> &points,
+                        const std::vector<std::array<std::size_t, 2>> &ends,
+                        const std::vector<double>                     &span)
+    {
+      const auto r = model.residuals(points);
+      for (const auto &one : r)
+        if (!one)
+          return std::nullopt;
+      const std::size_t   m = r[0]->size(), p = ends.size();
+      std::vector<double> jacobian(m * p);
+      for (std::size_t j = 0; j < p; ++j)
+        for (std::size_t i = 0; i < m; ++i)
+          jacobian[i * p + j] = ((*r[ends[j][1]])[i] - (*r[ends[j][0]])[i]) / span[j];
+      return std::make_pair(*r[0], jacobian);
+    }
+  } // namespace
+
   std::optional<std::pair<std::vector<double>, std::vector<double>>>
   residuals_and_jacobian(const Calibration &calibration, ResidualModel &model, const Point &x)
   {
@@ -96,16 +119,10 @@ namespace indentsim::calibration
         shifted[j] += step[j];
         points.push_back(shifted);
       }
-    const auto r = model.residuals(points);
-    for (const auto &one : r)
-      if (!one)
-        return std::nullopt;
-    const std::size_t   m = r[0]->size();
-    std::vector<double> jacobian(m * p);
+    std::vector<std::array<std::size_t, 2>> ends(p);
     for (std::size_t j = 0; j < p; ++j)
-      for (std::size_t i = 0; i < m; ++i)
-        jacobian[i * p + j] = ((*r[j + 1])[i] - (*r[0])[i]) / step[j];
-    return std::make_pair(*r[0], jacobian);
+      ends[j] = {0, j + 1};
+    return difference_jacobian(model, points, ends, step);
   }
 
   std::optional<std::pair<std::vector<double>, std::vector<double>>>
@@ -141,16 +158,7 @@ namespace indentsim::calibration
         ends[j][1] = point_at(above);
         span[j] = above - below;
       }
-    const auto r = model.residuals(points);
-    for (const auto &one : r)
-      if (!one)
-        return std::nullopt;
-    const std::size_t   m = r[0]->size();
-    std::vector<double> jacobian(m * p);
-    for (std::size_t j = 0; j < p; ++j)
-      for (std::size_t i = 0; i < m; ++i)
-        jacobian[i * p + j] = ((*r[ends[j][1]])[i] - (*r[ends[j][0]])[i]) / span[j];
-    return std::make_pair(*r[0], jacobian);
+    return difference_jacobian(model, points, ends, span);
   }
 
   namespace

@@ -10,6 +10,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -30,8 +31,29 @@ namespace indentsim::calibration
     const std::vector<std::string> solver_keys = {"max_iterations", "finite_difference_step",
                                                   "function_tolerance", "parameter_tolerance",
                                                   "statistics_step"};
-    const std::vector<std::string> kinds = {"load_penetration", "tensile", "pileup_profile",
-                                            "indentation_features", "hardness_depth"};
+    // Each data kind's name in the file, and the names and units of its comparison points
+    // (fit_data<k>.csv); the order is that of the messages.
+    struct KindText
+    {
+      DataKind    kind;
+      const char *name, *x_name, *y_name, *units;
+    };
+    constexpr std::array<KindText, 5> kind_texts = {{
+        {DataKind::load_penetration, "load_penetration", "depth_um", "force_mN",
+         "depth um, force mN"},
+        {DataKind::tensile, "tensile", "log_strain", "true_stress_GPa",
+         "log strain, true stress GPa"},
+        {DataKind::pileup_profile, "pileup_profile", "r_um", "height_um", "radius um, height um"},
+        {DataKind::indentation_features, "indentation_features", "feature", "value", ""},
+        {DataKind::hardness_depth, "hardness_depth", "depth_um", "hardness_GPa",
+         "depth um, hardness GPa"},
+    }};
+
+    const KindText &text_of(const DataKind kind)
+    {
+      return *std::find_if(kind_texts.begin(), kind_texts.end(),
+                           [&](const KindText &t) { return t.kind == kind; });
+    }
 
     class Reader
     {
@@ -207,13 +229,16 @@ namespace indentsim::calibration
             DataSet d;
             d.line = entry.Mark().is_null() ? -1 : entry.Mark().line;
             const std::string kind = word(required(entry, "kind"), where + ".kind", "a kind");
-            if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end())
-              fail(entry["kind"], where + ".kind = " + kind + ": allowed: " + io::join(kinds));
-            d.kind = kind == "tensile"                ? DataKind::tensile
-                     : kind == "pileup_profile"       ? DataKind::pileup_profile
-                     : kind == "indentation_features" ? DataKind::indentation_features
-                     : kind == "hardness_depth"       ? DataKind::hardness_depth
-                                                      : DataKind::load_penetration;
+            const auto        known = std::find_if(kind_texts.begin(), kind_texts.end(),
+                                                   [&](const KindText &t) { return t.name == kind; });
+            if (known == kind_texts.end())
+              {
+                std::vector<std::string> names;
+                for (const KindText &t : kind_texts)
+                  names.push_back(t.name);
+                fail(entry["kind"], where + ".kind = " + kind + ": allowed: " + io::join(names));
+              }
+            d.kind = known->kind;
             d.file = path_of(required(entry, "file"), where + ".file", "a CSV file");
             if (const YAML::Node branch = entry["branch"]; branch.IsDefined())
               {
@@ -396,43 +421,27 @@ namespace indentsim::calibration
 
   std::string DataSet::x_name() const
   {
-    return kind == DataKind::tensile                ? "log_strain"
-           : kind == DataKind::pileup_profile       ? "r_um"
-           : kind == DataKind::indentation_features ? "feature"
-                                                    : "depth_um";
+    return text_of(kind).x_name;
   }
 
   std::string DataSet::y_name() const
   {
-    return kind == DataKind::tensile                ? "true_stress_GPa"
-           : kind == DataKind::pileup_profile       ? "height_um"
-           : kind == DataKind::indentation_features ? "value"
-           : kind == DataKind::hardness_depth       ? "hardness_GPa"
-                                                    : "force_mN";
+    return text_of(kind).y_name;
   }
 
   std::string DataSet::kind_name() const
   {
-    return kind == DataKind::tensile                ? "tensile"
-           : kind == DataKind::pileup_profile       ? "pileup_profile"
-           : kind == DataKind::indentation_features ? "indentation_features"
-           : kind == DataKind::hardness_depth       ? "hardness_depth"
-                                                    : "load_penetration";
+    return text_of(kind).name;
   }
 
   std::string DataSet::units() const
   {
-    if (kind == DataKind::indentation_features)
-      {
-        std::string text = "feature";
-        for (std::size_t k = 0; k < features.size(); ++k)
-          text += " " + std::to_string(k) + " = " + feature_label(features[k]);
-        return text + "; value in the feature's unit";
-      }
-    return kind == DataKind::tensile          ? "log strain, true stress GPa"
-           : kind == DataKind::pileup_profile ? "radius um, height um"
-           : kind == DataKind::hardness_depth ? "depth um, hardness GPa"
-                                              : "depth um, force mN";
+    if (kind != DataKind::indentation_features)
+      return text_of(kind).units;
+    std::string text = "feature";
+    for (std::size_t k = 0; k < features.size(); ++k)
+      text += " " + std::to_string(k) + " = " + feature_label(features[k]);
+    return text + "; value in the feature's unit";
   }
 
   std::vector<std::string> Calibration::forward_cases() const

@@ -4,6 +4,7 @@
 // cut-back, and 1 versus 2 MPI ranks (MpiTensile, run under mpirun -np 2 by CTest).
 // Units: um, mN, GPa.
 #include "case/Case.h"
+#include "case/CaseFile.h"
 #include "materials/MaterialFactory.h"
 #include "problems/TensileProblem.h"
 
@@ -212,15 +213,11 @@ TEST(Tensile, HexagonalSingleCrystalFollowsItsSymmetry)
   c.loading.max_strain = 0.02;
   c.loading.steps = 5;
   c.solver.residual_tolerance = 1e-13;
+  c.material =
+      io::read_case_file(std::string(INDENTSIM_SOURCE_DIR) + "/examples/titanium_hcp_0001_n24.yaml")
+          .material;
   io::MaterialParameters &m = c.material;
-  m.lattice = "hcp";
-  m.c_over_a = 1.587;
-  m.slip_families = {"basal", "prismatic", "pyramidal_ca"};
-  m.C11 = 160.0, m.C12 = 90.0, m.C13 = 66.0, m.C33 = 181.7, m.C44 = 46.5;
-  m.q = 1.0;
-  m.family_hardening = {{"basal", 0.3493, 0.2193, 0.0022313, 0.0},
-                        {"prismatic", 0.15, 1.3522, 0.0121539, 0.0},
-                        {"pyramidal_ca", 1.1079, 2.3122, 0.0068559, 0.0}};
+  m.orientation.kind = "euler_bunge_deg";
   m.orientation.euler_bunge_deg = {{0., 0., 0.}};
   const double along_c = run_tensile(c).back().true_stress;
   m.orientation.euler_bunge_deg = {{60., 0., 0.}};

@@ -343,50 +343,62 @@ namespace
     EXPECT_GT(one_step, 0.061 * std::sqrt(6.0) * 1.5); // hardened well beyond first yield
   }
 
-  // The consistent tangent against central differences with every BCC family (48 systems) and
-  // every HCP family (30), each family with its own hardening law (so the families' critical
-  // shears differ), at plastic states of random orientations and deformations.
-  // The same with a latent matrix between the families (not symmetric), where each family's
-  // slip enters the hardening rows on its own.
+  // Every family of the lattice (BCC: 48 systems, HCP: 30), each with its own hardening law (so
+  // the families' critical shears differ), optionally with a latent matrix between the families
+  // (not symmetric), where each family's slip enters the hardening rows on its own.
+  CrystalPlasticity several_family_model(const std::string &lattice, const bool latent_matrix)
+  {
+    const auto                         families = known_slip_families(lattice);
+    const SlipSystems                  systems = slip_systems(lattice, families, 1.587);
+    std::vector<ExtendedVoceHardening> laws;
+    for (unsigned int f = 0; f < families.size(); ++f)
+      laws.push_back({0.10 + 0.02 * f, 0.05 + 0.01 * f, 1.0 + 0.2 * f, 0.01, 1.4});
+    std::vector<std::vector<double>> latent;
+    if (latent_matrix)
+      for (unsigned int f = 0; f < families.size(); ++f)
+        {
+          latent.emplace_back();
+          for (unsigned int g = 0; g < families.size(); ++g)
+            latent.back().push_back(f == g ? 1.0 + 0.1 * f : 1.2 + 0.1 * f + 0.05 * g);
+        }
+    const LatticeElasticity elasticity =
+        lattice == "hcp" ? LatticeElasticity::hexagonal(162.4, 92.0, 69.0, 180.7, 46.7)
+                         : LatticeElasticity::cubic(231.4, 134.7, 116.4);
+    return CrystalPlasticity(systems, elasticity,
+                             FamilyVoceHardening(laws, systems.family, 1.4, latent), 10.0);
+  }
+
+  // A plastic state of a random orientation: 4/5 of the way to F_target, in four increments.
+  std::vector<double> plastic_state(const CrystalPlasticity &model, std::mt19937 &generator,
+                                    const Tensor<2, 3> &F_target)
+  {
+    std::vector<double> state(model.n_state_variables());
+    model.oriented_initial_state(state, random_rotation(generator));
+    MaterialPointResponse response;
+    for (unsigned int step = 1; step <= 4; ++step)
+      {
+        const Tensor<2, 3>  F = identity() + (F_target - identity()) * (step / 5.0);
+        std::vector<double> state_new(state.size());
+        EXPECT_EQ(model.update(F, state, response, state_new, false), UpdateStatus::success);
+        state = state_new;
+      }
+    return state;
+  }
+
+  // The consistent tangent against central differences with every BCC and every HCP family, at
+  // plastic states of random orientations and deformations, with and without a latent matrix.
   TEST(CrystalLattices, TangentMatchesFiniteDifferencesWithSeveralFamilies)
   {
     for (const std::string lattice : {"bcc", "hcp"})
       for (const bool matrix : {false, true})
         {
-          const auto                         families = known_slip_families(lattice);
-          const SlipSystems                  systems = slip_systems(lattice, families, 1.587);
-          std::vector<ExtendedVoceHardening> laws;
-          for (unsigned int f = 0; f < families.size(); ++f)
-            laws.push_back({0.10 + 0.02 * f, 0.05 + 0.01 * f, 1.0 + 0.2 * f, 0.01, 1.4});
-          std::vector<std::vector<double>> latent;
-          if (matrix)
-            for (unsigned int f = 0; f < families.size(); ++f)
-              {
-                latent.emplace_back();
-                for (unsigned int g = 0; g < families.size(); ++g)
-                  latent.back().push_back(f == g ? 1.0 + 0.1 * f : 1.2 + 0.1 * f + 0.05 * g);
-              }
-          const LatticeElasticity elasticity =
-              lattice == "hcp" ? LatticeElasticity::hexagonal(162.4, 92.0, 69.0, 180.7, 46.7)
-                               : LatticeElasticity::cubic(231.4, 134.7, 116.4);
-          const CrystalPlasticity model(
-              systems, elasticity, FamilyVoceHardening(laws, systems.family, 1.4, latent), 10.0);
-          const std::string variant = lattice + (matrix ? " with latent matrix" : "");
-          std::mt19937      generator(5);
+          const CrystalPlasticity model = several_family_model(lattice, matrix);
+          const std::string       variant = lattice + (matrix ? " with latent matrix" : "");
+          std::mt19937            generator(5);
           for (unsigned int sample = 0; sample < 4; ++sample)
             {
-              std::vector<double> state(model.n_state_variables());
-              model.oriented_initial_state(state, random_rotation(generator));
-              const Tensor<2, 3>    F_target = random_deformation(generator, 0.02);
-              MaterialPointResponse response;
-              for (unsigned int step = 1; step <= 4; ++step)
-                {
-                  const Tensor<2, 3>  F = identity() + (F_target - identity()) * (step / 5.0);
-                  std::vector<double> state_new(state.size());
-                  ASSERT_EQ(model.update(F, state, response, state_new, false),
-                            UpdateStatus::success);
-                  state = state_new;
-                }
+              const Tensor<2, 3>        F_target = random_deformation(generator, 0.02);
+              const std::vector<double> state = plastic_state(model, generator, F_target);
               ASSERT_GT(model.equivalent_plastic_strain(state), 0.0);
               const double error = tangent_error(model, F_target, state, 1e-7);
               if (sample == 0)
@@ -394,6 +406,38 @@ namespace
               EXPECT_LT(error, 1e-5) << variant << " sample " << sample;
             }
         }
+  }
+
+  // Objectivity with every BCC and HCP family, as for FCC: a superposed rigid rotation Q F of a
+  // plastic increment rotates P (Q P) and the Kirchhoff stress (Q tau Q^T) and leaves the
+  // internal state unchanged.
+  TEST(CrystalLattices, SuperposedRotationChangesNothingElse)
+  {
+    for (const std::string lattice : {"bcc", "hcp"})
+      {
+        const CrystalPlasticity model = several_family_model(lattice, true);
+        std::mt19937            generator(11);
+        for (unsigned int sample = 0; sample < 3; ++sample)
+          {
+            const Tensor<2, 3>    F = random_deformation(generator, 0.02);
+            const auto            state = plastic_state(model, generator, F); // at 4/5 of F
+            const Tensor<2, 3>    Q = random_rotation(generator);
+            MaterialPointResponse plain, rotated;
+            std::vector<double>   state_plain(state.size()), state_rotated(state.size());
+            ASSERT_EQ(model.update(F, state, plain, state_plain), UpdateStatus::success);
+            ASSERT_EQ(model.update(Q * F, state, rotated, state_rotated), UpdateStatus::success);
+            EXPECT_GT(model.equivalent_plastic_strain(state_plain),
+                      model.equivalent_plastic_strain(state))
+                << lattice << ": the increment must slip";
+            EXPECT_LT((rotated.P - Q * plain.P).norm(), 1e-12 * plain.P.norm()) << lattice;
+            EXPECT_LT((rotated.tau - Q * plain.tau * dealii::transpose(Q)).norm(),
+                      1e-12 * plain.tau.norm())
+                << lattice;
+            for (unsigned int k = 0; k < state.size(); ++k)
+              EXPECT_NEAR(state_rotated[k], state_plain[k], 1e-12 * (1 + std::abs(state_plain[k])))
+                  << lattice << " state " << k;
+          }
+      }
   }
 
   // The latent matrix's meaning, in closed form. BCC tension along [001]: the 8 {110}<111>

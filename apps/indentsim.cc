@@ -8,6 +8,7 @@
 #include "calibration/CalibrationRunner.h"
 #include "case/CaseFile.h"
 #include "io/CommandLine.h"
+#include "io/MpiStartup.h"
 #include "mesh/MeshAdequacy.h"
 #include "output/MemoryEstimate.h"
 #include "output/OutputFile.h"
@@ -318,8 +319,12 @@ namespace
 
 int main(int argc, char **argv)
 {
-  // Threads: determined from the cores and the ranks per node (refined by solver.threads).
+  // A process without a launcher starts MPI as a singleton, without network transports
+  // (io/MpiStartup.h). Threads: determined from the cores and the ranks per node (refined by
+  // solver.threads).
+  const std::vector<std::string>           singleton_settings = io::choose_singleton_settings();
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, dealii::numbers::invalid_unsigned_int);
+  io::take_back_singleton_settings(singleton_settings);
   indentsim::linalg::LinearSolver::limit_library_threads();
   // A file-size limit (ulimit -f) makes a write fail with EFBIG, reported with the file's name
   // (exit code 4), instead of ending the process.

@@ -74,6 +74,24 @@ namespace indentsim::testing
       }
   }
 
+  // A plastic state of a crystal (or any oriented model) turned by `rotation`: 4/5 of the way to
+  // F_target, in four increments from the virgin state.
+  inline std::vector<double> plastic_state(const MaterialModel &model, const Tensor<2, 3> &rotation,
+                                           const Tensor<2, 3> &F_target)
+  {
+    std::vector<double> state(model.n_state_variables());
+    model.oriented_initial_state(state, rotation);
+    MaterialPointResponse response;
+    for (unsigned int step = 1; step <= 4; ++step)
+      {
+        const Tensor<2, 3>  F = identity() + (F_target - identity()) * (step / 5.0);
+        std::vector<double> state_new(state.size());
+        EXPECT_EQ(model.update(F, state, response, state_new, false), UpdateStatus::success);
+        state = state_new;
+      }
+    return state;
+  }
+
   inline Tensor<2, 3> diagonal(const double a, const double b, const double c)
   {
     Tensor<2, 3> F;

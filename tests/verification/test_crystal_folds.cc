@@ -40,25 +40,28 @@ namespace
     return c;
   }
 
-  analysis::pileup::PileUpResult pileup_at_maximum_depth(const io::Case &c, const std::string &name)
+  // The pile-up analysis at the maximum depth of a run, and the force there [mN].
+  struct Indent
+  {
+    analysis::pileup::PileUpResult pileup;
+    double                         force = 0;
+  };
+  Indent indent(const io::Case &c, const std::string &name)
   {
     problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
     problem.setup();
     problem.run(test_files::scratch_directory("crystal_folds", name).string());
     const auto &results = problem.pileup_results();
     EXPECT_FALSE(results.empty()) << name;
-    return results.empty() ? analysis::pileup::PileUpResult{} : results.front();
+    return {results.empty() ? analysis::pileup::PileUpResult{} : results.front(),
+            problem.records().back().force};
   }
 
   void expect_fold(const io::Case &c, const std::string &name, const unsigned int fold)
   {
-    problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
-    problem.setup();
-    problem.run(test_files::scratch_directory("crystal_folds", name).string());
-    const auto &results = problem.pileup_results();
-    ASSERT_FALSE(results.empty());
-    const auto &spectrum = results.front().spectrum;
-    std::cout << "[ measured ] bcc " << name << ": force at 3 um " << problem.records().back().force
+    const Indent result = indent(c, name);
+    const auto  &spectrum = result.pileup.spectrum;
+    std::cout << "[ measured ] bcc " << name << ": force at 3 um " << result.force
               << " mN, symmetry fold " << spectrum.symmetry_fold << " (" << spectrum.fold_source
               << "), A_0..A_4 =";
     for (unsigned int k = 0; k <= 4 && k < spectrum.amplitudes.size(); ++k)
@@ -67,6 +70,7 @@ namespace
     EXPECT_EQ(spectrum.symmetry_fold, fold) << name;
     EXPECT_EQ(spectrum.fold_source, "crystal") << name;
   }
+
   // The complex harmonic c_k = (2/M) sum_j h(r, theta_j) exp(-i k theta_j) of the height on the
   // circle of radius r (h = A_0 + sum_k |c_k| cos(k theta + arg c_k)), read from the result's
   // grid by bilinear interpolation, M = 360. A pile-up with the mirrors x = 0 and y = 0 has a
@@ -103,16 +107,17 @@ TEST(CrystalFolds, BccPileUpHasTheFoldOfItsSurface)
 }
 
 // (001): the crystal turned by 45 deg about the indentation axis ([110] along x instead of
-// [100]) turns its 4-fold pattern by 45 deg, which changes the sign of its 4th harmonic, while the mesh's imprint stays where the mesh is. With a_4 = m + c at 0 deg and
-// m - c at 45 deg (on the same circle), c = (a_4(0) - a_4(45)) / 2 is the crystal's 4-fold and
+// [100]) turns its 4-fold pattern by 45 deg, which changes the sign of its 4th harmonic, while
+// the mesh's imprint stays where the mesh is. With a_4 = m + c at 0 deg and m - c at 45 deg (on
+// the same circle), c = (a_4(0) - a_4(45)) / 2 is the crystal's 4-fold and
 // m = (a_4(0) + a_4(45)) / 2 the mesh's. The oracle: the 4-fold of (001) is the crystal's, that
 // is |c| > 2 |m|, and both runs report the fold 4 (measured: c = -0.067 um, m = 0.017 um).
 TEST(CrystalFolds, Bcc001FourFoldTurnsWithTheCrystal)
 {
   const auto along_100 =
-      pileup_at_maximum_depth(ferrite_case({0., 0., 1.}, {1., 0., 0.}, "quarter"), "001_along_100");
+      indent(ferrite_case({0., 0., 1.}, {1., 0., 0.}, "quarter"), "001_along_100").pileup;
   const auto along_110 =
-      pileup_at_maximum_depth(ferrite_case({0., 0., 1.}, {1., 1., 0.}, "quarter"), "001_along_110");
+      indent(ferrite_case({0., 0., 1.}, {1., 1., 0.}, "quarter"), "001_along_110").pileup;
   const double r = along_100.analysis_radius;
   ASSERT_GT(r, along_100.contact_radius);
   const double a4_100 = harmonic(along_100.grid, r, 4).real();
@@ -149,10 +154,10 @@ TEST(CrystalFolds, Hcp0001SixFoldTurnsWithTheCrystal)
   c.loading.unload = false;
   c.specimen.symmetry = "quarter"; // a1 along x: x = 0 and y = 0 are mirror planes
   c.material.orientation.euler_bunge_deg = {{0., 0., 0.}};
-  const auto at_0 = pileup_at_maximum_depth(c, "hcp_0001_0");
+  const auto at_0 = indent(c, "hcp_0001_0").pileup;
   c.specimen.symmetry = "full";
   c.material.orientation.euler_bunge_deg = {{45., 0., 0.}};
-  const auto   at_45 = pileup_at_maximum_depth(c, "hcp_0001_45");
+  const auto   at_45 = indent(c, "hcp_0001_45").pileup;
   const double r = at_0.analysis_radius;
   ASSERT_GT(r, at_0.contact_radius);
 

@@ -28,6 +28,20 @@ namespace indentsim::calibration
     using io::json_string;
 
     // What else would separate correlated parameters, from the data a calibration lacks.
+    // True when the minimiser tried steps and accepted none, so that the fit is its start.
+    bool stayed_at_start(const FitResult &fit)
+    {
+      bool tried = false;
+      for (const IterationRecord &record : fit.history)
+        if (record.iteration > 0)
+          {
+            if (record.step_accepted)
+              return false;
+            tried = true;
+          }
+      return tried;
+    }
+
     std::string suggestion(const Calibration &c)
     {
       std::set<std::string> have;
@@ -233,6 +247,16 @@ namespace indentsim::calibration
                                  "(widen the bounds if the physics allows)");
     if (!fit.converged)
       warnings.push_back("the minimiser did not converge: " + fit.termination);
+    // A forward model whose outputs jump (contact nodes reaching the tip, partial unloads) by
+    // more than a narrow finite difference changes them gives a Jacobian that points nowhere:
+    // every trial step raises the cost and the fit ends where it began.
+    if (stayed_at_start(fit))
+      warnings.push_back(
+          "no trial step lowered the cost, so the fitted values are the start values: the "
+          "finite-difference Jacobian (solver.finite_difference_step = " +
+          io::json_number(c.solver.finite_difference_step) +
+          " of each value) may see the forward model's small jumps instead of its trend; give "
+          "each parameter a `step` of a few per cent of its value (parameters.<key>.step)");
     if (runs.runs_failed() > 0)
       warnings.push_back(std::to_string(runs.runs_failed()) +
                          " forward run(s) failed and the steps through them were rejected; "

@@ -27,7 +27,6 @@ namespace indentsim::calibration
     using io::json_number;
     using io::json_string;
 
-    // What else would separate correlated parameters, from the data a calibration lacks.
     // True when the minimiser tried steps and accepted none, so that the fit is its start.
     bool stayed_at_start(const FitResult &fit)
     {
@@ -42,6 +41,7 @@ namespace indentsim::calibration
       return tried;
     }
 
+    // What else would separate correlated parameters, from the data a calibration lacks.
     std::string suggestion(const Calibration &c)
     {
       std::set<std::string> have;
@@ -254,7 +254,7 @@ namespace indentsim::calibration
       warnings.push_back(
           "no trial step lowered the cost, so the fitted values are the start values: the "
           "finite-difference Jacobian (solver.finite_difference_step = " +
-          io::json_number(c.solver.finite_difference_step) +
+          json_number(c.solver.finite_difference_step) +
           " of each value) may see the forward model's small jumps instead of its trend; give "
           "each parameter a `step` of a few per cent of its value (parameters.<key>.step)");
     if (runs.runs_failed() > 0)

@@ -98,6 +98,12 @@ namespace indentsim::calibration
           jacobian[i * p + j] = ((*r[ends[j][1]])[i] - (*r[ends[j][0]])[i]) / span[j];
       return std::make_pair(*r[0], jacobian);
     }
+    // What a relative finite-difference step is relative to: |x|, or a thousandth of the
+    // parameter's range where x is near zero.
+    double difference_scale(const Parameter &parameter, const double x)
+    {
+      return std::max(std::abs(x), 1e-3 * (parameter.max - parameter.min));
+    }
   } // namespace
 
   std::optional<std::pair<std::vector<double>, std::vector<double>>>
@@ -109,10 +115,9 @@ namespace indentsim::calibration
     for (std::size_t j = 0; j < p; ++j)
       {
         const Parameter &parameter = calibration.parameters[j];
-        step[j] = parameter.step > 0.
-                      ? parameter.step
-                      : calibration.solver.finite_difference_step *
-                            std::max(std::abs(x[j]), 1e-3 * (parameter.max - parameter.min));
+        step[j] = parameter.step > 0. ? parameter.step
+                                      : calibration.solver.finite_difference_step *
+                                            difference_scale(parameter, x[j]);
         if (x[j] + step[j] > parameter.max)
           step[j] = -step[j];
         Point shifted = x;
@@ -136,9 +141,8 @@ namespace indentsim::calibration
     for (std::size_t j = 0; j < p; ++j)
       {
         const Parameter &parameter = calibration.parameters[j];
-        const double     h = std::max(
-                parameter.step, calibration.solver.statistics_step *
-                                    std::max(std::abs(x[j]), 1e-3 * (parameter.max - parameter.min)));
+        const double     h = std::max(parameter.step, calibration.solver.statistics_step *
+                                                          difference_scale(parameter, x[j]));
         // Central where both sides lie within the bounds, else one-sided from x toward the
         // farther bound (clipped to it).
         const bool   central = x[j] - h >= parameter.min && x[j] + h <= parameter.max;

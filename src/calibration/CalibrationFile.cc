@@ -4,6 +4,7 @@
 #include "calibration/CurveData.h"
 #include "calibration/ForwardRuns.h"
 #include "calibration/IndentationFeatures.h"
+#include "calibration/ParameterKey.h"
 #include "case/Schema.h"
 #include "io/TextNumber.h"
 
@@ -15,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 namespace indentsim::calibration
 {
@@ -162,28 +164,44 @@ namespace indentsim::calibration
             Parameter p;
             p.key = entry.first.Scalar();
             const std::string where = "parameters." + p.key;
-            const io::Key    *key = nullptr;
+            ParameterKey      path;
             try
               {
-                key = &io::find_key(p.key);
+                path = parse_parameter_key(p.key);
               }
-            catch (const std::out_of_range &)
+            catch (const std::invalid_argument &error)
               {
-                std::vector<std::string> numbers;
-                for (const io::Key &k : io::case_keys())
-                  if (k.type == io::ValueType::number && k.determines_results)
-                    numbers.push_back(k.path);
-                const std::string guess = io::closest_name(p.key, numbers);
-                fail(entry.first,
-                     where + ": '" + p.key + "' is not a key of a case file" +
-                         (guess.empty() ? "" : " (did you mean '" + guess + "'?)") +
-                         "; a parameter is a numeric key, docs/case-file-reference.md");
+                fail(entry.first, where + ": " + error.what());
               }
-            if (key->type != io::ValueType::number || !key->determines_results)
-              fail(entry.first, where + ": '" + p.key +
-                                    "' is not a number that changes the result (a parameter "
-                                    "must be one: the fit differentiates by it)");
-            p.unit = key->unit;
+            const io::Key *key = nullptr;
+            if (path.schema_path.empty())
+              p.unit = "um"; // material.layers[i].thickness
+            else
+              {
+                try
+                  {
+                    key = &io::find_key(path.schema_path);
+                  }
+                catch (const std::out_of_range &)
+                  {
+                    std::vector<std::string> numbers;
+                    for (const io::Key &k : io::case_keys())
+                      if (k.type == io::ValueType::number && k.determines_results)
+                        numbers.push_back(k.path);
+                    const std::string guess = io::closest_name(path.schema_path, numbers);
+                    fail(entry.first,
+                         where + ": '" + p.key + "' is not a key of a case file" +
+                             (guess.empty() ? "" : " (did you mean '" + guess + "'?)") +
+                             "; a parameter is a numeric key (docs/case-file-reference.md), "
+                             "a slip family's (material.hardening.<family>.tau0) or a "
+                             "layer's (material.layers[i].yield_stress, .thickness)");
+                  }
+                if (key->type != io::ValueType::number || !key->determines_results)
+                  fail(entry.first, where + ": '" + p.key +
+                                        "' is not a number that changes the result (a "
+                                        "parameter must be one: the fit differentiates by it)");
+                p.unit = key->unit;
+              }
             const YAML::Node bounds = entry.second;
             if (!bounds.IsMap())
               fail(bounds, where + " = " + io::node_text(bounds) +
@@ -373,6 +391,14 @@ namespace indentsim::calibration
         Point start;
         for (const Parameter &p : c.parameters)
           start.push_back(p.start);
+        // A layer's key changes only cases with layers: the base case must be one (a case
+        // with too few layers is refused by the forward study below).
+        for (const Parameter &p : c.parameters)
+          if (parse_parameter_key(p.key).layer &&
+              !YAML::LoadFile(c.base_case_file)["material"]["layers"].IsSequence())
+            fail(root["parameters"][p.key],
+                 "parameters." + p.key + ": the base case " + c.base_case_file +
+                     " has no material.layers (a layer's key needs a depth-graded base case)");
         const auto check_point = [&](const Point &point, const std::string &what,
                                      const YAML::Node &where) {
           try
@@ -396,11 +422,12 @@ namespace indentsim::calibration
                               io::format_number(bound[j]),
                           root["parameters"][p.key]);
             }
-        const study::Study at_start = forward_study(c, {start});
+        const ForwardBatch at_start = forward_study(c, {start});
         for (std::size_t i = 0; i < c.data.size(); ++i)
           {
-            DataSet          &d = c.data[i];
-            const io::Case   &simulated = at_start.cases.at(c.forward_case_of(d)).resolved;
+            DataSet        &d = c.data[i];
+            const io::Case &simulated =
+                at_start.study.cases.at(at_start.index[0].at(c.forward_case_of(d))).resolved;
             const YAML::Node  entry = root["data"][i];
             const std::string where =
                 source_ + ":" + std::to_string(d.line + 1) + ": data[" + std::to_string(i) + "]";

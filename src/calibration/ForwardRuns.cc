@@ -1,6 +1,7 @@
 // Forward runs as study cases (see ForwardRuns.h). Units: those of the parameters' keys.
 #include "calibration/ForwardRuns.h"
 
+#include "calibration/ParameterKey.h"
 #include "case/Schema.h"
 
 #include <yaml-cpp/yaml.h>
@@ -15,54 +16,72 @@ namespace indentsim::calibration
   {
     namespace fs = std::filesystem;
 
-    // {material: {yield_stress: 0.25}, output: {plots: false}} from the dotted keys.
-    YAML::Node overrides_of(const Calibration &calibration, const Point &point)
+    // {material: {yield_stress: 0.25}, output: {plots: false}} from the parameters' keys, for
+    // the forward case `base` (a layer's key copies the case's own material.layers).
+    YAML::Node overrides_of(const Calibration &calibration, const Point &point,
+                            const std::string &base_file)
     {
+      YAML::Node base;
+      try
+        {
+          base = YAML::LoadFile(base_file);
+        }
+      catch (const YAML::Exception &)
+        {
+          // The study's own reading of the case names the file and the line.
+        }
       YAML::Node overrides(YAML::NodeType::Map);
       for (std::size_t j = 0; j < calibration.parameters.size(); ++j)
         {
-          const std::string       &key = calibration.parameters[j].key;
-          std::vector<std::string> names;
-          for (std::size_t start = 0;;)
+          const std::string &key = calibration.parameters[j].key;
+          try
             {
-              const std::size_t dot = key.find('.', start);
-              names.push_back(key.substr(start, dot - start));
-              if (dot == std::string::npos)
-                break;
-              start = dot + 1;
+              write_parameter(parse_parameter_key(key), point[j], base, overrides);
             }
-          YAML::Node node = overrides;
-          for (std::size_t n = 0; n + 1 < names.size(); ++n)
+          catch (const std::invalid_argument &error)
             {
-              if (!node[names[n]].IsMap())
-                node[names[n]] = YAML::Node(YAML::NodeType::Map);
-              node.reset(node[names[n]]);
+              throw CalibrationFileError(calibration.source_file + ": parameters." + key +
+                                         ": in the case " + base_file + ": " + error.what());
             }
-          // The shortest text that reads back to the same double: the case key sees the value.
-          node[names.back()] = io::format_number(point[j]);
         }
       overrides["output"]["plots"] = false;
       return overrides;
     }
   } // namespace
 
-  study::Study forward_study(const Calibration &calibration, const std::vector<Point> &points)
+  ForwardBatch forward_study(const Calibration &calibration, const std::vector<Point> &points)
   {
     const std::vector<std::string> cases = calibration.forward_cases();
     YAML::Node                     root(YAML::NodeType::Map);
     root["output"] = (fs::path(calibration.output_directory) / "forward").string();
+    ForwardBatch batch;
+    // Each case once: a case that no parameter of the points differs in (a tensile test under
+    // a layer's key) is shared by them.
+    std::vector<std::pair<std::size_t, std::string>> written; // (k, overrides) of each case
     for (std::size_t i = 0; i < points.size(); ++i)
-      for (std::size_t k = 0; k < cases.size(); ++k)
-        {
-          YAML::Node entry(YAML::NodeType::Map);
-          entry["name"] = "c" + std::to_string(k) + "_p" + std::to_string(i);
-          entry["base"] = cases[k];
-          entry["overrides"] = overrides_of(calibration, points[i]);
-          root["cases"].push_back(entry);
-        }
+      {
+        batch.index.emplace_back();
+        for (std::size_t k = 0; k < cases.size(); ++k)
+          {
+            const YAML::Node overrides = overrides_of(calibration, points[i], cases[k]);
+            YAML::Emitter    text;
+            text << YAML::Flow << overrides;
+            const std::pair<std::size_t, std::string> id(k, text.c_str());
+            const auto same = std::find(written.begin(), written.end(), id);
+            batch.index.back().push_back(same - written.begin());
+            if (same != written.end())
+              continue;
+            written.push_back(id);
+            YAML::Node entry(YAML::NodeType::Map);
+            entry["name"] = "c" + std::to_string(k) + "_p" + std::to_string(i);
+            entry["base"] = cases[k];
+            entry["overrides"] = overrides;
+            root["cases"].push_back(entry);
+          }
+      }
     YAML::Emitter emitter;
     emitter << root;
-    study::Study study;
+    study::Study &study = batch.study;
     try
       {
         study = study::parse_study_yaml(emitter.c_str(), calibration.source_file);
@@ -80,12 +99,13 @@ namespace indentsim::calibration
                           .string();
         c.resolved.output.directory = c.directory;
       }
-    return study;
+    return batch;
   }
 
   io::Case forward_case(const Calibration &calibration, const Point &point, const std::size_t k)
   {
-    return forward_study(calibration, {point}).cases.at(k).resolved;
+    const ForwardBatch batch = forward_study(calibration, {point});
+    return batch.study.cases.at(batch.index[0].at(k)).resolved;
   }
 
   ForwardRuns::ForwardRuns(const Calibration &calibration, const study::StudyRunSettings &settings,
@@ -107,7 +127,8 @@ namespace indentsim::calibration
     for (const Point &point : points)
       if (std::find(distinct.begin(), distinct.end(), point) == distinct.end())
         distinct.push_back(point);
-    const study::Study            batch = forward_study(calibration_, distinct);
+    const ForwardBatch            forward = forward_study(calibration_, distinct);
+    const study::Study           &batch = forward.study;
     const std::size_t             n_cases = calibration_.forward_cases().size();
     std::vector<study::CaseState> before;
     for (const auto &c : batch.cases)
@@ -126,7 +147,7 @@ namespace indentsim::calibration
         std::vector<std::string> of_point;
         for (std::size_t k = 0; k < n_cases; ++k)
           {
-            const study::StudyCase &c = batch.cases[i * n_cases + k];
+            const study::StudyCase &c = batch.cases[forward.index[i][k]];
             if (study::case_state(c) == study::CaseState::finished)
               of_point.push_back(c.directory);
           }

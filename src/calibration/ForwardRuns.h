@@ -20,12 +20,18 @@ namespace indentsim::calibration
 {
   using Point = std::vector<double>; // one value per parameter, in the calibration's order
 
-  // The study of `points` (distinct): for each point, the forward cases in the order of
-  // calibration.forward_cases(), the k-th of point i named "c<k>_p<i>". A case's directory is
-  // c<k>-<key>, the
-  // same for the same values at whichever iteration they come. Throws CalibrationFileError
+  // The study of `points` (distinct) and, for point i, index[i][k]: its k-th forward case
+  // (in the order of calibration.forward_cases()) among study.cases. A case is named
+  // "c<k>_p<i>" after the first point that needs it: points that differ only in keys the case
+  // does not see (a layer's key in a tensile case) share it. A case's directory is c<k>-<key>,
+  // the same for the same values at whichever iteration they come. Throws CalibrationFileError
   // (from the case reader) if a case is refused.
-  study::Study forward_study(const Calibration &calibration, const std::vector<Point> &points);
+  struct ForwardBatch
+  {
+    study::Study                          study;
+    std::vector<std::vector<std::size_t>> index;
+  };
+  ForwardBatch forward_study(const Calibration &calibration, const std::vector<Point> &points);
 
   // One resolved forward case at `point` (the k-th of calibration.forward_cases()).
   io::Case forward_case(const Calibration &calibration, const Point &point, std::size_t k);

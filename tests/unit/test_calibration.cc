@@ -6,6 +6,7 @@
 #include "calibration/CalibrationFile.h"
 #include "calibration/CurveData.h"
 #include "calibration/FitStatistics.h"
+#include "calibration/ForwardRuns.h"
 #include "calibration/IndentationFeatures.h"
 #include "study/StudyRunner.h"
 
@@ -125,6 +126,96 @@ TEST(CalibrationFile, AGoodFileResolvesItsPathsAndComparisonPoints)
   ASSERT_EQ(narrow.data[0].x.size(), 9u);
   EXPECT_NEAR(narrow.data[0].x.front(), 0.3, 1e-12);
   EXPECT_NEAR(narrow.data[0].x.back(), 0.7, 1e-12);
+}
+
+// A layer's key and a slip family's key reach inside their blocks; a case that does not see a
+// key (the substrate's tensile test under a layer's key) is shared by the points that differ
+// only in it.
+TEST(CalibrationFile, LayerAndSlipFamilyKeysReachInsideTheirBlocks)
+{
+  const fs::path    dir = calibration_folder();
+  const fs::path    data = fs::path(INDENTSIM_TEST_DATA_DIR) / "system/calibration";
+  std::string       layered = test_files::read_text(dir / "cone_j2.yaml");
+  const std::string plastic = "hardening_modulus: 2.0}";
+  layered.replace(layered.find(plastic), plastic.size(),
+                  "hardening_modulus: 2.0, layers: [{thickness: 0.4, yield_stress: 0.9}, "
+                  "{thickness: 0.2, hardening_modulus: 1.0}]}");
+  std::ofstream(dir / "cone_layer.yaml") << layered;
+  fs::copy_file(data / "tensile_j2.yaml", dir / "tensile_j2.yaml");
+  std::ofstream(dir / "tensile.csv")
+      << "log_strain,true_stress_GPa\n0.01,0.31\n0.02,0.33\n0.03,0.35\n"
+         "0.04,0.37\n";
+
+  const std::string layer_keys =
+      "parameters:\n"
+      "  material.yield_stress: {start: 0.3, min: 0.1, max: 1}\n"
+      "  material.layers[0].yield_stress: {start: 0.75, min: 0.1, max: 3}\n"
+      "  material.layers[1].thickness: {start: 0.25, min: 0.05, max: 1}\n";
+  const Calibration c =
+      parse_calibration_yaml("base_case: cone_layer.yaml\n" + layer_keys +
+                                 "data:\n  - {kind: load_penetration, file: curve.csv}\n"
+                                 "  - {kind: tensile, file: tensile.csv, case: tensile_j2.yaml}\n",
+                             (dir / "calibrate.yaml").string());
+  EXPECT_EQ(c.parameters[1].unit, "GPa");
+  EXPECT_EQ(c.parameters[2].unit, "um");
+  const io::Case indentation = forward_case(c, {0.35, 0.8, 0.3}, 0);
+  ASSERT_EQ(indentation.material.layers.size(), 2u);
+  EXPECT_EQ(indentation.material.yield_stress, 0.35);
+  EXPECT_EQ(indentation.material.layers[0].thickness, 0.4);
+  EXPECT_NE(indentation.material.layers[0].overrides.find("yield_stress: 0.8"), std::string::npos)
+      << indentation.material.layers[0].overrides;
+  EXPECT_EQ(indentation.material.layers[1].thickness, 0.3);
+  EXPECT_NE(indentation.material.layers[1].overrides.find("hardening_modulus: 1"),
+            std::string::npos)
+      << indentation.material.layers[1].overrides;
+  const io::Case tensile = forward_case(c, {0.35, 0.8, 0.3}, 1);
+  EXPECT_TRUE(tensile.material.layers.empty());
+  EXPECT_EQ(tensile.material.yield_stress, 0.35);
+
+  // Three points: the second differs from the first in a layer's key only, the third in the
+  // substrate's. Five cases, the first two points sharing their tensile test.
+  const ForwardBatch batch =
+      forward_study(c, {{0.35, 0.8, 0.3}, {0.35, 0.9, 0.3}, {0.4, 0.8, 0.3}});
+  EXPECT_EQ(batch.study.cases.size(), 5u);
+  EXPECT_EQ(batch.index[0][1], batch.index[1][1]);
+  EXPECT_NE(batch.index[0][0], batch.index[1][0]);
+  EXPECT_NE(batch.index[0][1], batch.index[2][1]);
+
+  // A slip family's own block: the key lands in it, the other families keep the common value.
+  fs::copy_file(data / "cone_crystal.yaml", dir / "cone_crystal.yaml");
+  const Calibration crystal = parse_calibration_yaml(
+      "base_case: cone_crystal.yaml\nparameters:\n"
+      "  material.hardening.{111}<110>.tau0: {start: 0.15, min: 0.05, max: 0.5}\n"
+      "data:\n  - {kind: load_penetration, file: curve.csv}\n",
+      (dir / "calibrate.yaml").string());
+  EXPECT_EQ(crystal.parameters[0].unit, "GPa");
+  const io::Case family = forward_case(crystal, {0.2}, 0);
+  ASSERT_EQ(family.material.family_hardening.size(), 1u);
+  EXPECT_EQ(family.material.family_hardening[0].family, "{111}<110>");
+  EXPECT_EQ(family.material.family_hardening[0].tau0, 0.2);
+  EXPECT_EQ(family.material.family_hardening[0].theta0, 0.1);
+
+  // Keys that name no layer or no number are refused before any run, named.
+  const std::string data_set = "data:\n  - {kind: load_penetration, file: curve.csv}\n";
+  for (const auto &[key, part] : std::vector<std::pair<std::string, std::string>>{
+           {"material.layers[2].yield_stress", "has 2 layer(s)"},
+           {"material.layers[0].thickness", "has no material.layers"},
+           {"material.layers[0]", "a layer's key follows the index"},
+           {"material.layers[a].yield_stress", "material.layers[i] with i a whole number"},
+           {"material.hardening[0].tau0", "an index is allowed only as material.layers[i]"},
+           {"material.layers[0].yield_stres", "did you mean 'material.yield_stress'"},
+           {"material.hardening.basal.tau00", "not a key of a case file"}})
+    {
+      const fs::path folder = calibration_folder();
+      std::ofstream(folder / "cone_layer.yaml") << layered;
+      const std::string base = key.ends_with("thickness") ? "cone_j2.yaml" : "cone_layer.yaml";
+      const std::string yaml = "base_case: " + base + "\nparameters:\n  " + key +
+                               ": {start: 0.5, min: 0.1, max: 1}\n" + data_set;
+      const std::string message = error_of(yaml, folder);
+      SCOPED_TRACE(key + ": " + message);
+      EXPECT_NE(message.find("parameters." + key), std::string::npos);
+      EXPECT_NE(message.find(part), std::string::npos);
+    }
 }
 
 TEST(CalibrationFile, BadConfigurationsAreRefusedBeforeAnyRunNamingTheKey)

@@ -27,13 +27,7 @@
 # Usage: run_closed_loop.sh INDENTSIM_EXECUTABLE SCRATCH_DIRECTORY
 # Units: lengths um, forces mN, stresses GPa.
 set -euo pipefail
-indentsim="$1"
-out="$2"
-here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-python=/usr/bin/python3
-rm -rf "$out"
-mkdir -p "$out"
-fail() { echo "FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/closed_loop_common.sh" "$@"
 
 "$indentsim" run "$here/cone_j2.yaml" --output "$out/truth" > "$out/truth.txt" 2>&1 \
   || { cat "$out/truth.txt"; fail "the run at the true parameters failed"; }

@@ -10,18 +10,9 @@
 # Usage: run_closed_loop_crystal.sh INDENTSIM_EXECUTABLE SCRATCH_DIRECTORY
 # Units: lengths um, forces mN, stresses GPa.
 set -euo pipefail
-indentsim="$1"
-out="$2"
-here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-python=/usr/bin/python3
-rm -rf "$out"
-mkdir -p "$out"
-fail() { echo "FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/closed_loop_common.sh" "$@"
 
-for case in cone_crystal tensile_crystal; do
-  "$indentsim" run "$here/$case.yaml" --output "$out/$case" > "$out/$case.txt" 2>&1 \
-    || { cat "$out/$case.txt"; fail "the run of $case.yaml at the true parameters failed"; }
-done
+run_truth cone_crystal tensile_crystal
 cat > "$out/fit.yaml" <<YAML
 base_case: $here/cone_crystal.yaml
 output: $out/fit
@@ -32,19 +23,5 @@ data:
   - {kind: load_penetration, file: $out/cone_crystal/load_penetration.csv, branch: loading}
   - {kind: tensile, file: $out/tensile_crystal/stress_strain.csv, case: $here/tensile_crystal.yaml}
 YAML
-"$indentsim" calibrate "$out/fit.yaml" --jobs 2 > "$out/fit.txt" 2>&1 \
-  || { cat "$out/fit.txt"; fail "the calibration failed"; }
-cat "$out/fit.txt"
-"$python" - "$out/fit/calibration.json" <<'PY' || fail "see above"
-import json, sys
-c = json.load(open(sys.argv[1]))
-ok = c["identifiable"] is True
-print("identifiable:", c["identifiable"], "correlation:", c["correlation"])
-for name, truth in (("material.hardening.tau0", 0.12), ("material.hardening.theta0", 0.1)):
-    p = c["parameters"][name]
-    error = abs(p["value"] / truth - 1)
-    print(f"{name}: {p['value']} (truth {truth}, relative error {error:.2e}), 95 % {p['ci95']}")
-    ok = ok and error < 0.02
-sys.exit(0 if ok else 1)
-PY
+calibrate_and_check "$out/fit.yaml" 0.02 material.hardening.tau0=0.12 material.hardening.theta0=0.1
 echo "PASS"

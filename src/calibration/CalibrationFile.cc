@@ -391,14 +391,17 @@ namespace indentsim::calibration
         Point start;
         for (const Parameter &p : c.parameters)
           start.push_back(p.start);
-        // A layer's key changes only cases with layers: the base case must be one (a case
-        // with too few layers is refused by the forward study below).
+        // A key inside an optional block (material.layers, material.damage_profile) changes
+        // only the cases that have it: the base case must be one (a case with too few layers
+        // is refused by the forward study below).
         for (const Parameter &p : c.parameters)
-          if (parse_parameter_key(p.key).layer &&
-              !YAML::LoadFile(c.base_case_file)["material"]["layers"].IsSequence())
-            fail(root["parameters"][p.key],
-                 "parameters." + p.key + ": the base case " + c.base_case_file +
-                     " has no material.layers (a layer's key needs a depth-graded base case)");
+          if (const ParameterKey key = parse_parameter_key(p.key);
+              !key.enters(YAML::LoadFile(c.base_case_file)))
+            fail(root["parameters"][p.key], "parameters." + p.key + ": the base case " +
+                                                c.base_case_file + " has no material." +
+                                                key.optional_block +
+                                                " (the key changes only cases "
+                                                "that have it, and the base case must be one)");
         const auto check_point = [&](const Point &point, const std::string &what,
                                      const YAML::Node &where) {
           try

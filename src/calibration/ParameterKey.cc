@@ -93,12 +93,25 @@ namespace indentsim::calibration
           schema_path_of(std::vector<std::string>(key.names.begin() + 1, key.names.end()));
     else
       key.schema_path = text;
+    if (key.names.size() > 2 && key.names[0] == "material" &&
+        (key.names[1] == "layers" || key.names[1] == "damage_profile"))
+      key.optional_block = key.names[1];
     return key;
+  }
+
+  bool ParameterKey::enters(const YAML::Node &base) const
+  {
+    if (optional_block.empty())
+      return true;
+    const YAML::Node block = base["material"][optional_block];
+    return block.IsDefined() && !block.IsNull();
   }
 
   void write_parameter(const ParameterKey &key, const double value, const YAML::Node &base,
                        YAML::Node &overrides)
   {
+    if (!key.enters(base))
+      return;
     const std::string number = io::format_number(value);
     if (!key.layer)
       {
@@ -107,8 +120,6 @@ namespace indentsim::calibration
         return;
       }
     const YAML::Node base_layers = base["material"]["layers"];
-    if (!base_layers.IsDefined() || base_layers.IsNull())
-      return;
     if (!base_layers.IsSequence() || *key.layer >= base_layers.size())
       throw std::invalid_argument(
           key.text + ": the case has " +

@@ -7,6 +7,9 @@
 //   material.layers[0].hardening.basal.tau0    both
 // The schema key behind each (material.hardening.tau0 for the family form, material.<rest>
 // for a layer) gives the type and the unit; the case reader checks the value like any other.
+// A key inside a block that only some cases have (material.layers, material.damage_profile)
+// enters only those cases: a tensile test of the substrate, or the pristine specimen's
+// indentation, does not see it.
 // Units: those of the keys (um, GPa).
 #pragma once
 
@@ -28,6 +31,11 @@ namespace indentsim::calibration
     std::vector<std::string>   names;       // the path without the index: material, layers, ...
     std::optional<std::size_t> layer;       // i of material.layers[i]
     std::string                schema_path; // the case-file reference's key ("" for thickness)
+    // "layers" or "damage_profile" for a key inside that optional material block, else "".
+    std::string optional_block;
+
+    // Whether the case file's YAML `base` has the optional block (true without one).
+    bool enters(const YAML::Node &base) const;
   };
 
   // Parses `text`. Throws std::invalid_argument with what is wrong and what is allowed.
@@ -36,8 +44,8 @@ namespace indentsim::calibration
   // Writes `value` (its shortest exact text) at the key into `overrides` (merged onto the case
   // `base` by the study machinery, which replaces lists whole): a layer's key goes into a copy
   // of the base case's material.layers, kept in `overrides` for the next layer key. A case
-  // whose material has no layers (a tensile test of the substrate) is left alone by layer keys;
-  // a case with too few layers throws std::invalid_argument.
+  // without the key's optional block is left alone; a case with too few layers throws
+  // std::invalid_argument.
   void write_parameter(const ParameterKey &key, double value, const YAML::Node &base,
                        YAML::Node &overrides);
 } // namespace indentsim::calibration

@@ -128,10 +128,10 @@ TEST(CalibrationFile, AGoodFileResolvesItsPathsAndComparisonPoints)
   EXPECT_NEAR(narrow.data[0].x.back(), 0.7, 1e-12);
 }
 
-// A layer's key and a slip family's key reach inside their blocks; a case that does not see a
-// key (the substrate's tensile test under a layer's key) is shared by the points that differ
-// only in it.
-TEST(CalibrationFile, LayerAndSlipFamilyKeysReachInsideTheirBlocks)
+// A layer's key, a damage law's key and a slip family's key reach inside their blocks; a case
+// without the block (the substrate's tensile test) does not see the key and is shared by the
+// points that differ only in it.
+TEST(CalibrationFile, KeysInsideLayersDamageProfilesAndSlipFamilies)
 {
   const fs::path    dir = calibration_folder();
   const fs::path    data = fs::path(INDENTSIM_TEST_DATA_DIR) / "system/calibration";
@@ -181,6 +181,23 @@ TEST(CalibrationFile, LayerAndSlipFamilyKeysReachInsideTheirBlocks)
   EXPECT_NE(batch.index[0][0], batch.index[1][0]);
   EXPECT_NE(batch.index[0][1], batch.index[2][1]);
 
+  // A damage law's key enters the irradiated case only, not the substrate's tensile test.
+  std::string       damaged = test_files::read_text(dir / "cone_j2.yaml");
+  const std::string plain = "hardening_modulus: 2.0}";
+  damaged.replace(damaged.find(plain), plain.size(),
+                  "hardening_modulus: 2.0, damage_profile: {depth: [0, 0.5], dpa: [1, 0], "
+                  "law: {form: saturation, saturation_increment: 0.3, saturation_dose: 0.5}}}");
+  std::ofstream(dir / "cone_damage.yaml") << damaged;
+  const Calibration dose = parse_calibration_yaml(
+      "base_case: cone_damage.yaml\nparameters:\n"
+      "  material.damage_profile.law.saturation_increment: {start: 0.4, min: 0, max: 2}\n"
+      "data:\n  - {kind: load_penetration, file: curve.csv}\n"
+      "  - {kind: tensile, file: tensile.csv, case: tensile_j2.yaml}\n",
+      (dir / "calibrate.yaml").string());
+  EXPECT_EQ(forward_case(dose, {0.45}, 0).material.damage_profile.saturation_increment, 0.45);
+  EXPECT_TRUE(forward_case(dose, {0.45}, 1).material.damage_profile.depth.empty());
+  EXPECT_EQ(forward_study(dose, {{0.45}, {0.5}}).study.cases.size(), 3u);
+
   // A slip family's own block: the key lands in it, the other families keep the common value.
   fs::copy_file(data / "cone_crystal.yaml", dir / "cone_crystal.yaml");
   const Calibration crystal = parse_calibration_yaml(
@@ -200,6 +217,7 @@ TEST(CalibrationFile, LayerAndSlipFamilyKeysReachInsideTheirBlocks)
   for (const auto &[key, part] : std::vector<std::pair<std::string, std::string>>{
            {"material.layers[2].yield_stress", "has 2 layer(s)"},
            {"material.layers[0].thickness", "has no material.layers"},
+           {"material.damage_profile.law.saturation_increment", "has no material.damage_profile"},
            {"material.layers[0]", "a layer's key follows the index"},
            {"material.layers[a].yield_stress", "material.layers[i] with i a whole number"},
            {"material.hardening[0].tau0", "an index is allowed only as material.layers[i]"},
@@ -208,7 +226,8 @@ TEST(CalibrationFile, LayerAndSlipFamilyKeysReachInsideTheirBlocks)
     {
       const fs::path folder = calibration_folder();
       std::ofstream(folder / "cone_layer.yaml") << layered;
-      const std::string base = key.ends_with("thickness") ? "cone_j2.yaml" : "cone_layer.yaml";
+      const bool without_block = key.ends_with("thickness") || key.find("damage") != key.npos;
+      const std::string base = without_block ? "cone_j2.yaml" : "cone_layer.yaml";
       const std::string yaml = "base_case: " + base + "\nparameters:\n  " + key +
                                ": {start: 0.5, min: 0.1, max: 1}\n" + data_set;
       const std::string message = error_of(yaml, folder);
@@ -216,6 +235,25 @@ TEST(CalibrationFile, LayerAndSlipFamilyKeysReachInsideTheirBlocks)
       EXPECT_NE(message.find("parameters." + key), std::string::npos);
       EXPECT_NE(message.find(part), std::string::npos);
     }
+}
+
+// Every calibration the repository ships passes the checks a run makes before its first
+// forward run (keys, bounds, every case at the start and the bounds, data files and their
+// overlap with the simulated range).
+TEST(CalibrationFile, ShippedCalibrationsPassTheirChecks)
+{
+  const fs::path shipped = fs::path(INDENTSIM_SOURCE_DIR) / "calibrations";
+  unsigned int   files = 0;
+  for (const auto &folder : fs::directory_iterator(shipped))
+    if (fs::exists(folder.path() / "calibrate.yaml"))
+      {
+        SCOPED_TRACE(folder.path().string());
+        const Calibration c = read_calibration_file((folder.path() / "calibrate.yaml").string());
+        EXPECT_FALSE(c.parameters.empty());
+        EXPECT_FALSE(c.data.empty());
+        ++files;
+      }
+  EXPECT_GE(files, 3u);
 }
 
 TEST(CalibrationFile, BadConfigurationsAreRefusedBeforeAnyRunNamingTheKey)

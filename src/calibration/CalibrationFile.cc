@@ -391,17 +391,6 @@ namespace indentsim::calibration
         Point start;
         for (const Parameter &p : c.parameters)
           start.push_back(p.start);
-        // A key inside an optional block (material.layers, material.damage_profile) changes
-        // only the cases that have it: the base case must be one (a case with too few layers
-        // is refused by the forward study below).
-        for (const Parameter &p : c.parameters)
-          if (const ParameterKey key = parse_parameter_key(p.key);
-              !key.enters(YAML::LoadFile(c.base_case_file)))
-            fail(root["parameters"][p.key], "parameters." + p.key + ": the base case " +
-                                                c.base_case_file + " has no material." +
-                                                key.optional_block +
-                                                " (the key changes only cases "
-                                                "that have it, and the base case must be one)");
         const auto check_point = [&](const Point &point, const std::string &what,
                                      const YAML::Node &where) {
           try
@@ -414,6 +403,17 @@ namespace indentsim::calibration
             }
         };
         check_point(start, "the start point", root["parameters"]);
+        // A key inside an optional block (material.layers, material.damage_profile) changes
+        // only the cases that have it, so the base case must have it. (The start point's
+        // study above has read the base case, and refused one with too few layers.)
+        for (const Parameter &p : c.parameters)
+          if (const ParameterKey key = parse_parameter_key(p.key);
+              !key.enters(YAML::LoadFile(c.base_case_file)))
+            fail(root["parameters"][p.key], "parameters." + p.key + ": the base case " +
+                                                c.base_case_file + " has no material." +
+                                                key.optional_block +
+                                                " (the key changes only cases "
+                                                "that have it, and the base case must be one)");
         for (std::size_t j = 0; j < c.parameters.size(); ++j)
           for (const bool upper : {false, true})
             {

@@ -65,7 +65,9 @@ namespace indentsim::calibration
             const std::string index = name.substr(open + 1, name.size() - open - 2);
             if (key.names != std::vector<std::string>{"material"} ||
                 name.substr(0, open) != "layers" || name.back() != ']' || index.empty() ||
-                !std::all_of(index.begin(), index.end(), ::isdigit) || index.size() > 4)
+                !std::all_of(index.begin(), index.end(),
+                             [](const char c) { return c >= '0' && c <= '9'; }) ||
+                index.size() > 4)
               throw std::invalid_argument(
                   "an index is allowed only as material.layers[i] with i a whole number from 0 "
                   "(e.g. material.layers[0].yield_stress)");
@@ -103,6 +105,8 @@ namespace indentsim::calibration
   {
     if (optional_block.empty())
       return true;
+    if (!base.IsMap() || !base["material"].IsMap())
+      return false;
     const YAML::Node block = base["material"][optional_block];
     return block.IsDefined() && !block.IsNull();
   }

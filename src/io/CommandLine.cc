@@ -267,8 +267,9 @@ namespace indentsim::io
   std::string help_text()
   {
     return "indentsim: finite-element simulation of instrumented indentation\n"
-           "(finite-strain solid, rigid analytic indenter, frictionless contact) and of the\n"
-           "uniaxial tensile test used to calibrate the material (test: tensile).\n\n" +
+           "(finite-strain neo-Hookean, J2 or crystal-plasticity solid, rigid analytic indenter,\n"
+           "frictionless or Coulomb contact; 3D or axisymmetric) and of the uniaxial tensile\n"
+           "test used to calibrate the material (test: tensile). Units: um, mN, GPa.\n\n" +
            usage_text() +
            "\n"
            "Commands:\n"

@@ -5,7 +5,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-bash scripts/build.sh
+bash scripts/build.sh indentsim indentsim_tests   # what the tests run; not the benchmarks
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # One BLAS thread per process: the MPI tests already use both cores.
 export OMP_NUM_THREADS=1

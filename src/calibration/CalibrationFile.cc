@@ -406,9 +406,9 @@ namespace indentsim::calibration
         // A key inside an optional block (material.layers, material.damage_profile) changes
         // only the cases that have it, so the base case must have it. (The start point's
         // study above has read the base case, and refused one with too few layers.)
+        const YAML::Node base = YAML::LoadFile(c.base_case_file);
         for (const Parameter &p : c.parameters)
-          if (const ParameterKey key = parse_parameter_key(p.key);
-              !key.enters(YAML::LoadFile(c.base_case_file)))
+          if (const ParameterKey key = parse_parameter_key(p.key); !key.enters(base))
             fail(root["parameters"][p.key], "parameters." + p.key + ": the base case " +
                                                 c.base_case_file + " has no material." +
                                                 key.optional_block +

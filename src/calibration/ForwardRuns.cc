@@ -16,20 +16,25 @@ namespace indentsim::calibration
   {
     namespace fs = std::filesystem;
 
-    // {material: {yield_stress: 0.25}, output: {plots: false}} from the parameters' keys, for
-    // the forward case `base` (a layer's key copies the case's own material.layers).
-    YAML::Node overrides_of(const Calibration &calibration, const Point &point,
-                            const std::string &base_file)
+    // The YAML of a forward case file, or a null node if it does not read (the study's own
+    // reading of the case then names the file and the line).
+    YAML::Node case_yaml(const std::string &file)
     {
-      YAML::Node base;
       try
         {
-          base = YAML::LoadFile(base_file);
+          return YAML::LoadFile(file);
         }
       catch (const YAML::Exception &)
         {
-          // The study's own reading of the case names the file and the line.
+          return YAML::Node();
         }
+    }
+
+    // {material: {yield_stress: 0.25}, output: {plots: false}} from the parameters' keys, for
+    // the forward case `base` (a layer's key copies the case's own material.layers).
+    YAML::Node overrides_of(const Calibration &calibration, const Point &point,
+                            const std::string &base_file, const YAML::Node &base)
+    {
       YAML::Node overrides(YAML::NodeType::Map);
       for (std::size_t j = 0; j < calibration.parameters.size(); ++j)
         {
@@ -54,6 +59,9 @@ namespace indentsim::calibration
     const std::vector<std::string> cases = calibration.forward_cases();
     YAML::Node                     root(YAML::NodeType::Map);
     root["output"] = (fs::path(calibration.output_directory) / "forward").string();
+    std::vector<YAML::Node> bases;
+    for (const std::string &file : cases)
+      bases.push_back(case_yaml(file));
     ForwardBatch batch;
     // Each case once: a case that no parameter of the points differs in (a tensile test under
     // a layer's key) is shared by them.
@@ -63,7 +71,7 @@ namespace indentsim::calibration
         batch.index.emplace_back();
         for (std::size_t k = 0; k < cases.size(); ++k)
           {
-            const YAML::Node overrides = overrides_of(calibration, points[i], cases[k]);
+            const YAML::Node overrides = overrides_of(calibration, points[i], cases[k], bases[k]);
             YAML::Emitter    text;
             text << YAML::Flow << overrides;
             const std::pair<std::size_t, std::string> id(k, text.c_str());

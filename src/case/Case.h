@@ -136,6 +136,9 @@ namespace indentsim::io
     unsigned int   seed = 1;                // seed of the random orientations (per_element)
     // The automatic mesh's elements across the thinnest layer or the damage peak.
     unsigned int elements_across_layers = 4;
+    // 2^m: the automatic mesh's top-face cells within the contact nodes' reach are this many
+    // times smaller than s(rho) (1, 2, 4 or 8); 0: auto (by dimension).
+    unsigned int surface_refinement = 0;
     MeshGrading  grading; // contact_elements: auto only (designed)
 
     bool automatic_mesh() const { return contact_elements == automatic_contact_elements; }

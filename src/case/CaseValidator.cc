@@ -61,13 +61,26 @@ namespace indentsim::io
         check_section("indenter");
         std::unique_ptr<indenter::IndenterSurface> surface = check_indenter();
         check_section("specimen");
+        const unsigned int surface_refinement = checked.specimen.surface_refinement;
         if (!tensile() && checked.specimen.automatic_mesh())
-          design_automatic_mesh(*surface);
-        else if (checked.specimen.elements_per_radius != 0)
-          reject("specimen.elements_per_radius",
-                 std::to_string(checked.specimen.elements_per_radius),
-                 "it sets the automatic mesh: give specimen.contact_elements: auto with it, or "
-                 "remove it to mesh the refined region with contact_elements");
+          {
+            if (surface_refinement != 0 && (surface_refinement & (surface_refinement - 1)) != 0)
+              reject("specimen.surface_refinement", std::to_string(surface_refinement),
+                     "allowed: auto, 1, 2, 4 or 8 (a power of two: the octree halves cells)");
+            design_automatic_mesh(*surface);
+          }
+        else
+          {
+            const auto refuse = [&](const char *key, const unsigned int value) {
+              reject(key, std::to_string(value),
+                     "it sets the automatic mesh: give specimen.contact_elements: auto with it, "
+                     "or remove it to mesh the refined region with contact_elements");
+            };
+            if (checked.specimen.elements_per_radius != 0)
+              refuse("specimen.elements_per_radius", checked.specimen.elements_per_radius);
+            if (surface_refinement != 0)
+              refuse("specimen.surface_refinement", surface_refinement);
+          }
         if (!checked.specimen.automatic_mesh() && value_origins != nullptr &&
             value_origins->count("specimen.elements_across_layers") != 0)
           reject("specimen.elements_across_layers",

@@ -771,6 +771,22 @@ namespace indentsim::io
                         "contact radii; ρ/(n/2) beyond). `auto`: 10 in axisymmetric mode, 6 in "
                         "3D. A larger n refines the whole design, for convergence studies "
                         "(user guide, \"Automatic meshes\")"),
+          D::at<&C::specimen, &S::surface_refinement>("specimen.surface_refinement")
+              .written_if(&automatic_mesh)
+              .range(between(1, true, 8, true),
+                     "allowed: auto, 1, 2, 4 or 8 (the top face's cells within the contact "
+                     "nodes' reach are that many times smaller than the design's edge)")
+              .or_word("auto")
+              .allowed_is("1, 2, 4 or 8, or `auto`")
+              .comment("1 | 2 | 4 | 8: top-face cells under the contact this many times "
+                       "smaller; auto: 2 axisymmetric, 1 in 3D")
+              .describe("with `contact_elements: auto` only: the top face's cells within the "
+                        "contact nodes' reach are this many times smaller than the edge ρ/n "
+                        "the design gives them (1, 2, 4 or 8), so the contact edge passes nodes "
+                        "that much closer together and the force's ripple as it passes them "
+                        "shrinks; each node entering the contact costs Newton iterations. "
+                        "`auto`: 2 in axisymmetric mode, 1 in 3D (user guide, \"Automatic "
+                        "meshes\")"),
           D::at<&C::specimen, &S::elements_across_layers>("specimen.elements_across_layers")
               .written_if(&graded_automatic_mesh)
               .range(between(1, true, 16, true),

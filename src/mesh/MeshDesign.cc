@@ -4,6 +4,7 @@
 #include "mesh/MeshAdequacy.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -71,7 +72,10 @@ namespace indentsim::mesh
       }
     const double contact_half = round_up(design::contact_region_radii * std::max(a_d, reach));
     g.surface_radius = contact_half;
-    g.surface_halvings = axisymmetric ? design::surface_halvings_2d : design::surface_halvings_3d;
+    g.surface_halvings = s.surface_refinement != 0
+                             ? static_cast<unsigned int>(std::countr_zero(s.surface_refinement))
+                         : axisymmetric ? design::surface_halvings_2d
+                                        : design::surface_halvings_3d;
     g.layered_depth = io::graded_depth(the_case.material);
     g.layer_element = g.layered_depth > 0
                           ? io::graded_feature(the_case.material) / s.elements_across_layers

@@ -43,16 +43,14 @@ namespace indentsim::mesh
     inline constexpr double elements_per_radius_2d = 10;
     inline constexpr double elements_per_radius_3d = 6;
     // m: the top face's cells within the contact nodes' reach are halved m times more, so that
-    // the contact edge passes nodes 2^m times closer together: the force's ripple as it passes
-    // them shrinks (the paper's J2 case, C = P/h^2 over 1-6 um in axisymmetric mode: +-1.7 %
-    // for n = 12 and m = 0, +-0.6 % for m = 1, +-0.8 % for n = 10 and m = 1), for a strip of
-    // cells along the surface. n = 10 with m = 2 comes within -0.6 ... +0.3 % of the converged
-    // curve (5 100 DOFs against 4 300) but takes 1 730 Newton iterations against 980 (38 s
-    // against 18 s on one core: more nodes enter per increment, and such increments take more
-    // iterations), so the default example keeps m = 1. In 3D the strip is a layer: for n = 6 and m = 1 the quarter model
-    // of that case has 35 400 DOFs and comes within -0.2 ... -1.3 % of the converged curve from
-    // 1.5 to 6 um (m = 0: -2.4 ... -3.4 %), but takes 3.5 times as long (more Newton iterations
-    // per contact event, harder linear solves), so the 3D design keeps m = 0 for now.
+    // the contact edge passes nodes 2^m times closer together and the force's ripple as it
+    // passes them shrinks, unless specimen.surface_refinement gives 2^m. Measured on the paper's
+    // J2 case with 192 geometric steps (C = P/(h + delta)^2 over 1-6 um against the converged
+    // 23.065 GPa, docs/user-guide.md, "Automatic meshes"): in 2D, m = 1 gives -1.9 ... -0.4 %
+    // (4 300 DOFs, 980 Newton iterations), m = 2 -1.2 ... -0.4 % (5 100 DOFs, 1 730 iterations:
+    // more nodes enter per increment, and such increments take more iterations); in the 3D
+    // quarter model m = 0 gives -3.1 ... -0.3 % (24 400 DOFs, 134 s) and m = 1 -1.7 ... -0.8 %
+    // (35 500 DOFs, 374 s). The defaults keep the cheaper design.
     inline constexpr unsigned int surface_halvings_2d = 1;
     inline constexpr unsigned int surface_halvings_3d = 0;
     // h_min resolves the contact from this fraction of the maximum depth.

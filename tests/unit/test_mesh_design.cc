@@ -153,6 +153,33 @@ TEST(MeshDesign, ElementsPerRadiusSetsTheDesign)
   EXPECT_NE(io::resolved_case_yaml(defaulted).find("elements_per_radius: auto"), std::string::npos);
 }
 
+// specimen.surface_refinement: the top face's cells under the contact 2^m times smaller than
+// s(rho); auto is 2 (m = 1) in axisymmetric mode and 1 (m = 0) in 3D; only the surface changes.
+TEST(MeshDesign, SurfaceRefinementSetsTheSurfaceHalvings)
+{
+  const auto designed = [](const std::string &specimen) {
+    return io::parse_case_yaml("test: indentation\nmaterial: {model: j2}\nspecimen: {" + specimen +
+                                   "}\nloading: {max_depth: 6.0}\n",
+                               "surface.yaml");
+  };
+  const io::Case four = designed("contact_elements: auto, symmetry: axisymmetric, "
+                                 "surface_refinement: 4");
+  const io::Case axisymmetric = designed_paper_case("axisymmetric");
+  EXPECT_EQ(four.specimen.grading.surface_halvings, 2u);
+  EXPECT_EQ(axisymmetric.specimen.grading.surface_halvings, 1u);
+  io::MeshGrading without_surface = four.specimen.grading;
+  without_surface.surface_halvings = axisymmetric.specimen.grading.surface_halvings;
+  EXPECT_EQ(without_surface, axisymmetric.specimen.grading);
+  check_rule<2>(four);
+  const io::Case quarter = designed("contact_elements: auto, symmetry: quarter, "
+                                    "surface_refinement: 2");
+  EXPECT_EQ(quarter.specimen.grading.surface_halvings, 1u);
+  EXPECT_EQ(designed_paper_case("quarter").specimen.grading.surface_halvings, 0u);
+  EXPECT_NE(io::resolved_case_yaml(four).find("surface_refinement: 4"), std::string::npos);
+  EXPECT_NE(io::resolved_case_yaml(axisymmetric).find("surface_refinement: auto"),
+            std::string::npos);
+}
+
 TEST(MeshDesign, QuarterMeshFollowsTheRule)
 {
   const io::Case c = designed_paper_case("quarter");
@@ -249,6 +276,15 @@ TEST(MeshDesign, CaseFileRefusals)
   expect_rejected("test: indentation\nmaterial: {model: j2}\n"
                   "specimen: {contact_elements: auto, elements_per_radius: 1}\n",
                   {"specimen.elements_per_radius = 1", "2 <= n <= 64"});
+  expect_rejected("test: indentation\nmaterial: {model: j2}\n"
+                  "specimen: {contact_elements: 12, surface_refinement: 2}\n",
+                  {"specimen.surface_refinement = 2", "give specimen.contact_elements: auto"});
+  expect_rejected("test: indentation\nmaterial: {model: j2}\n"
+                  "specimen: {contact_elements: auto, surface_refinement: 3}\n",
+                  {"specimen.surface_refinement = 3", "allowed: auto, 1, 2, 4 or 8"});
+  expect_rejected("test: indentation\nmaterial: {model: j2}\n"
+                  "specimen: {contact_elements: auto, surface_refinement: 16}\n",
+                  {"specimen.surface_refinement = 16", "1, 2, 4 or 8"});
   expect_rejected("test: indentation\nmaterial: {model: j2}\n"
                   "specimen: {contact_elements: 12, elements_across_layers: 2}\n",
                   {"specimen.elements_across_layers = 2", "give specimen.contact_elements: auto"});

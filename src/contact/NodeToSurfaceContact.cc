@@ -235,7 +235,8 @@ namespace indentsim::contact
         for (unsigned int k = 0; k < axes_.size(); ++k)
           node.x[axes_[k]] = node.X[axes_[k]] + u(node.dofs[k]);
         int normal_active = -1; // decided by the augmented pressure
-        if (mode == ActiveSet::predictor && node.lambda_converged > 0)
+        if ((mode == ActiveSet::predictor && node.lambda_converged > 0) ||
+            (mode == ActiveSet::free && node.held))
           normal_active = 1;
         else if (mode == ActiveSet::frozen)
           normal_active = node.active;
@@ -263,6 +264,7 @@ namespace indentsim::contact
         node.gap = response.projection.gap;
         node.normal = response.projection.normal;
         node.active = response.status != ContactStatus::open;
+        node.held = node.held || (mode == ActiveSet::free && node.active);
         node.status = response.status;
         n_changes_ += (node.status != previous);
         node.pressure = response.pressure;
@@ -270,6 +272,12 @@ namespace indentsim::contact
         node.slip = response.slip;
       }
     return !search_failed_;
+  }
+
+  void NodeToSurfaceContact::start_pass()
+  {
+    for (ContactNode &node : nodes_)
+      node.held = false;
   }
 
   void NodeToSurfaceContact::assemble(const AffineConstraints<double>  &constraints,
@@ -447,7 +455,9 @@ namespace indentsim::contact
             std::max({largest_change, std::abs(node.pressure - node.lambda) * node.area,
                       (node.traction - node.traction_multiplier).norm() * node.area});
         const bool oscillating = damp_oscillations && node.gap * node.gap_at_augmentation < 0;
-        node.lambda = oscillating ? 0.5 * (node.lambda + node.pressure) : node.pressure;
+        // The Uzawa update projected onto lambda >= 0: a node held in tension gets none.
+        const double pressure = std::max(node.pressure, 0.0);
+        node.lambda = oscillating ? 0.5 * (node.lambda + pressure) : pressure;
         node.traction_multiplier = node.traction;
         node.gap_at_augmentation = node.gap;
       }
@@ -472,7 +482,7 @@ namespace indentsim::contact
     // from a node that has left the indenter since the last augmentation.
     for (ContactNode &node : nodes_)
       {
-        node.lambda = node.pressure;
+        node.lambda = std::max(node.pressure, 0.0);
         node.traction_multiplier = node.traction;
         node.lambda_previous = node.lambda_converged;
         node.lambda_converged = node.lambda;
@@ -589,12 +599,15 @@ namespace indentsim::contact
     for (const ContactNode &node : nodes_)
       {
         local_penetration = std::max(local_penetration, -node.gap);
+        // A node held active (free mode within a pass) or frozen may carry tension; it must
+        // still lie on the indenter for the conditions to hold.
+        if (node.active)
+          local_active_gap = std::max(local_active_gap, std::abs(node.gap));
         if (node.pressure <= 0)
           continue;
         local_force += -node.pressure * node.area * node.normal[2] - node.area * node.traction[2];
         local_force_vector += node.area * (node.pressure * node.normal + node.traction);
         local_area += node.area;
-        local_active_gap = std::max(local_active_gap, std::abs(node.gap));
         local_pressure = std::max(local_pressure, node.pressure);
         local_radius = std::max(local_radius, std::hypot(node.x[0], node.x[1]));
         ++local_active;

@@ -74,9 +74,10 @@ namespace indentsim::contact
     Tensor<1, 3> traction_multiplier_converged; // t_i of the last converged increment
     Point<3>     x_converged;                   // position at the last converged increment [um]
     // State at the last evaluation.
-    double        gap = 0;      // [um]
-    double        pressure = 0; // augmented pressure p [GPa]
-    bool          active = false;
+    double gap = 0;      // [um]
+    double pressure = 0; // augmented pressure p [GPa]
+    bool   active = false;
+    bool   held = false; // active in an earlier free evaluation of this Newton pass (kept active)
     ContactStatus status = ContactStatus::open;
     Tensor<1, 3>  normal;
     Tensor<1, 3>  traction;                // tangential traction t on the node [GPa]
@@ -151,17 +152,27 @@ namespace indentsim::contact
     // instead of releasing it. A node outside that set joins it where the predicted state
     // penetrates by more than the predictor activation depth: the ring of nodes the indenter
     // reaches in this increment then enters with the first Newton iteration, instead of
-    // penetrating freely in it and being pushed back in the next. With `frozen`, the statuses of the previous evaluation are kept (pressures
-    // unclipped): the Newton driver freezes them when the semi-smooth iteration cycles.
+    // penetrating freely in it and being pushed back in the next. In `free` mode a node that was
+    // active in an earlier free evaluation of the same Newton pass stays active (held; its
+    // pressure unclipped) until start_pass: within a pass the active set only grows, so the
+    // semi-smooth iteration cannot cycle by releasing a node and capturing it again. A held node
+    // that would separate ends the pass with an active gap; the augmentation then clears its
+    // multiplier, and the next pass releases it. With `frozen`, the statuses of the previous
+    // evaluation are kept (pressures unclipped): the Newton driver freezes them when the
+    // iteration still cycles.
     // Returns false if a closest-point projection failed on this rank.
     enum class ActiveSet
     {
-      free,      // active where the augmented pressure is positive, stick/slip by the cone
+      free,      // active where the augmented pressure is positive or the node is held,
+                 // stick/slip by the cone
       predictor, // active where the last converged increment was active
       frozen     // as in the previous evaluation
     };
     bool evaluate(const dealii::PETScWrappers::MPI::Vector &u, double depth,
                   ActiveSet mode = ActiveSet::free);
+
+    // Releases the nodes held active by the last Newton pass: call when a pass begins.
+    void start_pass();
 
     // Number of nodes (global) whose status differs between the last two evaluations.
     unsigned int n_status_changes() const;

@@ -125,7 +125,8 @@ namespace indentsim::problems
     const double tolerance = case_.contact.penetration_tolerance;
     for (; increment.pass <= case_.contact.max_augmentations; ++increment.pass)
       {
-        NewtonPass     pass;
+        NewtonPass pass;
+        contact_->start_pass();
         IterateOutcome outcome = IterateOutcome::next_iterate;
         for (unsigned int it = 0; it <= case_.solver.max_newton_iterations; ++it)
           {

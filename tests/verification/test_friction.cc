@@ -112,6 +112,7 @@ namespace
       bool augmented_enough = false;
       for (unsigned int pass = 0; pass < 60 && !augmented_enough; ++pass)
         {
+          contact.start_pass();
           ASSERT_TRUE(newton(depth))
               << "Newton did not converge at depth " << depth << ", offset " << offset_x;
           const auto s = contact.summary();
@@ -223,6 +224,35 @@ TEST(Friction, ZeroCoefficientTransmitsNoTangentialForce)
   block.solve(0.01, 0.0);
   block.solve(0.01, 0.005);
   expect_state(block, 0.0, 0.0, 4 * block.k * 0.01, 0, "frictionless slide");
+}
+
+// Within a Newton pass the free active set only grows: a node active in an earlier evaluation of
+// the pass stays active (held, carrying tension if it would separate), so that the semi-smooth
+// iteration cannot release and recapture it; start_pass releases it, and the contact conditions
+// report the held node's gap meanwhile.
+TEST(Friction, ActiveNodesAreHeldUntilThePassEnds)
+{
+  using ActiveSet = contact::NodeToSurfaceContact::ActiveSet;
+  const Plane plane;
+  SpringBlock block(plane, 0.0, 100.0);
+  block.contact.start_pass();
+  ASSERT_TRUE(block.contact.evaluate(block.u, 0.01, ActiveSet::free)); // 0.01 um into the plane
+  EXPECT_EQ(block.contact.summary().n_active, 4u);
+  ASSERT_TRUE(block.contact.evaluate(block.u, -0.01, ActiveSet::free)); // plane 0.01 um above
+  for (const auto &node : block.contact.nodes())
+    {
+      EXPECT_TRUE(node.active);
+      EXPECT_NEAR(node.pressure, -100.0 * 0.01, 1e-12); // p = lambda - eps g, unclipped
+    }
+  EXPECT_NEAR(block.contact.summary().max_active_gap, 0.01, 1e-12);
+  EXPECT_FALSE(block.contact.summary().conditions_met(1e-6));
+  block.contact.augment(); // the multipliers stay >= 0
+  for (const auto &node : block.contact.nodes())
+    EXPECT_EQ(node.lambda, 0.0);
+  block.contact.start_pass();
+  ASSERT_TRUE(block.contact.evaluate(block.u, -0.01, ActiveSet::free));
+  EXPECT_EQ(block.contact.summary().n_active, 0u);
+  EXPECT_TRUE(block.contact.summary().conditions_met(1e-6));
 }
 
 namespace

@@ -1,7 +1,8 @@
 // The augmented-Lagrangian Newton solver of one increment of IndentationProblem, in the steps
 // of deal.II's step-42: a predictor, then augmentation passes (eqs. 17-18); each pass is a
-// semi-smooth Newton iteration on the residual with a backtracking line search and, when the
-// contact active set cycles, a frozen active set. Under force control the depth h is a further
+// semi-smooth Newton iteration on the residual whose contact active set only grows within the
+// pass (NodeToSurfaceContact::start_pass), with a backtracking line search and, when the active
+// set still cycles, a frozen active set. Under force control the depth h is a further
 // unknown (a bordered Newton system). Units: um, mN, GPa.
 #include "problems/IndentationProblem.h"
 

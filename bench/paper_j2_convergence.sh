@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Step and mesh convergence of the paper's J2 case in axisymmetric mode: the default example
 # with n = 10, 14 and 20 elements per radius and 192, 384 and 768 geometric steps
-# (bench/paper_j2_convergence.yaml, seven runs, two side by side, about 6 minutes on the
+# (bench/paper_j2_convergence.yaml, seven runs, two side by side, about 5 minutes on the
 # project's 2-core machine), then the table of C = P/(h + delta)^2 over 1-6 um, the observed
 # order of the step sequence and its Richardson value (bench/paper_j2_convergence.py).
 # The figures and what they mean: docs/validation.md, "The paper's J2 case on the automatic mesh".

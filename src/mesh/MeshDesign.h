@@ -47,10 +47,10 @@ namespace indentsim::mesh
     // passes them shrinks, unless specimen.surface_refinement gives 2^m. Measured on the paper's
     // J2 case with 192 geometric steps (C = P/(h + delta)^2 over 1-6 um against the converged
     // 23.065 GPa, docs/user-guide.md, "Automatic meshes"): in 2D, m = 1 gives -1.9 ... -0.4 %
-    // (4 300 DOFs, 980 Newton iterations), m = 2 -1.2 ... -0.4 % (5 100 DOFs, 1 730 iterations:
+    // (4 300 DOFs, 980 Newton iterations), m = 2 -1.2 ... -0.4 % (5 100 DOFs, 1 700 iterations:
     // more nodes enter per increment, and such increments take more iterations); in the 3D
-    // quarter model m = 0 gives -3.1 ... -0.3 % (24 400 DOFs, 134 s) and m = 1 -1.7 ... -0.8 %
-    // (35 500 DOFs, 374 s). The defaults keep the cheaper design.
+    // quarter model m = 0 gives -3.1 ... -0.3 % (24 400 DOFs, 130 s) and m = 1 -1.7 ... -0.8 %
+    // (35 500 DOFs, 305 s). The defaults keep the cheaper design.
     inline constexpr unsigned int surface_halvings_2d = 1;
     inline constexpr unsigned int surface_halvings_3d = 0;
     // h_min resolves the contact from this fraction of the maximum depth.

@@ -101,6 +101,21 @@ CASES["j2_axi_auto"] = (
      "specimen": {"contact_elements": "auto", "symmetry": "axisymmetric"},
      "contact": {"friction_coefficient": 0.0, "penetration_tolerance": 1e-5},
      "loading": {"max_depth": 6.0, "steps": 192, "spacing": "geometric", "unload": True}})
+# The 3D quarter model of the default example for a loading curve (docs/performance.md, "The 3D
+# quarter model for a loading curve"): uniform steps, loading only, at the default 3D design and
+# with 5 elements per radius; no plots (the figure is the computation's).
+for name, n, steps in (("j2_quarter_auto_u32", None, 32), ("j2_quarter_auto_n5_u28", 5, 28)):
+    CASES[name] = (
+        f"J2 indentation (Table 1), 3D quarter model on the automatic mesh"
+        f"{'' if n is None else f' with {n} elements per radius'}, {steps} uniform steps to 6 um, "
+        "loading only, contact tolerance 1e-5 um (the comparison with an independent code in "
+        "docs/performance.md)",
+        {**indentation(J2, "auto", "quarter"),
+         "specimen": {"contact_elements": "auto", "symmetry": "quarter",
+                      **({} if n is None else {"elements_per_radius": n})},
+         "contact": {"friction_coefficient": 0.0, "penetration_tolerance": 1e-5},
+         "loading": {"max_depth": 6.0, "steps": steps, "spacing": "uniform", "unload": False},
+         "output": {"plots": False}})
 # The irradiated-versus-pristine pair with a hardness-depth profile: to 3 um with 19 partial
 # unloads (every 0.15 um, 10 % of the force) and the full unload, axisymmetric automatic mesh.
 CSM_LOADING = {"max_depth": 3.0, "steps": 128, "spacing": "geometric", "unload": True,

@@ -9,11 +9,12 @@ load_penetration.csv given, over the loading points with 1 <= h <= 6 um:
   pointwise   the smallest and largest P / (C (h + delta)^2) - 1 [%]
   mean        the mean of that ratio [%]
   RMS         sqrt of the mean over h (the integral over [1, 6] um / 5 um, the curve
-              interpolated linearly between its points) of ((P - C (h + delta)^2) / P(6.0 um))^2 [%], the
-              measure the issue's peer comparison uses ("RMS over 1-6 um, of the converged 6 um
-              force")
+              interpolated linearly between its points) of ((P - C (h + delta)^2) / P(6.0 um))^2
+              [%]: the measure of docs/performance.md's comparison with an independent code
+              ("RMS over 1-6 um, of the converged 6 um force")
 
-and, from run_summary.json when it is there, DOFs, Newton iterations and wall time.
+and, from run_summary.json when it is there, DOFs, Newton iterations and the run's total time
+(time_total_s).
 
     python3 bench/curve_error.py RUN_DIR_OR_CSV... [--c GPA] [--delta UM]
 
@@ -24,6 +25,7 @@ import csv
 import json
 import math
 import pathlib
+import sys
 
 
 def loading_points(csv_path):
@@ -67,7 +69,11 @@ def main():
     for run in args.runs:
         path = pathlib.Path(run)
         csv_path = path / "load_penetration.csv" if path.is_dir() else path
-        low, high, mean, rms = errors(loading_points(csv_path), args.c, args.delta)
+        try:
+            low, high, mean, rms = errors(loading_points(csv_path), args.c, args.delta)
+        except (OSError, KeyError, ValueError) as error:
+            sys.exit(f"curve_error.py: {csv_path}: {error!r} (a load_penetration.csv with the "
+                     "columns segment, depth_um and force_mN, loading from 1 um to 6 um is needed)")
         summary_path = csv_path.parent / "run_summary.json"
         dofs = newton = time = "-"
         if summary_path.exists():

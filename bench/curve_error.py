@@ -27,6 +27,10 @@ import math
 import pathlib
 import sys
 
+# Linear interpolation as the study report does it (python/study_report.py).
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "python"))
+from study_report import interpolate  # noqa: E402
+
 
 def loading_points(csv_path):
     with open(csv_path, newline="") as handle:
@@ -34,13 +38,6 @@ def loading_points(csv_path):
     points = [(float(r["depth_um"]), float(r["force_mN"])) for r in rows
               if r.get("segment", "load") == "load"]
     return sorted(points)
-
-
-def interpolate(points, h):
-    for (h0, p0), (h1, p1) in zip(points, points[1:]):
-        if h0 <= h <= h1:
-            return p0 + (p1 - p0) * (h - h0) / (h1 - h0) if h1 > h0 else p1
-    raise ValueError(f"depth {h} um lies outside the curve ({points[0][0]}-{points[-1][0]} um)")
 
 
 def errors(points, c, delta):
@@ -52,7 +49,8 @@ def errors(points, c, delta):
     # The mean over h of the squared error by the trapezoidal rule on 500 intervals.
     n = 500
     p6 = converged(6.0)
-    squares = [((interpolate(points, h) - converged(h)) / p6) ** 2
+    depths, forces = [h for h, _ in points], [p for _, p in points]
+    squares = [((interpolate(min(h, depths[-1]), depths, forces) - converged(h)) / p6) ** 2
                for h in (1.0 + 5.0 * i / n for i in range(n + 1))]
     rms = math.sqrt((sum(squares) - 0.5 * (squares[0] + squares[-1])) / n)
     return min(ratio), max(ratio), sum(ratio) / len(ratio), 100 * rms

@@ -210,7 +210,7 @@ namespace indentsim::calibration
       }
     out << std::flush;
 
-    ForwardRuns   runs(c, settings, log);
+    ForwardRuns   runs(c, settings, log, warnings_out);
     ResidualModel model(c, runs);
     FitResult     fit;
     try
@@ -258,9 +258,11 @@ namespace indentsim::calibration
           " of each value) may see the forward model's small jumps instead of its trend; give "
           "each parameter a `step` of a few per cent of its value (parameters.<key>.step)");
     if (runs.runs_failed() > 0)
-      warnings.push_back(std::to_string(runs.runs_failed()) +
-                         " forward run(s) failed and the steps through them were rejected; "
-                         "forward_runs.log names each with its last lines");
+      warnings.push_back(
+          std::to_string(runs.runs_failed()) +
+          " forward run(s) failed: a failed trial point counts as a rejected step, a "
+          "difference through a failed run is taken on the other side; forward_runs.log "
+          "names each with its last lines");
 
     const auto   at_start = model.simulated(start), at_fit = model.simulated(fit.x);
     const double wall_time =

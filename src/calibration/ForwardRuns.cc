@@ -117,10 +117,11 @@ namespace indentsim::calibration
   }
 
   ForwardRuns::ForwardRuns(const Calibration &calibration, const study::StudyRunSettings &settings,
-                           std::ostream &log)
+                           std::ostream &log, std::ostream &warnings)
     : calibration_(calibration)
     , settings_(settings)
     , log_(log)
+    , warnings_(warnings)
   {
     settings_.batch = true;
     settings_.dry_run = false;
@@ -180,7 +181,15 @@ namespace indentsim::calibration
         else if (finished)
           ++computed_;
         else
-          ++failed_;
+          {
+            ++failed_;
+            const std::string console =
+                batch.cases[c].directory + "/" + study::study_files::console_log;
+            warnings_ << "WARNING: the forward run " << batch.cases[c].directory
+                      << " failed (exit code " << exit_code << "); the last lines of its "
+                      << console << ":\n"
+                      << study::last_lines(console, 6) << std::flush;
+          }
       }
     return directories;
   }

@@ -39,9 +39,10 @@ namespace indentsim::calibration
   class ForwardRuns
   {
   public:
-    // `log` receives the study runner's lines (which case runs, how it ended).
+    // `log` receives the study runner's lines (which case runs, how it ended); `warnings` a
+    // warning with the last lines of each run that fails.
     ForwardRuns(const Calibration &calibration, const study::StudyRunSettings &settings,
-                std::ostream &log);
+                std::ostream &log, std::ostream &warnings);
 
     // For each point, the run directory of each forward case, or nullopt for a point whose
     // cases did not all finish. Throws study::StudyFileError when interrupted (SIGINT/SIGTERM),
@@ -55,7 +56,7 @@ namespace indentsim::calibration
   private:
     const Calibration      &calibration_;
     study::StudyRunSettings settings_;
-    std::ostream           &log_;
+    std::ostream           &log_, &warnings_;
     unsigned int            computed_ = 0, reused_ = 0, failed_ = 0;
   };
 } // namespace indentsim::calibration

@@ -6,6 +6,7 @@
 
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -78,91 +79,142 @@ namespace indentsim::calibration
     return values;
   }
 
+  std::optional<std::pair<std::vector<double>, std::vector<double>>>
+  difference_jacobian(const SampleResiduals &sample, const Point &x,
+                      const std::vector<std::vector<Difference>> &candidates)
+  {
+    const std::size_t p = x.size();
+    // Every point sampled so far with its residuals (nullopt: its runs failed).
+    std::vector<std::pair<Point, std::optional<std::vector<double>>>> sampled;
+    const auto find = [&](const Point &point) {
+      return std::find_if(sampled.begin(), sampled.end(),
+                          [&](const auto &s) { return s.first == point; });
+    };
+    const auto at = [&](const std::size_t j, const double value) {
+      Point shifted = x;
+      shifted[j] = value;
+      return shifted;
+    };
+    std::vector<std::size_t> tried(p, 0); // per column, the candidate it is at
+    std::vector<Point>       batch = {x};
+    for (std::size_t j = 0; j < p; ++j)
+      for (const double value : {candidates[j][0].below, candidates[j][0].above})
+        batch.push_back(at(j, value));
+    while (true)
+      {
+        std::vector<Point> unsampled;
+        for (const Point &point : batch)
+          if (find(point) == sampled.end() &&
+              std::find(unsampled.begin(), unsampled.end(), point) == unsampled.end())
+            unsampled.push_back(point);
+        const auto r = sample(unsampled);
+        for (std::size_t k = 0; k < unsampled.size(); ++k)
+          sampled.emplace_back(unsampled[k], r[k]);
+        if (!find(x)->second)
+          return std::nullopt;
+        // A column with a failed point moves on to its next candidate; all of them go out as
+        // the next batch.
+        batch.clear();
+        for (std::size_t j = 0; j < p; ++j)
+          {
+            const Difference &d = candidates[j][tried[j]];
+            if (find(at(j, d.below))->second && find(at(j, d.above))->second)
+              continue;
+            if (++tried[j] == candidates[j].size())
+              return std::nullopt;
+            batch.push_back(at(j, candidates[j][tried[j]].below));
+            batch.push_back(at(j, candidates[j][tried[j]].above));
+          }
+        if (batch.empty())
+          break;
+      }
+    const std::vector<double> &r0 = *find(x)->second;
+    const std::size_t          m = r0.size();
+    std::vector<double>        jacobian(m * p);
+    for (std::size_t j = 0; j < p; ++j)
+      {
+        const Difference          &d = candidates[j][tried[j]];
+        const std::vector<double> &below = *find(at(j, d.below))->second;
+        const std::vector<double> &above = *find(at(j, d.above))->second;
+        for (std::size_t i = 0; i < m; ++i)
+          jacobian[i * p + j] = (above[i] - below[i]) / (d.above - d.below);
+      }
+    return std::make_pair(r0, jacobian);
+  }
+
   namespace
   {
-    // The residuals at points[0] and the Jacobian of differences: column j is
-    // (r(points[ends[j][1]]) - r(points[ends[j][0]])) / span[j]. nullopt if a run failed.
-    std::optional<std::pair<std::vector<double>, std::vector<double>>>
-    difference_jacobian(ResidualModel &model, const std::vector<Point> &points,
-                        const std::vector<std::array<std::size_t, 2>> &ends,
-                        const std::vector<double>                     &span)
-    {
-      const auto r = model.residuals(points);
-      for (const auto &one : r)
-        if (!one)
-          return std::nullopt;
-      const std::size_t   m = r[0]->size(), p = ends.size();
-      std::vector<double> jacobian(m * p);
-      for (std::size_t j = 0; j < p; ++j)
-        for (std::size_t i = 0; i < m; ++i)
-          jacobian[i * p + j] = ((*r[ends[j][1]])[i] - (*r[ends[j][0]])[i]) / span[j];
-      return std::make_pair(*r[0], jacobian);
-    }
     // What a relative finite-difference step is relative to: |x|, or a thousandth of the
     // parameter's range where x is near zero.
     double difference_scale(const Parameter &parameter, const double x)
     {
       return std::max(std::abs(x), 1e-3 * (parameter.max - parameter.min));
     }
+
+    // The one-sided differences of width h from x, clipped to the bounds, toward the farther
+    // bound first, then the other side, then both at h/2: the fallbacks for a failed run.
+    std::vector<Difference> one_sided(const Parameter &parameter, const double x, const double h)
+    {
+      const bool              upward = parameter.max - x >= x - parameter.min;
+      std::vector<Difference> list;
+      for (const double width : {h, h / 2})
+        for (const bool up : {upward, !upward})
+          {
+            const Difference d = up ? Difference{x, std::min(x + width, parameter.max)}
+                                    : Difference{std::max(x - width, parameter.min), x};
+            if (d.above > d.below)
+              list.push_back(d);
+          }
+      return list;
+    }
+
+    SampleResiduals sampler(ResidualModel &model)
+    {
+      return [&model](const std::vector<Point> &points) { return model.residuals(points); };
+    }
   } // namespace
 
   std::optional<std::pair<std::vector<double>, std::vector<double>>>
   residuals_and_jacobian(const Calibration &calibration, ResidualModel &model, const Point &x)
   {
-    const std::size_t   p = x.size();
-    std::vector<Point>  points = {x};
-    std::vector<double> step(p);
-    for (std::size_t j = 0; j < p; ++j)
+    std::vector<std::vector<Difference>> candidates;
+    for (std::size_t j = 0; j < x.size(); ++j)
       {
         const Parameter &parameter = calibration.parameters[j];
-        step[j] = parameter.step > 0. ? parameter.step
-                                      : calibration.solver.finite_difference_step *
-                                            difference_scale(parameter, x[j]);
-        if (x[j] + step[j] > parameter.max)
-          step[j] = -step[j];
-        Point shifted = x;
-        shifted[j] += step[j];
-        points.push_back(shifted);
+        const double     h = parameter.step > 0. ? parameter.step
+                                                 : calibration.solver.finite_difference_step *
+                                                   difference_scale(parameter, x[j]);
+        // Forward differences point up unless that leaves the bounds (not toward the farther
+        // bound: a narrow step stays near x on either side).
+        std::vector<Difference> list;
+        if (x[j] + h <= parameter.max)
+          list.push_back({x[j], x[j] + h});
+        for (const Difference &d : one_sided(parameter, x[j], h))
+          if (std::find(list.begin(), list.end(), d) == list.end())
+            list.push_back(d);
+        candidates.push_back(list);
       }
-    std::vector<std::array<std::size_t, 2>> ends(p);
-    for (std::size_t j = 0; j < p; ++j)
-      ends[j] = {0, j + 1};
-    return difference_jacobian(model, points, ends, step);
+    return difference_jacobian(sampler(model), x, candidates);
   }
 
   std::optional<std::pair<std::vector<double>, std::vector<double>>>
   statistics_jacobian(const Calibration &calibration, ResidualModel &model, const Point &x)
   {
-    const std::size_t  p = x.size();
-    std::vector<Point> points = {x};
-    // Per parameter the two points of its difference, and their distance.
-    std::vector<std::array<std::size_t, 2>> ends(p);
-    std::vector<double>                     span(p);
-    for (std::size_t j = 0; j < p; ++j)
+    std::vector<std::vector<Difference>> candidates;
+    for (std::size_t j = 0; j < x.size(); ++j)
       {
         const Parameter &parameter = calibration.parameters[j];
         const double     h = std::max(parameter.step, calibration.solver.statistics_step *
                                                           difference_scale(parameter, x[j]));
-        // Central where both sides lie within the bounds, else one-sided from x toward the
-        // farther bound (clipped to it).
-        const bool   central = x[j] - h >= parameter.min && x[j] + h <= parameter.max;
-        const bool   upward = parameter.max - x[j] >= x[j] - parameter.min;
-        const double below = central ? x[j] - h : upward ? x[j] : std::max(x[j] - h, parameter.min);
-        const double above = central ? x[j] + h : upward ? std::min(x[j] + h, parameter.max) : x[j];
-        // Index 0 of `points` is x itself.
-        const auto point_at = [&](const double value) -> std::size_t {
-          if (value == x[j])
-            return 0;
-          Point shifted = x;
-          shifted[j] = value;
-          points.push_back(shifted);
-          return points.size() - 1;
-        };
-        ends[j][0] = point_at(below);
-        ends[j][1] = point_at(above);
-        span[j] = above - below;
+        // Central where both sides lie within the bounds, else one-sided.
+        std::vector<Difference> list;
+        if (x[j] - h >= parameter.min && x[j] + h <= parameter.max)
+          list.push_back({x[j] - h, x[j] + h});
+        for (const Difference &d : one_sided(parameter, x[j], h))
+          list.push_back(d);
+        candidates.push_back(list);
       }
-    return difference_jacobian(model, points, ends, span);
+    return difference_jacobian(sampler(model), x, candidates);
   }
 
   namespace

@@ -1,7 +1,8 @@
 // The weighted least-squares fit of a calibration: residuals from the forward runs, and the
 // bounded minimisation of their sum of squares by Ceres Solver (Levenberg-Marquardt with the
 // bounds as box constraints), the Jacobian by forward differences whose p + 1 runs go out as one
-// batch (side by side with --jobs).
+// batch (side by side with --jobs); a run that fails at a perturbed point is replaced by one on
+// the other side or at half the step.
 //
 // The difference step of a parameter is its own `step` if given, else
 // solver.finite_difference_step * max(|x|, 1e-3 (max - min)); it points inward at an upper bound.
@@ -17,6 +18,7 @@
 #include "calibration/CalibrationFile.h"
 #include "calibration/ForwardRuns.h"
 
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -81,17 +83,39 @@ namespace indentsim::calibration
   FitResult fit(const Calibration &calibration, ResidualModel &model, ForwardRuns &runs,
                 std::ostream &progress);
 
+  // Per point its residuals, or nullopt where its runs failed (ResidualModel::residuals, or a
+  // stand-in in the tests).
+  using SampleResiduals =
+      std::function<std::vector<std::optional<std::vector<double>>>(const std::vector<Point> &)>;
+
+  // One column's difference: (r(x with x_j = above) - r(x with x_j = below)) / (above - below).
+  struct Difference
+  {
+    double below = 0., above = 0.;
+    bool   operator==(const Difference &) const = default;
+  };
+
+  // The residuals at x and the Jacobian of differences (row-major), column j from the first of
+  // candidates[j] whose two points' runs finished. The first candidates of all columns go out as
+  // one batch with x; the columns with a failed run then try their next candidates, again as one
+  // batch, so that a forward run failing at one perturbed point costs a retry, not the fit.
+  // nullopt if the run at x fails or a column runs out of candidates.
+  std::optional<std::pair<std::vector<double>, std::vector<double>>>
+  difference_jacobian(const SampleResiduals &sample, const Point &x,
+                      const std::vector<std::vector<Difference>> &candidates);
+
   // The Jacobian behind the statistics at the optimum: central differences with the step
-  // solver.statistics_step * max(|x|, 1e-3 (max - min)), or the parameter's own `step` if that is
-  // larger, one-sided from x where a side leaves the bounds; with the residuals at x, from one
-  // batch of up to 2p + 1 points. A step this wide sees through the small jumps of a forward
-  // model (contact nodes) that decorrelate the columns of a narrow difference and would hide
-  // parameters the data cannot separate. nullopt if a run failed.
+  // h = solver.statistics_step * max(|x|, 1e-3 (max - min)), or the parameter's own `step` if
+  // that is larger; one-sided from x where a side leaves the bounds (toward the farther bound,
+  // clipped to it). A step this wide sees through the small jumps of a forward model (contact
+  // nodes) that decorrelate the columns of a narrow difference and would hide parameters the
+  // data cannot separate. Where a run fails: one-sided from x, the other side, then h/2.
   std::optional<std::pair<std::vector<double>, std::vector<double>>>
   statistics_jacobian(const Calibration &calibration, ResidualModel &model, const Point &x);
 
-  // Forward-difference Jacobian at `x` (row-major), with the residuals there, from one batch of
-  // p + 1 points; steps point inward at an upper bound. nullopt if a run failed.
+  // Forward-difference Jacobian at `x` with the residuals there, from one batch of p + 1 points;
+  // a step points down where up would leave the bounds. Where a run fails: the other side, then
+  // half the step.
   std::optional<std::pair<std::vector<double>, std::vector<double>>>
   residuals_and_jacobian(const Calibration &calibration, ResidualModel &model, const Point &x);
 } // namespace indentsim::calibration

@@ -173,23 +173,6 @@ namespace indentsim::study
       return 255;
     }
 
-    std::string last_lines(const fs::path &path, const std::size_t count)
-    {
-      std::istringstream      in(read_text(path));
-      std::deque<std::string> lines;
-      std::string             line;
-      while (std::getline(in, line))
-        {
-          lines.push_back(line);
-          if (lines.size() > count)
-            lines.pop_front();
-        }
-      std::string text;
-      for (const auto &l : lines)
-        text += "    | " + l + "\n";
-      return text;
-    }
-
     std::string self_executable()
     {
       std::error_code error;
@@ -243,6 +226,23 @@ namespace indentsim::study
     if (completed && fs::exists(directory / io::output_files::run_summary, error))
       return CaseState::finished;
     return completed ? CaseState::unfinished : CaseState::failed;
+  }
+
+  std::string last_lines(const std::string &path, const std::size_t count)
+  {
+    std::istringstream      in(read_text(path));
+    std::deque<std::string> lines;
+    std::string             line;
+    while (std::getline(in, line))
+      {
+        lines.push_back(line);
+        if (lines.size() > count)
+          lines.pop_front();
+      }
+    std::string text;
+    for (const auto &l : lines)
+      text += "    | " + l + "\n";
+    return text;
   }
 
   int case_exit_code(const StudyCase &study_case)
@@ -609,7 +609,7 @@ namespace indentsim::study
              << (exit_code == 0 ? ", but no run_summary.json" : std::string()) << ") after "
              << seconds_text(seconds) << "; console output in "
              << (directory / study_files::console_log).string() << ", last lines:\n"
-             << last_lines(directory / study_files::console_log, 12);
+             << last_lines((directory / study_files::console_log).string(), 12);
       }
     out_ << std::flush;
   }

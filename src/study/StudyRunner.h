@@ -77,6 +77,10 @@ namespace indentsim::study
   // The exit code a failed or finished case's process ended with (its study_case.json), or -1
   // if it has none (not run, unfinished).
   int case_exit_code(const StudyCase &study_case);
+  // The last `count` lines of a text file, each indented as "    | line\n" (a failed case's
+  // console output in a report); empty if the file cannot be read.
+  std::string last_lines(const std::string &path, std::size_t count);
+
   // Exit codes of a process that never ran (the shell's: not executable, not found).
   inline constexpr int exit_cannot_execute = 126;
   inline constexpr int exit_not_found = 127;

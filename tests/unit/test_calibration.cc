@@ -8,6 +8,7 @@
 #include "calibration/FitStatistics.h"
 #include "calibration/ForwardRuns.h"
 #include "calibration/IndentationFeatures.h"
+#include "calibration/LeastSquaresFit.h"
 #include "study/StudyRunner.h"
 
 #include <gtest/gtest.h>
@@ -425,6 +426,41 @@ TEST(CurveData, HardnessProfilesBetweenThePartialUnloads)
   ASSERT_EQ(simulated.size(), expected.size());
   for (std::size_t i = 0; i < expected.size(); ++i)
     EXPECT_NEAR(simulated[i], expected[i], 1e-12) << i;
+}
+
+// The difference Jacobian of r(x) = (x0^2 + x1, 3 x0 - x1^3) at x = (1, 2), with the forward
+// runs failing wherever x0 > 1: the first column falls back to its backward difference, whose
+// closed forms are (1 - 0.99^2) / 0.01 = 1.99 and 3; the second keeps its forward difference,
+// 1 and -(2.01^3 - 8) / 0.01 = -12.0601. The failed column's retry is a batch of its own point
+// only (x is not run again); a column out of candidates, or a failed x, gives nothing.
+TEST(LeastSquaresFit, ADifferenceAroundAFailedRunTakesTheOtherSide)
+{
+  std::vector<std::size_t> batch_sizes;
+  const SampleResiduals    sample = [&](const std::vector<Point> &points) {
+    batch_sizes.push_back(points.size());
+    std::vector<std::optional<std::vector<double>>> r;
+    for (const Point &x : points)
+      if (x[0] > 1.)
+        r.emplace_back(std::nullopt);
+      else
+        r.emplace_back(std::vector<double>{x[0] * x[0] + x[1], 3. * x[0] - x[1] * x[1] * x[1]});
+    return r;
+  };
+  const Point x = {1., 2.};
+  const auto  both =
+      difference_jacobian(sample, x, {{{1., 1.01}, {0.99, 1.}}, {{2., 2.01}, {1.99, 2.}}});
+  ASSERT_TRUE(both.has_value());
+  EXPECT_EQ(batch_sizes, (std::vector<std::size_t>{3, 1}));
+  const std::vector<double> &r = both->first, &jacobian = both->second;
+  EXPECT_DOUBLE_EQ(r[0], 3.);
+  EXPECT_DOUBLE_EQ(r[1], -5.);
+  EXPECT_NEAR(jacobian[0], 1.99, 1e-12);     // d r0 / d x0, backward
+  EXPECT_NEAR(jacobian[1], 1., 1e-12);       // d r0 / d x1, forward
+  EXPECT_NEAR(jacobian[2], 3., 1e-12);       // d r1 / d x0, backward
+  EXPECT_NEAR(jacobian[3], -12.0601, 1e-10); // d r1 / d x1, forward
+
+  EXPECT_FALSE(difference_jacobian(sample, x, {{{1., 1.01}}, {{2., 2.01}}}).has_value());
+  EXPECT_FALSE(difference_jacobian(sample, {1.5, 2.}, {{{1.4, 1.5}}, {{2., 2.01}}}).has_value());
 }
 
 // The statistics of y = a + b t fitted to 8 points: the residuals r_i = a + b t_i - y_i have

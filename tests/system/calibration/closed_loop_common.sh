@@ -20,12 +20,14 @@ run_truth() {
 }
 
 # calibrate_and_check FIT_YAML TOLERANCE KEY=TRUTH...: the calibration with two forward runs
-# side by side, its summary printed; every KEY recovered within the relative TOLERANCE and the
-# parameters called identifiable. The results are in the `output` the file names.
+# side by side (and the options in the array calibrate_options, if any), its summary printed;
+# every KEY recovered within the relative TOLERANCE and the parameters called identifiable. The
+# results are in the `output` the file names.
+calibrate_options=()
 calibrate_and_check() {
   local fit="$1" tolerance="$2"
   shift 2
-  "$indentsim" calibrate "$fit" --jobs 2 > "${fit%.yaml}.txt" 2>&1 \
+  "$indentsim" calibrate "$fit" --jobs 2 "${calibrate_options[@]}" > "${fit%.yaml}.txt" 2>&1 \
     || { cat "${fit%.yaml}.txt"; fail "the calibration failed"; }
   cat "${fit%.yaml}.txt"
   "$python" - "$(sed -n 's/^output: //p' "$fit")/calibration.json" "$tolerance" "$@" <<'PY' \

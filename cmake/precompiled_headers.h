@@ -1,7 +1,7 @@
-// Headers parsed once per target and reused by every source file of it (CMake's
-// target_precompile_headers in CMakeLists.txt and tests/CMakeLists.txt). Parsing deal.II's headers
-// is most of the cost of compiling a source file; precompiling them roughly halves a clean build.
-// Only headers that many sources include belong here: each source still includes what it uses.
+// Headers parsed once per target and reused by the source files of it that need deal.II's heavy
+// headers (PrecompiledHeaders.cmake picks them; CMakeLists.txt and tests/CMakeLists.txt). Parsing
+// those headers is most of the cost of compiling such a source. Only headers that many sources
+// include belong here: each source still includes what it uses.
 #pragma once
 
 #include <deal.II/base/mpi.h>

@@ -91,15 +91,6 @@ namespace indentsim::problems
     double         force_error = 0; // force control: F(u, h) - F* [mN]
   };
 
-  template <int dim>
-  enum class IndentationProblem<dim>::IterateOutcome {
-    next_iterate,      // a Newton update (or a line-search step) was taken
-    converged,         // the pass converged
-    augment_early,     // an inexact pass ends: augment now
-    out_of_iterations, // max_newton_iterations reached
-    failed             // NewtonIncrement::failure says why
-  };
-
   namespace
   {
     void log_iterate(ConditionalOStream &out, const unsigned int pass, const unsigned int it,

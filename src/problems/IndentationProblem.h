@@ -182,7 +182,14 @@ namespace indentsim::problems
     // The augmented-Lagrangian Newton of one increment, in steps (IndentationNewton.cc).
     struct NewtonIncrement;
     struct NewtonPass;
-    enum class IterateOutcome;
+    enum class IterateOutcome
+    {
+      next_iterate,      // a Newton update (or a line-search step) was taken
+      converged,         // the pass converged
+      augment_early,     // an inexact pass ends: augment now
+      out_of_iterations, // max_newton_iterations reached
+      failed             // NewtonIncrement::failure says why
+    };
     void           apply_predictor(NewtonIncrement &increment);
     IterateOutcome newton_iteration(NewtonIncrement &increment, NewtonPass &pass, unsigned int it,
                                     StepRecord &record);

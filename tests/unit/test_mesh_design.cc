@@ -98,7 +98,9 @@ namespace
         const double elements = a / surface_edge_at(triangulation, a);
         EXPECT_GE(elements, g.elements_per_radius / surface_factor * (1 - 1e-9)) << "h = " << h;
         if (g.layer_element == 0)
-          EXPECT_LE(elements, 2 * g.elements_per_radius / surface_factor) << "h = " << h;
+          {
+            EXPECT_LE(elements, 2 * g.elements_per_radius / surface_factor) << "h = " << h;
+          }
       }
 
     // The estimate counts the unbalanced octree: the balance adds a few per cent.

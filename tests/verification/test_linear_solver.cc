@@ -189,7 +189,9 @@ TEST(LinearSolver, DeclaresNodalBlocksOnlyWhenTheNumberingHasThem)
       systems.assemble(1.0);
       const auto result = systems.solve(1e-8);
       if (!component_wise)
-        ASSERT_TRUE(result.converged);
+        {
+          ASSERT_TRUE(result.converged);
+        }
       PetscInt block_size = 0;
       ASSERT_EQ(MatGetBlockSize(static_cast<Mat>(systems.matrix), &block_size), 0);
       EXPECT_EQ(block_size, component_wise ? 1 : 3) << "component_wise " << component_wise;

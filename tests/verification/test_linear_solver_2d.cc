@@ -124,7 +124,9 @@ namespace
       const LinearSolver::Result result = solver.solve(matrix, x, rhs, 1e-10);
       EXPECT_TRUE(result.converged) << result.reason;
       if (kind == LinearSolver::Kind::iterative)
-        EXPECT_GT(result.iterations, 1u);
+        {
+          EXPECT_GT(result.iterations, 1u);
+        }
       return x;
     }
   };

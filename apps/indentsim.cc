@@ -319,12 +319,12 @@ namespace
 
 int main(int argc, char **argv)
 {
-  // A process without a launcher starts MPI as a singleton, without network transports
-  // (io/MpiStartup.h). Threads: determined from the cores and the ranks per node (refined by
+  // A process without a launcher starts MPI as a singleton, without network transports and
+  // with a session directory of its own (io/MpiStartup.h). Threads: determined from the cores and the ranks per node (refined by
   // solver.threads).
-  const std::vector<std::string>           singleton_settings = io::choose_singleton_settings();
+  io::SingletonStartup                     singleton;
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, dealii::numbers::invalid_unsigned_int);
-  io::take_back_singleton_settings(singleton_settings);
+  singleton.take_back();
   indentsim::linalg::LinearSolver::limit_library_threads();
   // A file-size limit (ulimit -f) makes a write fail with EFBIG, reported with the file's name
   // (exit code 4), instead of ending the process.

@@ -12,10 +12,12 @@
 int main(int argc, char **argv)
 {
   // Started without mpirun (every test but the mpi tier), as the executable does: a singleton
-  // without network transports (io/MpiStartup.h), a quarter of a second less per test process.
-  const std::vector<std::string> singleton_settings = indentsim::io::choose_singleton_settings();
+  // without network transports (a quarter of a second less per test process) and with a
+  // session directory of its own, since CTest starts test processes side by side
+  // (io/MpiStartup.h).
+  indentsim::io::SingletonStartup          singleton;
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  indentsim::io::take_back_singleton_settings(singleton_settings);
+  singleton.take_back();
   indentsim::linalg::LinearSolver::limit_library_threads();
   ::testing::InitGoogleTest(&argc, argv);
   // Only rank 0 prints, so the output of `mpirun -np 2` stays readable.

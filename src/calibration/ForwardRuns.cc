@@ -131,6 +131,8 @@ namespace indentsim::calibration
   std::vector<std::optional<std::vector<std::string>>>
   ForwardRuns::run(const std::vector<Point> &points)
   {
+    if (points.empty()) // no cases: no study to run
+      return {};
     // Distinct points only: two equal points resolve to the same cases.
     std::vector<Point> distinct;
     for (const Point &point : points)

@@ -107,9 +107,14 @@ namespace indentsim::calibration
           if (find(point) == sampled.end() &&
               std::find(unsampled.begin(), unsampled.end(), point) == unsampled.end())
             unsampled.push_back(point);
-        const auto r = sample(unsampled);
-        for (std::size_t k = 0; k < unsampled.size(); ++k)
-          sampled.emplace_back(unsampled[k], r[k]);
+        // A fallback may need no new run: a central difference's one-sided fallback reuses x
+        // and the side that finished.
+        if (!unsampled.empty())
+          {
+            const auto r = sample(unsampled);
+            for (std::size_t k = 0; k < unsampled.size(); ++k)
+              sampled.emplace_back(unsampled[k], r[k]);
+          }
         if (!find(x)->second)
           return std::nullopt;
         // A column with a failed point moves on to its next candidate; all of them go out as

@@ -463,6 +463,28 @@ TEST(LeastSquaresFit, ADifferenceAroundAFailedRunTakesTheOtherSide)
   EXPECT_FALSE(difference_jacobian(sample, {1.5, 2.}, {{{1.4, 1.5}}, {{2., 2.01}}}).has_value());
 }
 
+// A central difference whose upper run fails falls back to the backward difference from x: both
+// of its points have run already, so the fallback must not start an empty batch of runs (a
+// forward batch without cases is an error, which once stopped a calibration's statistics).
+TEST(LeastSquaresFit, AFallbackThatNeedsNoNewRunStartsNone)
+{
+  std::vector<std::size_t> batch_sizes;
+  const SampleResiduals    sample = [&](const std::vector<Point> &points) {
+    batch_sizes.push_back(points.size());
+    std::vector<std::optional<std::vector<double>>> r;
+    for (const Point &x : points)
+      if (x[0] > 1.)
+        r.emplace_back(std::nullopt);
+      else
+        r.emplace_back(std::vector<double>{x[0] * x[0]});
+    return r;
+  };
+  const auto jacobian = difference_jacobian(sample, {1.}, {{{0.99, 1.01}, {0.99, 1.}}});
+  ASSERT_TRUE(jacobian.has_value());
+  EXPECT_EQ(batch_sizes, (std::vector<std::size_t>{3}));
+  EXPECT_NEAR(jacobian->second[0], 1.99, 1e-12); // (1 - 0.99^2) / 0.01, the backward difference
+}
+
 // The statistics of y = a + b t fitted to 8 points: the residuals r_i = a + b t_i - y_i have
 // the Jacobian [1, t_i]; the textbook formulas of simple linear regression are the oracle.
 TEST(FitStatistics, StandardErrorsAndCorrelationOfALinearRegression)

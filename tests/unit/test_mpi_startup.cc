@@ -1,11 +1,12 @@
 // How the executable starts MPI without a launcher (io/MpiStartup.h): a singleton gets OpenMPI's
-// ob1 messaging layer and no helper daemon for MPI_Init, and only a singleton whose user chose
-// neither; the settings are removed again afterwards.
+// ob1 messaging layer and no helper daemon for MPI_Init, unless its user chose either, and a
+// private session directory, removed at the end; the settings are removed again after MPI_Init.
 #include "io/MpiStartup.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
@@ -43,7 +44,9 @@ namespace
                                                                  "PMI_SIZE",
                                                                  "SLURM_PROCID",
                                                                  "OMPI_MCA_pml",
-                                                                 "OMPI_MCA_ess_singleton_isolated"};
+                                                                 "OMPI_MCA_ess_singleton_isolated",
+                                                                 "OMPI_MCA_orte_tmpdir_base",
+                                                                 "TMPDIR"};
     std::map<std::string, std::optional<std::string>> saved_;
   };
 
@@ -54,30 +57,71 @@ namespace
   }
 } // namespace
 
-TEST(MpiStartup, SingletonGetsSharedMemoryTransportsUntilMpiInit)
+TEST(MpiStartup, SingletonGetsSharedMemoryTransportsAndItsOwnSessionDirectory)
 {
-  const CleanEnvironment   clean;
-  std::vector<std::string> set = indentsim::io::choose_singleton_settings();
-  EXPECT_EQ(set, (std::vector<std::string>{"OMPI_MCA_pml", "OMPI_MCA_ess_singleton_isolated"}));
-  EXPECT_EQ(value_of("OMPI_MCA_pml"), "ob1");
-  EXPECT_EQ(value_of("OMPI_MCA_ess_singleton_isolated"), "1");
-  indentsim::io::take_back_singleton_settings(set);
-  EXPECT_EQ(value_of("OMPI_MCA_pml"), "(unset)");
-  EXPECT_EQ(value_of("OMPI_MCA_ess_singleton_isolated"), "(unset)");
+  const CleanEnvironment clean;
+  const std::string      tmp = ::testing::TempDir() + "mpi_startup_tmp";
+  std::filesystem::create_directories(tmp);
+  setenv("TMPDIR", tmp.c_str(), 1);
+  std::string directory;
+  {
+    indentsim::io::SingletonStartup singleton;
+    EXPECT_EQ(singleton.settings(),
+              (std::vector<std::string>{"OMPI_MCA_pml", "OMPI_MCA_ess_singleton_isolated",
+                                        "OMPI_MCA_orte_tmpdir_base"}));
+    EXPECT_EQ(value_of("OMPI_MCA_pml"), "ob1");
+    EXPECT_EQ(value_of("OMPI_MCA_ess_singleton_isolated"), "1");
+    directory = singleton.session_directory();
+    EXPECT_EQ(value_of("OMPI_MCA_orte_tmpdir_base"), directory);
+    EXPECT_EQ(std::filesystem::path(directory).parent_path(), std::filesystem::path(tmp));
+    EXPECT_TRUE(std::filesystem::is_directory(directory));
+
+    // A second process starting beside this one gets a directory of its own.
+    unsetenv("OMPI_MCA_orte_tmpdir_base");
+    {
+      const indentsim::io::SingletonStartup other;
+      EXPECT_FALSE(other.session_directory().empty());
+      EXPECT_NE(other.session_directory(), directory);
+    }
+    setenv("OMPI_MCA_orte_tmpdir_base", directory.c_str(), 1);
+
+    singleton.take_back();
+    EXPECT_EQ(value_of("OMPI_MCA_pml"), "(unset)");
+    EXPECT_EQ(value_of("OMPI_MCA_ess_singleton_isolated"), "(unset)");
+    EXPECT_EQ(value_of("OMPI_MCA_orte_tmpdir_base"), "(unset)");
+    // OpenMPI's session files, as MPI_Init leaves them there.
+    std::filesystem::create_directories(directory + "/ompi.host.0/jf.0/1");
+    EXPECT_TRUE(std::filesystem::is_directory(directory));
+  }
+  EXPECT_FALSE(std::filesystem::exists(directory)); // removed with what OpenMPI left in it
+  EXPECT_TRUE(std::filesystem::is_empty(tmp));
 }
 
 TEST(MpiStartup, LaunchedRanksAndUsersChoicesAreLeftAlone)
 {
   for (const char *launcher : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"})
     {
-      const CleanEnvironment clean;
+      const CleanEnvironment                clean;
       setenv(launcher, "0", 1);
-      EXPECT_TRUE(indentsim::io::choose_singleton_settings().empty()) << launcher;
+      const indentsim::io::SingletonStartup singleton;
+      EXPECT_TRUE(singleton.settings().empty()) << launcher;
+      EXPECT_TRUE(singleton.session_directory().empty()) << launcher;
       EXPECT_EQ(value_of("OMPI_MCA_pml"), "(unset)") << launcher;
+      EXPECT_EQ(value_of("OMPI_MCA_orte_tmpdir_base"), "(unset)") << launcher;
     }
+  {
+    const CleanEnvironment clean;
+    setenv("OMPI_MCA_pml", "ucx", 1);
+    const indentsim::io::SingletonStartup singleton;
+    EXPECT_EQ(singleton.settings(), (std::vector<std::string>{"OMPI_MCA_orte_tmpdir_base"}));
+    EXPECT_EQ(value_of("OMPI_MCA_pml"), "ucx");
+    EXPECT_EQ(value_of("OMPI_MCA_ess_singleton_isolated"), "(unset)");
+  }
   const CleanEnvironment clean;
-  setenv("OMPI_MCA_pml", "ucx", 1);
-  EXPECT_TRUE(indentsim::io::choose_singleton_settings().empty());
-  EXPECT_EQ(value_of("OMPI_MCA_pml"), "ucx");
-  EXPECT_EQ(value_of("OMPI_MCA_ess_singleton_isolated"), "(unset)");
+  setenv("OMPI_MCA_orte_tmpdir_base", "/var/tmp", 1);
+  const indentsim::io::SingletonStartup singleton;
+  EXPECT_EQ(singleton.settings(),
+            (std::vector<std::string>{"OMPI_MCA_pml", "OMPI_MCA_ess_singleton_isolated"}));
+  EXPECT_TRUE(singleton.session_directory().empty());
+  EXPECT_EQ(value_of("OMPI_MCA_orte_tmpdir_base"), "/var/tmp");
 }

@@ -1,9 +1,15 @@
 #include "io/MpiStartup.h"
 
 #include <array>
+#include <cerrno>
+#include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
+
+#include <sys/types.h>
+#include <unistd.h>
 
 namespace indentsim::io
 {
@@ -19,13 +25,37 @@ namespace indentsim::io
       return false;
     }
 
-    // A new directory <TMPDIR or /tmp>/indentsim-mpi-XXXXXX, or "" if it cannot be made (then
-    // OpenMPI uses its shared one, and says so if that fails too).
+    constexpr const char *session_prefix = "indentsim-mpi-";
+
+    // Removes the session directories <prefix><pid>-XXXXXX in `tmp` whose process has ended
+    // without removing its own (killed by a signal). A directory is listed before its process is
+    // looked for, so a process started after the listing under a reused pid is never mistaken
+    // for the dead one; a process that cannot be signalled (another user's) counts as alive.
+    void remove_abandoned_session_directories(const std::filesystem::path &tmp)
+    {
+      std::error_code                    error;
+      std::vector<std::filesystem::path> listed;
+      for (const auto &entry : std::filesystem::directory_iterator(tmp, error))
+        if (entry.path().filename().string().rfind(session_prefix, 0) == 0)
+          listed.push_back(entry.path());
+      for (const std::filesystem::path &path : listed)
+        {
+          const std::string name = path.filename().string().substr(std::strlen(session_prefix));
+          char             *end = nullptr;
+          const long        pid = std::strtol(name.c_str(), &end, 10);
+          if (pid > 0 && *end == '-' && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH)
+            std::filesystem::remove_all(path, error);
+        }
+    }
+
+    // A new directory <TMPDIR or /tmp>/indentsim-mpi-<pid>-XXXXXX, or "" if it cannot be made
+    // (then OpenMPI uses its shared one, and says so if that fails too).
     std::string make_session_directory()
     {
-      const char *tmp = std::getenv("TMPDIR");
-      std::string path = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") +
-                         "/indentsim-mpi-XXXXXX";
+      const char       *tmpdir = std::getenv("TMPDIR");
+      const std::string tmp = tmpdir != nullptr && *tmpdir != '\0' ? tmpdir : "/tmp";
+      remove_abandoned_session_directories(tmp);
+      std::string path = tmp + "/" + session_prefix + std::to_string(::getpid()) + "-XXXXXX";
       return mkdtemp(path.data()) != nullptr ? path : std::string();
     }
   } // namespace

@@ -31,8 +31,9 @@ namespace indentsim::io
   // (OMPI_COMM_WORLD_SIZE, PMIX_RANK, PMI_RANK, PMI_SIZE, SLURM_PROCID) and left alone. For a
   // singleton the constructor sets, for MPI_Init:
   // - OMPI_MCA_pml=ob1 and OMPI_MCA_ess_singleton_isolated=1, unless the user chose either;
-  // - OMPI_MCA_orte_tmpdir_base to a new directory <TMPDIR or /tmp>/indentsim-mpi-XXXXXX,
-  //   unless the user chose it. The destructor removes that directory.
+  // - OMPI_MCA_orte_tmpdir_base to a new directory <TMPDIR or /tmp>/indentsim-mpi-<pid>-XXXXXX,
+  //   unless the user chose it. The destructor removes that directory; one left behind by a
+  //   process killed by a signal is removed by the next singleton that starts.
   class SingletonStartup
   {
   public:

@@ -12,6 +12,9 @@
 #include <string>
 #include <vector>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 namespace
 {
   // Every variable the function reads or writes, saved and cleared for one test and restored
@@ -60,7 +63,7 @@ namespace
 TEST(MpiStartup, SingletonGetsSharedMemoryTransportsAndItsOwnSessionDirectory)
 {
   const CleanEnvironment clean;
-  const std::string      tmp = ::testing::TempDir() + "mpi_startup_tmp";
+  const std::string      tmp = ::testing::TempDir() + "mpi_startup_" + std::to_string(getpid());
   std::filesystem::create_directories(tmp);
   setenv("TMPDIR", tmp.c_str(), 1);
   std::string directory;
@@ -91,10 +94,14 @@ TEST(MpiStartup, SingletonGetsSharedMemoryTransportsAndItsOwnSessionDirectory)
     EXPECT_EQ(value_of("OMPI_MCA_orte_tmpdir_base"), "(unset)");
     // OpenMPI's session files, as MPI_Init leaves them there.
     std::filesystem::create_directories(directory + "/ompi.host.0/jf.0/1");
+    EXPECT_EQ(std::filesystem::path(directory).filename().string().rfind(
+                  "indentsim-mpi-" + std::to_string(getpid()) + "-", 0),
+              0u);
     EXPECT_TRUE(std::filesystem::is_directory(directory));
   }
   EXPECT_FALSE(std::filesystem::exists(directory)); // removed with what OpenMPI left in it
   EXPECT_TRUE(std::filesystem::is_empty(tmp));
+  std::filesystem::remove(tmp);
 }
 
 TEST(MpiStartup, LaunchedRanksAndUsersChoicesAreLeftAlone)
@@ -124,4 +131,35 @@ TEST(MpiStartup, LaunchedRanksAndUsersChoicesAreLeftAlone)
             (std::vector<std::string>{"OMPI_MCA_pml", "OMPI_MCA_ess_singleton_isolated"}));
   EXPECT_TRUE(singleton.session_directory().empty());
   EXPECT_EQ(value_of("OMPI_MCA_orte_tmpdir_base"), "/var/tmp");
+}
+
+// A process killed by a signal cannot remove its directory; the next singleton removes it, and
+// only it: the directories of living processes (this one, init) and other files stay.
+TEST(MpiStartup, TheDirectoryOfAKilledProcessIsRemovedByTheNextSingleton)
+{
+  const CleanEnvironment clean;
+  const std::string      tmp =
+      ::testing::TempDir() + "mpi_startup_abandoned_" + std::to_string(getpid());
+  std::filesystem::remove_all(tmp);
+  std::filesystem::create_directories(tmp);
+  setenv("TMPDIR", tmp.c_str(), 1);
+  const pid_t child = fork();
+  if (child == 0)
+    _exit(0);
+  ASSERT_GT(child, 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child); // the child has ended: its pid is free
+  const std::string dead = tmp + "/indentsim-mpi-" + std::to_string(child) + "-abcdef";
+  const std::string alive = tmp + "/indentsim-mpi-" + std::to_string(getpid()) + "-abcdef";
+  const std::string init = tmp + "/indentsim-mpi-1-abcdef";
+  const std::string other = tmp + "/indentsim-mpi-notapid";
+  for (const std::string &d : {dead, alive, init, other})
+    std::filesystem::create_directories(d + "/ompi.host.0/jf.0/1");
+  {
+    const indentsim::io::SingletonStartup singleton;
+    EXPECT_FALSE(std::filesystem::exists(dead));
+    for (const std::string &d : {alive, init, other})
+      EXPECT_TRUE(std::filesystem::exists(d)) << d;
+  }
+  std::filesystem::remove_all(tmp);
 }

@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <initializer_list>
 #include <string>
 
@@ -433,19 +434,34 @@ TEST(CurveData, HardnessProfilesBetweenThePartialUnloads)
 // closed forms are (1 - 0.99^2) / 0.01 = 1.99 and 3; the second keeps its forward difference,
 // 1 and -(2.01^3 - 8) / 0.01 = -12.0601. The failed column's retry is a batch of its own point
 // only (x is not run again); a column out of candidates, or a failed x, gives nothing.
+namespace
+{
+  // Stand-in forward runs of the residuals r(x): runs fail wherever x0 > 1; batch_sizes gets
+  // the number of points of each batch.
+  SampleResiduals failing_above_one(const std::function<std::vector<double>(const Point &)> &r,
+                                    std::vector<std::size_t> &batch_sizes)
+  {
+    return [r, &batch_sizes](const std::vector<Point> &points) {
+      batch_sizes.push_back(points.size());
+      std::vector<std::optional<std::vector<double>>> result;
+      for (const Point &x : points)
+        if (x[0] > 1.)
+          result.emplace_back(std::nullopt);
+        else
+          result.emplace_back(r(x));
+      return result;
+    };
+  }
+} // namespace
+
 TEST(LeastSquaresFit, ADifferenceAroundAFailedRunTakesTheOtherSide)
 {
   std::vector<std::size_t> batch_sizes;
-  const SampleResiduals    sample = [&](const std::vector<Point> &points) {
-    batch_sizes.push_back(points.size());
-    std::vector<std::optional<std::vector<double>>> r;
-    for (const Point &x : points)
-      if (x[0] > 1.)
-        r.emplace_back(std::nullopt);
-      else
-        r.emplace_back(std::vector<double>{x[0] * x[0] + x[1], 3. * x[0] - x[1] * x[1] * x[1]});
-    return r;
-  };
+  const SampleResiduals    sample = failing_above_one(
+      [](const Point &x) {
+        return std::vector<double>{x[0] * x[0] + x[1], 3. * x[0] - x[1] * x[1] * x[1]};
+      },
+      batch_sizes);
   const Point x = {1., 2.};
   const auto  both =
       difference_jacobian(sample, x, {{{1., 1.01}, {0.99, 1.}}, {{2., 2.01}, {1.99, 2.}}});
@@ -469,16 +485,8 @@ TEST(LeastSquaresFit, ADifferenceAroundAFailedRunTakesTheOtherSide)
 TEST(LeastSquaresFit, AFallbackThatNeedsNoNewRunStartsNone)
 {
   std::vector<std::size_t> batch_sizes;
-  const SampleResiduals    sample = [&](const std::vector<Point> &points) {
-    batch_sizes.push_back(points.size());
-    std::vector<std::optional<std::vector<double>>> r;
-    for (const Point &x : points)
-      if (x[0] > 1.)
-        r.emplace_back(std::nullopt);
-      else
-        r.emplace_back(std::vector<double>{x[0] * x[0]});
-    return r;
-  };
+  const SampleResiduals    sample = failing_above_one(
+      [](const Point &x) { return std::vector<double>{x[0] * x[0]}; }, batch_sizes);
   const auto jacobian = difference_jacobian(sample, {1.}, {{{0.99, 1.01}, {0.99, 1.}}});
   ASSERT_TRUE(jacobian.has_value());
   EXPECT_EQ(batch_sizes, (std::vector<std::size_t>{3}));

@@ -108,7 +108,7 @@ TEST(MpiStartup, LaunchedRanksAndUsersChoicesAreLeftAlone)
 {
   for (const char *launcher : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"})
     {
-      const CleanEnvironment                clean;
+      const CleanEnvironment clean;
       setenv(launcher, "0", 1);
       const indentsim::io::SingletonStartup singleton;
       EXPECT_TRUE(singleton.settings().empty()) << launcher;

@@ -95,11 +95,12 @@ CASES["berkovich_j2_24"] = (
      "indenter": {"shape": "berkovich", "tip_radius": 0.05, "rotation_deg": 0}})
 CASES["j2_axi_auto"] = (
     "J2 indentation (Table 1) in axisymmetric mode on the automatic mesh, 192 geometric steps "
-    "(dh/h = 2.2 % from 6/64 um on) to 6 um and back, contact tolerance 1e-5 um (the default "
-    "example, examples/paper_j2_auto_axisymmetric.yaml)",
+    "(dh/h = 2.2 % from 6/64 um on) to 6 um and back, contact tolerance 1e-5 um, Newton "
+    "tolerance 1e-4 (the default example, examples/paper_j2_auto_axisymmetric.yaml)",
     {**indentation(J2, "auto", "axisymmetric"),
      "specimen": {"contact_elements": "auto", "symmetry": "axisymmetric"},
      "contact": {"friction_coefficient": 0.0, "penetration_tolerance": 1e-5},
+     "solver": {"residual_tolerance": 1e-4},
      "loading": {"max_depth": 6.0, "steps": 192, "spacing": "geometric", "unload": True}})
 # The 3D quarter model of the default example for a loading curve (docs/performance.md, "The 3D
 # quarter model for a loading curve"): uniform steps, loading only, at the default 3D design and
@@ -291,7 +292,8 @@ def prepare(name, options):
     case = copy.deepcopy(CASES[name][1])
     if options.steps is not None:
         case["loading"]["steps"] = options.steps
-    case["solver"] = {"linear_solver": options.linear_solver, "threads": threads}
+    case["solver"] = {**case.get("solver", {}), "linear_solver": options.linear_solver,
+                      "threads": threads}
     apply_settings(case, options.settings)
 
     stamp = datetime.datetime.now().strftime("%Y%m%d-%H%M%S")

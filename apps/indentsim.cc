@@ -320,8 +320,8 @@ namespace
 int main(int argc, char **argv)
 {
   // A process without a launcher starts MPI as a singleton, without network transports and
-  // with a session directory of its own (io/MpiStartup.h). Threads: determined from the cores and the ranks per node (refined by
-  // solver.threads).
+  // with a session directory of its own (io/MpiStartup.h). Threads: determined from the cores
+  // and the ranks per node (refined by solver.threads).
   io::SingletonStartup                     singleton;
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, dealii::numbers::invalid_unsigned_int);
   singleton.take_back();

@@ -7,8 +7,8 @@
 //
 // Defaults: the options indentsim itself uses (GMRES, right-preconditioned, true-residual test,
 // ML smoothed aggregation with the rigid-body modes as near-null space, Chebyshev smoothing
-// with point-block Jacobi on the matrix's block size: 3, the nodal blocks, in systems dumped
-// since session 19; older dumps say 1 in their .info file, override it with
+// with point-block Jacobi on the matrix's block size, which a dump's .info file gives: 3, the
+// nodal blocks, in 3D systems; a dump whose .info file says 1 can be read in nodal blocks with
 // -viewer_binary_skip_info -matload_block_size 3 -vecload_block_size 3); any PETSc option
 // overrides them (e.g. -pc_type gamg, -mg_levels_pc_type sor). -reuse keeps the first
 // system's preconditioner for the following ones (indentsim reuses it while it works); -keep

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Benchmark harness of indentsim (issue 5): runs named cases and records their cost.
+"""Benchmark harness of indentsim: runs named cases and records their cost.
 
 Usage (from anywhere; the program is <repo>/build/indentsim, built beforehand):
   python3 bench/run_benchmarks.py --list

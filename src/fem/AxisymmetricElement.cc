@@ -1,10 +1,11 @@
 #include "fem/AxisymmetricElement.h"
 
+#include "fem/TangentRow.h"
+
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_q.h>
 
 #include <cmath>
-#include <cstring>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -133,19 +134,8 @@ namespace indentsim::fem
     // MeridianTensor entries (rr, rz, zr, zz, tt) and their places in the 3x3 tensor.
     constexpr unsigned int rr = 0, rz = 1, zr = 2, zz = 3, tt = 4;
 
-    // A row over the eight dofs b of an element (a row of the 8 x 8 tangent): one AVX-512
-    // register, two AVX2 ones.
-    using Row = double __attribute__((vector_size(64)));
-    inline Row load(const double *p)
-    {
-      Row r;
-      std::memcpy(&r, p, sizeof(Row));
-      return r;
-    }
-    inline void store(double *p, const Row &r)
-    {
-      std::memcpy(p, &r, sizeof(Row));
-    }
+    // A row over the eight dofs b of an element (a row of the 8 x 8 tangent).
+    using tangent_row::load, tangent_row::Row, tangent_row::store;
 
     // The rows over b of (F^-1 G_b) with rz and zr exchanged, so that
     // tr(H_b H_a) = sum_k (H_a)_k rows[k][b].
@@ -358,7 +348,7 @@ namespace indentsim::fem
     // d_ab = d^2 ln J_0/du_a du_b + tr(F^-1 G_b F^-1 G_a) (s.H[q][a] = F^-1 G_a), to the
     // row-major 8 x 8 matrix K. P: the block entries of response.P. Every term of row a is a
     // scalar of a times a row over b: the rows over b (A : B_b, the entries of B_b and of
-    // F^-1 G_b, c_b, P : G_b) are formed once, and each row of K takes 5 (10 with F-bar) fused
+    // F^-1 G_b, c_b, P : G_b) are formed once, and each row of K takes 5 (14 with F-bar)
     // multiply-adds of them. The clones are chosen at load time.
     [[gnu::target_clones("arch=x86-64-v4", "arch=haswell", "default")]] void
     add_point_tangent(const AxisymmetricScratch &s, const unsigned int q,
@@ -394,7 +384,7 @@ namespace indentsim::fem
         }
       const auto  &G = s.G[q], &H = s.H[q];
       const double p = scalar_product(P, s.F[q]);
-      double PG[n_dofs], H_rows[5][n_dofs];
+      double       PG[n_dofs], H_rows[5][n_dofs];
       for (unsigned int b = 0; b < n_dofs; ++b)
         PG[b] = scalar_product(P, G[b]);
       swapped_rows(H, H_rows);
@@ -405,8 +395,8 @@ namespace indentsim::fem
       for (unsigned int a = 0; a < n_dofs; ++a)
         {
           const MeridianTensor &Ba = s.B[a], &Ha = H[a];
-          const Row             d = load(s.d2lnJ0[a].data()) + Ha[0] * Hb[0] + Ha[1] * Hb[1] +
-                        Ha[2] * Hb[2] + Ha[3] * Hb[3] + Ha[4] * Hb[4];
+          const Row d = load(s.d2lnJ0[a].data()) + Ha[0] * Hb[0] + Ha[1] * Hb[1] + Ha[2] * Hb[2] +
+                        Ha[3] * Hb[3] + Ha[4] * Hb[4];
           const Row geometric =
               (f * PG[a]) * c + (f * s.c[a]) * PG_row + (f * p / 3. * s.c[a]) * c + (f * p) * d;
           store(K + 8 * a, load(K + 8 * a) + Ba[0] * AB[0] + Ba[1] * AB[1] + Ba[2] * AB[2] +

@@ -1,11 +1,10 @@
 #include "fem/FiniteStrainElement.h"
 
-#include "fem/TangentRow.h"
-
 #include <deal.II/base/tensor.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 namespace indentsim::fem
@@ -41,8 +40,19 @@ namespace indentsim::fem
 
   namespace
   {
-    // One row segment K_a(d, j = 0..7) of the tangent over the eight nodes j.
-    using tangent_row::load, tangent_row::Row, tangent_row::store;
+    // Eight doubles: one row segment K_a(d, j = 0..7) of the tangent, one AVX-512 register
+    // (two AVX2 registers, four SSE2 ones).
+    using Row = double __attribute__((vector_size(64)));
+    inline Row load(const double *p)
+    {
+      Row r;
+      std::memcpy(&r, p, sizeof(Row));
+      return r;
+    }
+    inline void store(double *p, const Row &r)
+    {
+      std::memcpy(p, &r, sizeof(Row));
+    }
 
     // Adds one quadrature point's tangent to K (24 x 24, row a = 3 i + c, column d 8 + j):
     //   K_a(dj) += sum_L P_adL g_jL                                    (material, theta^2 w)

@@ -136,6 +136,7 @@ namespace indentsim::contact
                 node.dofs = {dof_r, face->vertex_dof_index(v, 1), numbers::invalid_dof_index};
                 node.X = Point<3>(r_i, 0., face->vertex(v)[1]);
                 node.x_converged = node.X;
+                node.on_axis = r_i <= tol;
                 found.emplace(dof_r, node);
               }
           }
@@ -173,13 +174,28 @@ namespace indentsim::contact
     }
   } // namespace
 
+  indenter::SurfaceProjection NodeToSurfaceContact::axis_projection(const Point<3> &x,
+                                                                    const double    depth) const
+  {
+    indenter::SurfaceProjection projection;
+    projection.closest_point = Point<3>(0, 0, surface_.profile(0, 0) - depth);
+    projection.gap = projection.closest_point[2] - x[2];
+    projection.normal[2] = -1;
+    return projection;
+  }
+
   NodeToSurfaceContact::NodeResponse
   NodeToSurfaceContact::respond(const ContactNode &node, const Point<3> &x, const int normal_active,
                                 const ContactStatus *fixed_status, const double depth) const
   {
     NodeResponse response;
-    response.projection = surface_.project(x - offset_, depth);
-    response.projection.closest_point += offset_;
+    if (node.on_axis)
+      response.projection = axis_projection(x, depth);
+    else
+      {
+        response.projection = surface_.project(x - offset_, depth);
+        response.projection.closest_point += offset_;
+      }
     if (!response.projection.converged || !std::isfinite(response.projection.gap))
       return response;
     const Tensor<1, 3> &n = response.projection.normal;

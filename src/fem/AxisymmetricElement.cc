@@ -1,5 +1,7 @@
 #include "fem/AxisymmetricElement.h"
 
+#include "fem/TangentRow.h"
+
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_q.h>
 
@@ -131,6 +133,19 @@ namespace indentsim::fem
   {
     // MeridianTensor entries (rr, rz, zr, zz, tt) and their places in the 3x3 tensor.
     constexpr unsigned int rr = 0, rz = 1, zr = 2, zz = 3, tt = 4;
+
+    // A row over the eight dofs b of an element (a row of the 8 x 8 tangent).
+    using tangent_row::load, tangent_row::Row, tangent_row::store;
+
+    // The rows over b of (F^-1 G_b) with rz and zr exchanged, so that
+    // tr(H_b H_a) = sum_k (H_a)_k rows[k][b].
+    void swapped_rows(const std::array<MeridianTensor, 8> &H, double (&rows)[5][8])
+    {
+      constexpr unsigned int swap[5] = {rr, zr, rz, zz, tt};
+      for (unsigned int b = 0; b < 8; ++b)
+        for (unsigned int k = 0; k < 5; ++k)
+          rows[k][b] = H[b][swap[k]];
+    }
     constexpr std::array<std::pair<unsigned int, unsigned int>, 5> place = {
         {{r_, r_}, {r_, z_}, {z_, r_}, {z_, z_}, {theta_, theta_}}};
 
@@ -285,7 +300,8 @@ namespace indentsim::fem
     //   d^2 ln J_bar/du_a du_b = sum_q dV_q d^2 J_q/du_a du_b / (V J_bar)
     //                            - d ln J_bar/du_a d ln J_bar/du_b.
     // Needs s.F, s.H and s.trace at every Gauss point (the kernel fills them).
-    double mean_dilatation(AxisymmetricScratch &s)
+    [[gnu::target_clones("arch=x86-64-v4", "arch=haswell", "default")]] double
+    mean_dilatation(AxisymmetricScratch &s)
     {
       constexpr unsigned int n_dofs = AxisymmetricScratch::n_dofs;
       double                 volume = 0, weighted_J = 0;
@@ -302,55 +318,90 @@ namespace indentsim::fem
         {
           const double weight = s.dV[q] * determinant(s.F[q]) / weighted_J;
           const auto  &H = s.H[q];
+          double       H_rows[5][n_dofs];
+          swapped_rows(H, H_rows);
+          const Row trace = load(s.trace[q].data());
+          const Row Hb[5] = {load(H_rows[0]), load(H_rows[1]), load(H_rows[2]), load(H_rows[3]),
+                             load(H_rows[4])};
           for (unsigned int a = 0; a < n_dofs; ++a)
-            s.dlnJ0[a] += weight * s.trace[q][a];
-          for (unsigned int a = 0; a < n_dofs; ++a)
-            for (unsigned int b = 0; b <= a; ++b)
-              s.d2lnJ0[a][b] +=
-                  weight * (s.trace[q][a] * s.trace[q][b] - trace_of_product(H[b], H[a]));
+            {
+              const MeridianTensor &Ha = H[a];
+              s.dlnJ0[a] += weight * s.trace[q][a];
+              double *row = s.d2lnJ0[a].data();
+              store(row, load(row) + weight * (s.trace[q][a] * trace -
+                                               (Ha[0] * Hb[0] + Ha[1] * Hb[1] + Ha[2] * Hb[2] +
+                                                Ha[3] * Hb[3] + Ha[4] * Hb[4])));
+            }
         }
+      const Row dlnJ0 = load(s.dlnJ0.data());
       for (unsigned int a = 0; a < n_dofs; ++a)
-        for (unsigned int b = 0; b <= a; ++b)
-          {
-            s.d2lnJ0[a][b] -= s.dlnJ0[a] * s.dlnJ0[b];
-            s.d2lnJ0[b][a] = s.d2lnJ0[a][b];
-          }
+        store(s.d2lnJ0[a].data(), load(s.d2lnJ0[a].data()) - s.dlnJ0[a] * dlnJ0);
+      // Exactly symmetric (the two triangles were summed in different orders).
+      for (unsigned int a = 0; a < n_dofs; ++a)
+        for (unsigned int b = 0; b < a; ++b)
+          s.d2lnJ0[b][a] = s.d2lnJ0[a][b];
       return J_bar;
     }
 
     // Adds one Gauss point's K_ab = (B_a : A : B_b + P : dB_a/du_b) dV, the second term (F-bar
     // only) theta/3 [c_b P:G_a + c_a P:G_b + p/3 c_a c_b + p d_ab] with p = P : F and
-    // d_ab = d^2 ln J_0/du_a du_b + tr(F^-1 G_b F^-1 G_a) (s.H[q][a] = F^-1 G_a).
-    // P: the block entries of response.P.
-    void add_point_tangent(AxisymmetricScratch &s, const unsigned int q,
-                           const materials::MaterialPointResponse &response,
-                           const MeridianTensor &P, const double theta, const bool use_f_bar,
-                           FullMatrix<double> &K)
+    // d_ab = d^2 ln J_0/du_a du_b + tr(F^-1 G_b F^-1 G_a) (s.H[q][a] = F^-1 G_a), to the
+    // row-major 8 x 8 matrix K. P: the block entries of response.P. Every term of row a is a
+    // scalar of a times a row over b: the rows over b (A : B_b, the entries of B_b and of
+    // F^-1 G_b, c_b, P : G_b) are formed once, and each row of K takes 5 (14 with F-bar)
+    // multiply-adds of them. The clones are chosen at load time.
+    [[gnu::target_clones("arch=x86-64-v4", "arch=haswell", "default")]] void
+    add_point_tangent(const AxisymmetricScratch &s, const unsigned int q,
+                      const materials::MaterialPointResponse &response, const MeridianTensor &P,
+                      const double theta, const bool use_f_bar, double *__restrict K)
     {
-      const MeridianTensor               &F = s.F[q];
-      const auto                         &G = s.G[q], &H = s.H[q];
-      const double                        dV = s.dV[q];
-      constexpr unsigned int              n_dofs = AxisymmetricScratch::n_dofs;
+      constexpr unsigned int n_dofs = AxisymmetricScratch::n_dofs;
+      static_assert(n_dofs == 8, "one Row per row of the element tangent");
       const std::array<MeridianTensor, 5> A = block_entries(response.dP_dF);
+      const double                        dV = s.dV[q];
+      // (B_b)_k and (A : B_b)_k dV as rows over b.
+      double B_rows[5][n_dofs];
       for (unsigned int b = 0; b < n_dofs; ++b)
         for (unsigned int k = 0; k < 5; ++k)
-          s.AB[b][k] = scalar_product(A[k], s.B[b]);
-      for (unsigned int a = 0; a < n_dofs; ++a)
-        for (unsigned int b = 0; b < n_dofs; ++b)
-          K(a, b) += scalar_product(s.B[a], s.AB[b]) * dV;
+          B_rows[k][b] = s.B[b][k];
+      Row AB[5];
+      for (unsigned int k = 0; k < 5; ++k)
+        {
+          Row sum = A[k][0] * load(B_rows[0]);
+          for (unsigned int l = 1; l < 5; ++l)
+            sum += A[k][l] * load(B_rows[l]);
+          AB[k] = dV * sum;
+        }
       if (!use_f_bar)
-        return;
-      const double               p = scalar_product(P, F);
-      std::array<double, n_dofs> PG; // P : G_a
+        {
+          for (unsigned int a = 0; a < n_dofs; ++a)
+            {
+              const MeridianTensor &Ba = s.B[a];
+              store(K + 8 * a, load(K + 8 * a) + Ba[0] * AB[0] + Ba[1] * AB[1] + Ba[2] * AB[2] +
+                                   Ba[3] * AB[3] + Ba[4] * AB[4]);
+            }
+          return;
+        }
+      const auto  &G = s.G[q], &H = s.H[q];
+      const double p = scalar_product(P, s.F[q]);
+      double       PG[n_dofs], H_rows[5][n_dofs];
+      for (unsigned int b = 0; b < n_dofs; ++b)
+        PG[b] = scalar_product(P, G[b]);
+      swapped_rows(H, H_rows);
+      const Row    c = load(s.c.data()), PG_row = load(PG);
+      const Row    Hb[5] = {load(H_rows[0]), load(H_rows[1]), load(H_rows[2]), load(H_rows[3]),
+                            load(H_rows[4])};
+      const double f = theta / 3. * dV;
       for (unsigned int a = 0; a < n_dofs; ++a)
-        PG[a] = scalar_product(P, G[a]);
-      for (unsigned int a = 0; a < n_dofs; ++a)
-        for (unsigned int b = 0; b < n_dofs; ++b)
-          {
-            const double d_ab = s.d2lnJ0[a][b] + trace_of_product(H[b], H[a]);
-            K(a, b) += theta / 3. *
-                       (s.c[b] * PG[a] + s.c[a] * PG[b] + p / 3. * s.c[a] * s.c[b] + p * d_ab) * dV;
-          }
+        {
+          const MeridianTensor &Ba = s.B[a], &Ha = H[a];
+          const Row d = load(s.d2lnJ0[a].data()) + Ha[0] * Hb[0] + Ha[1] * Hb[1] + Ha[2] * Hb[2] +
+                        Ha[3] * Hb[3] + Ha[4] * Hb[4];
+          const Row geometric =
+              (f * PG[a]) * c + (f * s.c[a]) * PG_row + (f * p / 3. * s.c[a]) * c + (f * p) * d;
+          store(K + 8 * a, load(K + 8 * a) + Ba[0] * AB[0] + Ba[1] * AB[1] + Ba[2] * AB[2] +
+                               Ba[3] * AB[3] + Ba[4] * AB[4] + geometric);
+        }
     }
   } // namespace
 
@@ -430,7 +481,7 @@ namespace indentsim::fem
             residual[a] += scalar_product(P, s.B[a]) * s.dV[q];
           }
         if (tangent)
-          add_point_tangent(s, q, response, P, theta, use_f_bar, *tangent);
+          add_point_tangent(s, q, response, P, theta, use_f_bar, &(*tangent)(0, 0));
       }
     return materials::UpdateStatus::success;
   }

@@ -94,7 +94,7 @@ namespace indentsim::fem
     std::vector<MeridianTensor>                     F;        // [q]
     std::vector<std::array<MeridianTensor, n_dofs>> G, H;     // [q][a] G_a, F^-1 G_a
     std::vector<std::array<double, n_dofs>>         trace;    // [q][a] tr(F^-1 G_a)
-    std::array<MeridianTensor, n_dofs>              B, AB;    // [a] B_a, A : B_a
+    std::array<MeridianTensor, n_dofs>              B;        // [a] B_a
     std::array<double, n_dofs>                      c, dlnJ0; // [a]
     std::array<std::array<double, n_dofs>, n_dofs>  d2lnJ0;   // [a][b]
   };

@@ -1,10 +1,11 @@
 #include "fem/FiniteStrainElement.h"
 
+#include "fem/TangentRow.h"
+
 #include <deal.II/base/tensor.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 
 namespace indentsim::fem
@@ -40,19 +41,8 @@ namespace indentsim::fem
 
   namespace
   {
-    // Eight doubles: one row segment K_a(d, j = 0..7) of the tangent, one AVX-512 register
-    // (two AVX2 registers, four SSE2 ones).
-    using Row = double __attribute__((vector_size(64)));
-    inline Row load(const double *p)
-    {
-      Row r;
-      std::memcpy(&r, p, sizeof(Row));
-      return r;
-    }
-    inline void store(double *p, const Row &r)
-    {
-      std::memcpy(p, &r, sizeof(Row));
-    }
+    // One row segment K_a(d, j = 0..7) of the tangent over the eight nodes j.
+    using tangent_row::load, tangent_row::Row, tangent_row::store;
 
     // Adds one quadrature point's tangent to K (24 x 24, row a = 3 i + c, column d 8 + j):
     //   K_a(dj) += sum_L P_adL g_jL                                    (material, theta^2 w)

@@ -5,6 +5,7 @@
 // the stick-slip hysteresis. The contact tangent with friction is checked against differences of
 // the residual. Units: um, mN, GPa.
 #include "contact/NodeToSurfaceContact.h"
+#include "indenter/Cone.h"
 #include "indenter/RoundedCone.h"
 #include "indenter/Sphere.h"
 
@@ -540,5 +541,63 @@ TEST(Friction, RetractThenAssembleEqualsAFreshAssembly)
       for (unsigned int j = 0; j < n; ++j)
         EXPECT_NEAR(A.el(i, j), fresh_A.el(i, j), 1e-12 * largest_contact_entry)
             << "entry " << i << ", " << j;
+    }
+}
+
+// Requirement: in an axisymmetric model, the node on the axis under a sharp apex (a cone with
+// tip_radius 0) is pushed along the axis by a force that is continuous and linear in its
+// position, just outside the indenter and just inside it alike: its gap is the vertical distance
+// to the apex, its normal the axis, and it does not slip. Oracle: the Alart-Curnier pressure
+// p = lambda - eps g with g = -(z - z_apex) exactly, and symmetry (no radial force, no
+// traction). The closest-point projection of that node jumps from the apex (normal along the
+// axis) to a flank (normal tilted by the half-angle) as it crosses the apex, and Newton's method
+// then cycles between the two sides without converging (a sharp 70.3 deg cone on a power-law
+// material with friction 0.15 did so at 0.975 um).
+TEST(Friction, AxisNodeUnderASharpApexIsPushedAlongTheAxis)
+{
+  const indenter::Cone cone(70.3, 0.0);
+  const double         depth = 0.1, penalty = 100.0, lambda = 2.0; // [um], [GPa/um], [GPa]
+  for (const double mu : {0.0, 0.15})
+    {
+      SCOPED_TRACE("mu = " + std::to_string(mu));
+      // One (r, z) cell [0, 1] x [-1, 0] um; its top edge (boundary 3) holds the two contact
+      // nodes, the one on the axis and the one at r = 1 um, which stays clear of the cone.
+      Triangulation<2> triangulation;
+      GridGenerator::hyper_rectangle(triangulation, Point<2>(0, -1), Point<2>(1, 0), true);
+      FESystem<2>   fe(FE_Q<2>(1), 2);
+      DoFHandler<2> dof_handler(triangulation);
+      dof_handler.distribute_dofs(fe);
+      AffineConstraints<double> none;
+      none.close();
+      contact::NodeToSurfaceContact contact(cone, penalty, mu);
+      contact.setup(dof_handler, none, 3, 2.0, MPI_COMM_SELF);
+      ASSERT_EQ(contact.nodes().size(), 2u);
+      const auto                &nodes = contact.nodes();
+      const auto                 axis = nodes[0].X[0] == 0.0 ? 0u : 1u;
+      const double               area = nodes[axis].area;
+      PETScWrappers::MPI::Vector u(dof_handler.locally_owned_dofs(), MPI_COMM_SELF);
+      // The multiplier lambda on the axis node: one evaluation penetrating by lambda / eps,
+      // then the Uzawa update lambda <- p.
+      u(nodes[axis].dofs[1]) = -depth + lambda / penalty;
+      u.compress(VectorOperation::insert);
+      ASSERT_TRUE(contact.evaluate(u, depth));
+      contact.augment();
+      for (const double s : {-2e-6, -1e-6, 0.0, 1e-6, 2e-6}) // above the apex: s > 0
+        {
+          SCOPED_TRACE("the node " + std::to_string(s) + " um above the apex");
+          u(nodes[axis].dofs[1]) = -depth + s;
+          u.compress(VectorOperation::insert);
+          ASSERT_TRUE(contact.evaluate(u, depth));
+          const auto &node = contact.nodes()[axis];
+          ASSERT_TRUE(node.active);
+          EXPECT_NEAR(node.gap, -s, 1e-15);
+          EXPECT_EQ(node.normal[0], 0.0);
+          EXPECT_EQ(node.normal[2], -1.0);
+          EXPECT_EQ(node.traction.norm(), 0.0);
+          EXPECT_FALSE(contact.nodes()[1 - axis].active);
+          const auto summary = contact.summary();
+          EXPECT_NEAR(summary.force_z, area * (lambda + penalty * s), 1e-12);
+          EXPECT_EQ(summary.force_on_specimen[0], 0.0);
+        }
     }
 }

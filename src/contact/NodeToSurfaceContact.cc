@@ -50,7 +50,8 @@ namespace indentsim::contact
   void NodeToSurfaceContact::setup(const DoFHandler<3>             &dof_handler,
                                    const AffineConstraints<double> &hanging_node_constraints,
                                    const types::boundary_id top_boundary, const double half_x,
-                                   const double half_y, const MPI_Comm communicator)
+                                   const double half_y, const MPI_Comm communicator,
+                                   const bool axis_held)
   {
     communicator_ = communicator;
     nodes_.clear();
@@ -89,6 +90,8 @@ namespace indentsim::contact
                   node.dofs[d] = face->vertex_dof_index(v, d);
                 node.X = face->vertex(v);
                 node.x_converged = node.X;
+                node.on_axis =
+                    axis_held && std::abs(node.X[0]) <= tol && std::abs(node.X[1]) <= tol;
                 found.emplace(dof_x, node);
               }
           }
@@ -178,7 +181,8 @@ namespace indentsim::contact
                                                                     const double    depth) const
   {
     indenter::SurfaceProjection projection;
-    projection.closest_point = Point<3>(0, 0, surface_.profile(0, 0) - depth);
+    projection.closest_point =
+        Point<3>(x[0], x[1], surface_.profile(x[0] - offset_[0], x[1] - offset_[1]) - depth);
     projection.gap = projection.closest_point[2] - x[2];
     projection.normal[2] = -1;
     return projection;

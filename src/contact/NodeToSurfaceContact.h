@@ -66,12 +66,12 @@ namespace indentsim::contact
     std::array<dealii::types::global_dof_index, 3> dofs;
     Point<3>                                       X; // reference position [um]
     double       area = 0; // tributary reference area [um^2] (axisymmetric: of the whole ring)
-    bool         on_axis = false;      // axisymmetric node on the axis r = 0 (see axis_projection)
-    double       penalty = 0;          // augmentation parameter eps_i [GPa/um]
-    double       lambda = 0;           // normal multiplier (nominal pressure) [GPa]
-    double       lambda_converged = 0; // normal multiplier of the last converged increment
-    double       lambda_previous = 0;  // ... and of the one before
-    Tensor<1, 3> traction_multiplier;  // tangential multiplier t_i [GPa]
+    bool         on_axis = false;               // held on the indenter's axis (see axis_projection)
+    double       penalty = 0;                   // augmentation parameter eps_i [GPa/um]
+    double       lambda = 0;                    // normal multiplier (nominal pressure) [GPa]
+    double       lambda_converged = 0;          // normal multiplier of the last converged increment
+    double       lambda_previous = 0;           // ... and of the one before
+    Tensor<1, 3> traction_multiplier;           // tangential multiplier t_i [GPa]
     Tensor<1, 3> traction_multiplier_converged; // t_i of the last converged increment
     Point<3>     x_converged;                   // position at the last converged increment [um]
     // State at the last evaluation.
@@ -126,10 +126,12 @@ namespace indentsim::contact
 
     // Collects the locally owned top-face nodes inside the footprint |x| <= half_x,
     // |y| <= half_y and their tributary areas. Hanging nodes (constrained x dof) are excluded.
+    // `axis_held`: the model holds the node on the axis x = y = 0 there (the quarter model's
+    // two symmetry planes), which then moves along the axis only (axis_projection).
     void setup(const dealii::DoFHandler<3>             &dof_handler,
                const dealii::AffineConstraints<double> &hanging_node_constraints,
                dealii::types::boundary_id top_boundary, double half_x, double half_y,
-               MPI_Comm communicator);
+               MPI_Comm communicator, bool axis_held = false);
     // The same for the axisymmetric (r, z) section: the top-edge nodes with r <= half_x, their
     // ring areas integral of N_i 2 pi r ds (exact for the linear edge).
     void setup(const dealii::DoFHandler<2>             &dof_handler,
@@ -258,8 +260,9 @@ namespace indentsim::contact
     };
     NodeResponse respond(const ContactNode &node, const Point<3> &x, int normal_active,
                          const ContactStatus *fixed_status, double depth) const;
-    // The gap, closest point and normal of a node on the axis of an axisymmetric model at `x`,
-    // the indenter at `depth`: the node moves along the axis only (u_r = 0), and its gap is the
+    // The gap, closest point and normal of a node held on the indenter's axis (the axisymmetric
+    // model's axis, u_r = 0, or the quarter model's edge x = y = 0) at `x`, the indenter at
+    // `depth`: the node moves along the axis only, and its gap is the
     // vertical distance to the indenter's profile on the axis, its normal the axis (-z). At a
     // smooth tip this is the closest-point projection; at a sharp apex (a cone with tip_radius
     // 0) that projection jumps from the apex (normal along the axis, the node just outside) to

@@ -209,7 +209,8 @@ namespace indentsim::problems
     absolute_tolerance_ = std::max(case_.solver.absolute_tolerance, residual_round_off());
     if constexpr (dim == 3)
       contact_->setup(solid_.dof_handler, constraints_hanging_, mesh::boundary::top,
-                      mesh_info_.refined_half_x, mesh_info_.refined_half_y, communicator_);
+                      mesh_info_.refined_half_x, mesh_info_.refined_half_y, communicator_,
+                      /*axis_held=*/mesh_info_.quarter);
     else
       contact_->setup(solid_.dof_handler, constraints_hanging_, mesh::boundary::top,
                       mesh_info_.refined_half_x, communicator_);

@@ -544,60 +544,102 @@ TEST(Friction, RetractThenAssembleEqualsAFreshAssembly)
     }
 }
 
-// Requirement: in an axisymmetric model, the node on the axis under a sharp apex (a cone with
-// tip_radius 0) is pushed along the axis by a force that is continuous and linear in its
-// position, just outside the indenter and just inside it alike: its gap is the vertical distance
-// to the apex, its normal the axis, and it does not slip. Oracle: the Alart-Curnier pressure
-// p = lambda - eps g with g = -(z - z_apex) exactly, and symmetry (no radial force, no
+namespace
+{
+  // The node of `contact` on the axis pressed against a sharp 70.3 deg cone's apex at depth
+  // `depth`, at heights s above the apex from 2e-6 um outside to 2e-6 um inside it, with the
+  // normal multiplier lambda: checks the gap, normal, traction and forces of
+  // AxisNodeUnderASharpApexIsPushedAlongTheAxis. The other contact nodes stay clear of the cone.
+  void expect_axis_response(contact::NodeToSurfaceContact &contact, const IndexSet &owned)
+  {
+    const double depth = 0.1, lambda = 2.0; // [um], [GPa]
+    const auto  &nodes = contact.nodes();
+    unsigned int axis = nodes.size();
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      if (nodes[i].X[0] == 0.0 && nodes[i].X[1] == 0.0)
+        axis = i;
+    ASSERT_LT(axis, nodes.size());
+    ASSERT_TRUE(nodes[axis].on_axis);
+    const double                  penalty = nodes[axis].penalty, area = nodes[axis].area;
+    const types::global_dof_index z_dof = nodes[axis].dofs[contact.axes().size() - 1];
+    PETScWrappers::MPI::Vector    u(owned, MPI_COMM_SELF);
+    // The multiplier: one evaluation penetrating by lambda / eps, then the Uzawa update.
+    u(z_dof) = -depth + lambda / penalty;
+    u.compress(VectorOperation::insert);
+    ASSERT_TRUE(contact.evaluate(u, depth));
+    contact.augment();
+    for (const double s : {-2e-6, -1e-6, 0.0, 1e-6, 2e-6}) // above the apex: s > 0
+      {
+        SCOPED_TRACE("the node " + std::to_string(s) + " um above the apex");
+        u(z_dof) = -depth + s;
+        u.compress(VectorOperation::insert);
+        ASSERT_TRUE(contact.evaluate(u, depth));
+        const auto &node = contact.nodes()[axis];
+        ASSERT_TRUE(node.active);
+        EXPECT_NEAR(node.gap, -s, 1e-15);
+        EXPECT_EQ(node.normal[0], 0.0);
+        EXPECT_EQ(node.normal[1], 0.0);
+        EXPECT_EQ(node.normal[2], -1.0);
+        EXPECT_EQ(node.traction.norm(), 0.0);
+        const auto summary = contact.summary();
+        EXPECT_EQ(summary.n_active, 1u);
+        EXPECT_NEAR(summary.force_z, area * (lambda + penalty * s), 1e-12);
+        EXPECT_EQ(summary.force_on_specimen[0], 0.0);
+        EXPECT_EQ(summary.force_on_specimen[1], 0.0);
+      }
+  }
+} // namespace
+
+// Requirement: a node that the model holds on the indenter's axis (the axisymmetric model's
+// axis, the quarter model's edge x = y = 0) is pushed against a sharp apex (a cone with
+// tip_radius 0) along the axis, by a force that is continuous and linear in its position just
+// outside the indenter and just inside it alike: its gap is the vertical distance to the apex,
+// its normal the axis, and it does not slip. Oracle: the Alart-Curnier pressure
+// p = lambda - eps g with g = -(z - z_apex) exactly, and symmetry (no lateral force, no
 // traction). The closest-point projection of that node jumps from the apex (normal along the
 // axis) to a flank (normal tilted by the half-angle) as it crosses the apex, and Newton's method
 // then cycles between the two sides without converging (a sharp 70.3 deg cone on a power-law
-// material with friction 0.15 did so at 0.975 um).
+// material with friction 0.15: at 0.975 um in axisymmetric mode, and 103 cut-backs to 0.89 um
+// in the quarter model).
 TEST(Friction, AxisNodeUnderASharpApexIsPushedAlongTheAxis)
 {
   const indenter::Cone cone(70.3, 0.0);
-  const double         depth = 0.1, penalty = 100.0, lambda = 2.0; // [um], [GPa/um], [GPa]
   for (const double mu : {0.0, 0.15})
     {
       SCOPED_TRACE("mu = " + std::to_string(mu));
-      // One (r, z) cell [0, 1] x [-1, 0] um; its top edge (boundary 3) holds the two contact
-      // nodes, the one on the axis and the one at r = 1 um, which stays clear of the cone.
-      Triangulation<2> triangulation;
-      GridGenerator::hyper_rectangle(triangulation, Point<2>(0, -1), Point<2>(1, 0), true);
-      FESystem<2>   fe(FE_Q<2>(1), 2);
-      DoFHandler<2> dof_handler(triangulation);
-      dof_handler.distribute_dofs(fe);
-      AffineConstraints<double> none;
-      none.close();
-      contact::NodeToSurfaceContact contact(cone, penalty, mu);
-      contact.setup(dof_handler, none, 3, 2.0, MPI_COMM_SELF);
-      ASSERT_EQ(contact.nodes().size(), 2u);
-      const auto                &nodes = contact.nodes();
-      const auto                 axis = nodes[0].X[0] == 0.0 ? 0u : 1u;
-      const double               area = nodes[axis].area;
-      PETScWrappers::MPI::Vector u(dof_handler.locally_owned_dofs(), MPI_COMM_SELF);
-      // The multiplier lambda on the axis node: one evaluation penetrating by lambda / eps,
-      // then the Uzawa update lambda <- p.
-      u(nodes[axis].dofs[1]) = -depth + lambda / penalty;
-      u.compress(VectorOperation::insert);
-      ASSERT_TRUE(contact.evaluate(u, depth));
-      contact.augment();
-      for (const double s : {-2e-6, -1e-6, 0.0, 1e-6, 2e-6}) // above the apex: s > 0
-        {
-          SCOPED_TRACE("the node " + std::to_string(s) + " um above the apex");
-          u(nodes[axis].dofs[1]) = -depth + s;
-          u.compress(VectorOperation::insert);
-          ASSERT_TRUE(contact.evaluate(u, depth));
-          const auto &node = contact.nodes()[axis];
-          ASSERT_TRUE(node.active);
-          EXPECT_NEAR(node.gap, -s, 1e-15);
-          EXPECT_EQ(node.normal[0], 0.0);
-          EXPECT_EQ(node.normal[2], -1.0);
-          EXPECT_EQ(node.traction.norm(), 0.0);
-          EXPECT_FALSE(contact.nodes()[1 - axis].active);
-          const auto summary = contact.summary();
-          EXPECT_NEAR(summary.force_z, area * (lambda + penalty * s), 1e-12);
-          EXPECT_EQ(summary.force_on_specimen[0], 0.0);
-        }
+      {
+        SCOPED_TRACE("axisymmetric: one (r, z) cell [0, 1] x [-1, 0] um, top edge 3");
+        Triangulation<2> triangulation;
+        GridGenerator::hyper_rectangle(triangulation, Point<2>(0, -1), Point<2>(1, 0), true);
+        FESystem<2>   fe(FE_Q<2>(1), 2);
+        DoFHandler<2> dof_handler(triangulation);
+        dof_handler.distribute_dofs(fe);
+        AffineConstraints<double> none;
+        none.close();
+        contact::NodeToSurfaceContact contact(cone, 100.0, mu);
+        contact.setup(dof_handler, none, 3, 2.0, MPI_COMM_SELF);
+        ASSERT_EQ(contact.nodes().size(), 2u);
+        expect_axis_response(contact, dof_handler.locally_owned_dofs());
+      }
+      {
+        SCOPED_TRACE("quarter model: one cell [0, 1]^2 x [-1, 0] um, top face 5");
+        Triangulation<3> triangulation;
+        GridGenerator::hyper_rectangle(triangulation, Point<3>(0, 0, -1), Point<3>(1, 1, 0), true);
+        FESystem<3>   fe(FE_Q<3>(1), 3);
+        DoFHandler<3> dof_handler(triangulation);
+        dof_handler.distribute_dofs(fe);
+        AffineConstraints<double> none;
+        none.close();
+        contact::NodeToSurfaceContact contact(cone, 100.0, mu);
+        contact.setup(dof_handler, none, 5, 2.0, 2.0, MPI_COMM_SELF, /*axis_held=*/true);
+        ASSERT_EQ(contact.nodes().size(), 4u);
+        expect_axis_response(contact, dof_handler.locally_owned_dofs());
+        // A model that does not hold the node on the axis (the full model) keeps the
+        // closest-point projection.
+        contact::NodeToSurfaceContact free_contact(cone, 100.0, mu);
+        free_contact.setup(dof_handler, none, 5, 2.0, 2.0, MPI_COMM_SELF);
+        for (const auto &node : free_contact.nodes())
+          EXPECT_FALSE(node.on_axis);
+      }
     }
 }

@@ -65,12 +65,12 @@ namespace indentsim::contact
     // third unused); component k moves the 3D coordinate axis(k) (NodeToSurfaceContact::axes).
     std::array<dealii::types::global_dof_index, 3> dofs;
     Point<3>                                       X; // reference position [um]
-    double       area = 0; // tributary reference area [um^2] (axisymmetric: of the whole ring)
-    bool         on_axis = false;               // held on the indenter's axis (see axis_projection)
-    double       penalty = 0;                   // augmentation parameter eps_i [GPa/um]
-    double       lambda = 0;                    // normal multiplier (nominal pressure) [GPa]
-    double       lambda_converged = 0;          // normal multiplier of the last converged increment
-    double       lambda_previous = 0;           // ... and of the one before
+    bool   on_axis = false; // held on the indenter's axis (NodeToSurfaceContact::axis_projection)
+    double area = 0;        // tributary reference area [um^2] (axisymmetric: of the whole ring)
+    double penalty = 0;     // augmentation parameter eps_i [GPa/um]
+    double lambda = 0;      // normal multiplier (nominal pressure) [GPa]
+    double lambda_converged = 0;                // normal multiplier of the last converged increment
+    double lambda_previous = 0;                 // ... and of the one before
     Tensor<1, 3> traction_multiplier;           // tangential multiplier t_i [GPa]
     Tensor<1, 3> traction_multiplier_converged; // t_i of the last converged increment
     Point<3>     x_converged;                   // position at the last converged increment [um]
@@ -262,13 +262,13 @@ namespace indentsim::contact
                          const ContactStatus *fixed_status, double depth) const;
     // The gap, closest point and normal of a node held on the indenter's axis (the axisymmetric
     // model's axis, u_r = 0, or the quarter model's edge x = y = 0) at `x`, the indenter at
-    // `depth`: the node moves along the axis only, and its gap is the
-    // vertical distance to the indenter's profile on the axis, its normal the axis (-z). At a
-    // smooth tip this is the closest-point projection; at a sharp apex (a cone with tip_radius
-    // 0) that projection jumps from the apex (normal along the axis, the node just outside) to
-    // one flank (normal tilted by the half-angle, the node just inside), so that the node's
-    // force jumps where it sits, on the apex, and Newton's method cycles between the two sides.
-    // Both gaps vanish at the same position: the contact condition is the same.
+    // `depth`: the node moves along the axis only; its gap is the vertical distance to the
+    // indenter's profile there, its normal the axis (-z). At a smooth tip this is the
+    // closest-point projection; at a sharp apex (a cone or pyramid with tip_radius 0) that
+    // projection jumps from the apex (normal along the axis, the node just outside) to a flank
+    // (normal tilted by the half-angle, the node just inside), so that the node's force jumps
+    // where the contact holds it, on the apex, and Newton's method cycles between the two
+    // sides. Both gaps vanish at the same position: the contact condition is the same.
     indenter::SurfaceProjection axis_projection(const Point<3> &x, double depth) const;
 
     // Keeps the found nodes, in the order of their first dof, with their areas from `area` and

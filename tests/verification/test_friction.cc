@@ -546,9 +546,9 @@ TEST(Friction, RetractThenAssembleEqualsAFreshAssembly)
 
 namespace
 {
-  // The node of `contact` on the axis pressed against a sharp 70.3 deg cone's apex at depth
-  // `depth`, at heights s above the apex from 2e-6 um outside to 2e-6 um inside it, with the
-  // normal multiplier lambda: checks the gap, normal, traction and forces of
+  // The node of `contact` (set up with a sharp 70.3 deg cone) on the axis, the apex at the
+  // depth 0.1 um, placed s = -2e-6 ... 2e-6 um above the apex (inside the cone for s > 0) under
+  // the normal multiplier lambda = 2 GPa: checks the gap, normal, traction and forces of
   // AxisNodeUnderASharpApexIsPushedAlongTheAxis. The other contact nodes stay clear of the cone.
   void expect_axis_response(contact::NodeToSurfaceContact &contact, const IndexSet &owned)
   {

@@ -260,7 +260,7 @@ namespace indentsim::io
     // A value the command line set was not written on a line of the file.
     for (const std::string &key : adjust(result.the_case))
       origins.erase(key);
-    result.indenter = validate_values(result.the_case, &origins);
+    result.indenter = validate_values(result.the_case, &origins, /*for_run=*/true);
     return result;
   }
 

@@ -31,9 +31,11 @@ namespace indentsim::io
   // The value checks of the schema and the checks that involve several keys; `origins` is null
   // for a case that was not read from a file. Designs the automatic mesh of
   // specimen.contact_elements: auto into `checked` (mesh/MeshDesign.h). Returns the indenter the
-  // checks built.
-  std::unique_ptr<indenter::IndenterSurface> validate_values(Case            &checked,
-                                                             const OriginMap *origins);
+  // checks built. `for_run`: the case is about to be computed (run, check), which adds the
+  // checks of what the solver cannot compute (a sharp pyramid); a case read for its description
+  // (the indenter of an analysis, a checkpoint's resolved case) skips them.
+  std::unique_ptr<indenter::IndenterSurface>
+  validate_values(Case &checked, const OriginMap *origins, bool for_run = false);
 
   // Parses YAML text into a Case with the origins of its values, without the value checks.
   Case parse_case_text(const std::string &yaml_text, const std::string &source_name,

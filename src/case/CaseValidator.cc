@@ -41,10 +41,11 @@ namespace indentsim::io
     {
     public:
       // `checked_case` receives the automatic mesh's design (specimen.contact_elements: auto).
-      CaseValidator(Case &checked_case, const OriginMap *origins)
+      CaseValidator(Case &checked_case, const OriginMap *origins, const bool for_run)
         : checked(checked_case)
         , designed(checked_case)
         , value_origins(origins)
+        , for_run(for_run)
       {
       }
 
@@ -104,6 +105,7 @@ namespace indentsim::io
       const Case      &checked;
       Case            &designed; // the same case, for the design of the automatic mesh
       const OriginMap *value_origins;
+      const bool       for_run; // the checks of what the solver cannot compute
 
       // specimen.contact_elements: auto designs refined_region (and size, unless the case file
       // gives it); the checks below then apply to the designed values. Without origins (a case
@@ -492,6 +494,17 @@ namespace indentsim::io
                              : "edge_radius = " + format_number(ind.edge_radius)) +
                        " um)");
           }
+        // A sharp pyramid's contact normal jumps from face to face across an edge: Newton's
+        // method stalls on the nodes along the edges, or with a rounding of a few nm a node
+        // slides off the edge onto one face (the mirror-symmetry guard of the run reports it).
+        if (for_run &&
+            (ind.shape == IndenterShape::vickers || ind.shape == IndenterShape::berkovich) &&
+            !(ind.tip_radius > 0))
+          reject("indenter.tip_radius", format_number(ind.tip_radius),
+                 "a vickers or berkovich pyramid needs a rounded tip, tip_radius > 0 um (real "
+                 "tips: 0.02-0.2 um): across a sharp edge the contact normal jumps from face to "
+                 "face, and Newton's method stalls on the nodes along the edges; 0.01 um or more "
+                 "keeps those nodes on the edge (docs/user-guide.md, \"Indenters\")");
         if (ind.shape == IndenterShape::profile_table && ind.file.empty())
           reject("indenter.file", "\"\"",
                  "shape: profile_table needs the table: file: a CSV path (relative to the case "
@@ -891,9 +904,9 @@ namespace indentsim::io
     };
   } // namespace
 
-  std::unique_ptr<indenter::IndenterSurface> validate_values(Case            &checked,
-                                                             const OriginMap *origins)
+  std::unique_ptr<indenter::IndenterSurface>
+  validate_values(Case &checked, const OriginMap *origins, const bool for_run)
   {
-    return CaseValidator(checked, origins).validate();
+    return CaseValidator(checked, origins, for_run).validate();
   }
 } // namespace indentsim::io

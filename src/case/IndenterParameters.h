@@ -42,6 +42,7 @@ namespace indentsim::io
     double half_angle_deg = 70.3; // cone: half-angle [deg] (70.3: the area function 24.5 h^2
                                   // of the Vickers and Berkovich pyramids)
     double tip_radius = 0.0;      // cone, vickers, berkovich: tip (and edge) radius [um], 0: sharp
+                                  // (cone only: a pyramid needs > 0, CaseValidator)
     double rotation_deg = 0.0;    // vickers, berkovich: about +z, counterclockwise from above;
                                   // 0: face 0's normal along +x (Pyramid.h)
     double edge_radius = 0.0;     // flat_punch: rounding of the rim [um], 0: sharp

@@ -688,7 +688,7 @@ namespace indentsim::io
               .expect("the tip radius in um")
               .range(finite_at_least(0),
                      "the tip radius of the cone or pyramid must be >= 0 um (0: sharp)")
-              .comment("cone, vickers, berkovich: tip and edge radius [um], 0: sharp")
+              .comment("cone, vickers, berkovich: tip and edge radius [um], 0: sharp cone")
               .describe(
                   "radius of the rounded tip and edges; 0 = sharp (cone, vickers, berkovich)"),
           D::at<&C::indenter, &I::rotation_deg>("indenter.rotation_deg")

@@ -250,8 +250,11 @@ namespace indentsim::contact
     n_changes_ = 0;
     search_failed_ = false;
     depth_ = depth;
-    for (ContactNode &node : nodes_)
+    before_last_.resize(nodes_.size());
+    for (std::size_t i = 0; i < nodes_.size(); ++i)
       {
+        ContactNode &node = nodes_[i];
+        before_last_[i] = {node.status, node.active, node.held};
         for (unsigned int k = 0; k < axes_.size(); ++k)
           node.x[axes_[k]] = node.X[axes_[k]] + u(node.dofs[k]);
         int normal_active = -1; // decided by the augmented pressure
@@ -292,6 +295,16 @@ namespace indentsim::contact
         node.slip = response.slip;
       }
     return !search_failed_;
+  }
+
+  void NodeToSurfaceContact::reject_last_evaluation()
+  {
+    for (std::size_t i = 0; i < std::min(nodes_.size(), before_last_.size()); ++i)
+      {
+        nodes_[i].status = before_last_[i].status;
+        nodes_[i].active = before_last_[i].active;
+        nodes_[i].held = before_last_[i].held;
+      }
   }
 
   void NodeToSurfaceContact::start_pass()

@@ -177,6 +177,12 @@ namespace indentsim::contact
     // Releases the nodes held active by the last Newton pass: call when a pass begins.
     void start_pass();
 
+    // Restores the active set, the statuses and the holds from before the last evaluate(): the
+    // Newton driver calls it when its line search rejects an iterate. The nodes a rejected full
+    // step pushed into the indenter then neither stay held for the rest of the pass nor join a
+    // frozen set, where away from the indenter their unclipped pressure would pull on them.
+    void reject_last_evaluation();
+
     // Number of nodes (global) whose status differs between the last two evaluations.
     unsigned int n_status_changes() const;
 
@@ -291,6 +297,13 @@ namespace indentsim::contact
     double                           depth_converged_ = 0;
     Tensor<1, 3>                     offset_, offset_converged_; // lateral indenter position
     unsigned int                     n_changes_ = 0; // local status changes of the last evaluate()
+    // Per node, the status, activity and hold before the last evaluate() (reject_last_evaluation).
+    struct StatusBefore
+    {
+      ContactStatus status;
+      bool          active, held;
+    };
+    std::vector<StatusBefore> before_last_;
     // What the last assemble() with a matrix and without coupling added, node by node (retract).
     struct Contribution
     {

@@ -36,6 +36,10 @@ namespace indentsim::mesh
     // with 4.7 elements the elastic Hertz force is 3 % high (tests/verification), and the
     // paper's J2 force moves by 8 % from 24 x 24 (3 elements) to 48 x 48 (6 elements).
     inline constexpr double min_elements_across_contact = 5;
+    // A lateral contact force normal to a mirror plane of the indenter, the material and the
+    // mesh, relative to the vertical force, beyond which the solution has broken the symmetry
+    // (symmetric solutions: about 1e-9; a node slid off a Berkovich edge: 5-15 %).
+    inline constexpr double mirror_force = 1e-3;
     // The plastic zone: equivalent plastic strain above 0.2 % (the offset yield strain).
     inline constexpr double plastic_strain_threshold = 2e-3;
     // Force control: the hardness H = 3 sigma_y (Tabor's constraint factor; crystal:

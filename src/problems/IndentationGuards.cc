@@ -1,8 +1,9 @@
 // The physics guards of an indentation run, checked after every accepted step
 // (IndentationRun.cc; thresholds and advice in mesh/MeshAdequacy.h): the contact against the
 // refined region (the run stops before the contact reaches its edge), the plastic zone against
-// the specimen's faces, the contact-element resolution at the maximum and a damage profile cut
-// off before its damage ends (warnings).
+// the specimen's faces, the contact-element resolution at the maximum, a damage profile cut
+// off before its damage ends and a contact force that leaves a mirror plane of the problem
+// (warnings).
 // Units: um, mN, GPa.
 #include "case/DamageProfile.h"
 #include "case/Schema.h"
@@ -33,6 +34,7 @@ namespace indentsim::problems
     check_refined_region(recorder, segment, record);
     check_plastic_zone(recorder);
     check_damage_profile_end(recorder);
+    check_mirror_symmetry(recorder, record);
     if (at_max)
       check_contact_resolution(recorder, record);
   }
@@ -61,8 +63,8 @@ namespace indentsim::problems
     if (profile.dpa.empty() || !(profile.dpa.back() > 0.01 * io::peak_dose(profile)))
       return;
     std::ostringstream message;
-    message << "material.damage_profile ends at " << short_number(profile.dpa.back())
-            << " dpa (" << short_number(100 * profile.dpa.back() / io::peak_dose(profile))
+    message << "material.damage_profile ends at " << short_number(profile.dpa.back()) << " dpa ("
+            << short_number(100 * profile.dpa.back() / io::peak_dose(profile))
             << " % of its peak) at the depth " << short_number(profile.depth.back())
             << " um; below it the dose is 0 and the substrate holds: extend the table to where "
                "the damage ends (a row with 0 dpa) if the cut is not meant";
@@ -273,6 +275,61 @@ namespace indentsim::problems
            << ": make specimen.refined_region smaller around this contact, or indent deeper";
     warn(recorder, "contact resolution", text.str());
   }
+  // The planes x = 0 and y = 0 that the indenter, the material and the full 3D model share:
+  // the indenter's height is compared with its mirror image at 1 152 points of the refined
+  // region's top face; the material must be isotropic (a crystal's orientation need not keep
+  // the plane), and the model full (the quarter model's planes carry the symmetry reactions; the
+  // axisymmetric one has no lateral force). The full model's mesh is symmetric about both planes.
+  template <int dim>
+  std::array<bool, 2> IndentationProblem<dim>::shared_mirror_planes() const
+  {
+    if (dim != 3 || mesh_info_.quarter || case_.material.model == io::ModelKind::crystal)
+      return {false, false};
+    std::array<bool, 2> planes{true, true};
+    const double        reach = std::min(mesh_info_.refined_half_x, mesh_info_.refined_half_y);
+    for (unsigned int i = 1; i <= 16; ++i)
+      for (unsigned int k = 0; k < 72; ++k)
+        {
+          const double r = reach * i / 16, phi = 2 * std::numbers::pi * (k + 0.25) / 72;
+          const double x = r * std::cos(phi), y = r * std::sin(phi);
+          const double z = indenter_->profile(x, y), tolerance = 1e-9 * (std::abs(z) + r);
+          planes[0] = planes[0] && std::abs(indenter_->profile(-x, y) - z) <= tolerance;
+          planes[1] = planes[1] && std::abs(indenter_->profile(x, -y) - z) <= tolerance;
+        }
+    return planes;
+  }
+
+  // Where the indenter, the material and the mesh are mirror-symmetric about a plane, so is the
+  // solution, and the contact force has no component normal to the plane (round-off and the
+  // Newton tolerance leave about 1e-9 of the vertical force). More than guard::mirror_force
+  // means that the solution has left the symmetric branch: typically a node on a sharp edge of
+  // the indenter has slid off onto one face, where the face's inclined normal pushes it on.
+  template <int dim>
+  void IndentationProblem<dim>::check_mirror_symmetry(output::RunRecorder &recorder,
+                                                      const StepRecord    &record)
+  {
+    const Tensor<1, 3> force = contact_->summary().force_on_specimen;
+    const double       vertical = std::abs(force[2]);
+    for (const unsigned int d : {0u, 1u})
+      {
+        if (!mirror_planes_[d] || !(vertical > absolute_tolerance_) ||
+            !(std::abs(force[d]) > guard::mirror_force * vertical))
+          continue;
+        const char         axis = d == 0 ? 'x' : 'y';
+        std::ostringstream message;
+        message << "at the depth " << short_number(record.depth) << " um the contact force has the "
+                << "lateral component F_" << axis << " = " << short_number(force[d]) << " mN, "
+                << short_number(100 * std::abs(force[d]) / vertical) << " % of the vertical "
+                << short_number(vertical) << " mN, although the indenter, "
+                << "the material and the mesh are mirror-symmetric about the plane " << axis
+                << " = 0: the solution has broken that symmetry (typically a node on a sharp edge "
+                   "of the indenter slid off onto one face) and its forces are the mesh's, not the "
+                   "indenter's; give the tip a larger indenter.tip_radius (0.01 um or more; "
+                   "docs/user-guide.md, \"Indenters\")";
+        warn(recorder, "mirror_symmetry", message.str());
+      }
+  }
+
   template class IndentationProblem<2>;
   template class IndentationProblem<3>;
 } // namespace indentsim::problems

@@ -75,9 +75,10 @@ namespace indentsim::problems
   {
     static constexpr double min_alpha = 1. / 16;
     double                  previous_norm = std::numeric_limits<double>::infinity();
-    double                  alpha = 1;           // line-search step length of the last update
-    bool                    frozen = false;      // the active set is frozen (it cycled)
-    double                  pass_start_norm = 0; // |R| at the first iterate of this pass
+    double                  alpha = 1;      // line-search step length of the last update
+    bool                    frozen = false; // the active set is frozen (it cycled)
+    bool   freezing = false;    // ... from the next iterate on, which decides the set freely
+    double pass_start_norm = 0; // |R| at the first iterate of this pass
     // |R| at the last two iterates of this pass (for the prediction below): the last one,
     // whether it was the predictor, and the one before if a full Newton step joined them.
     double norm_one_back = 0, norm_two_back = 0;
@@ -191,11 +192,15 @@ namespace indentsim::problems
       {
         pass.alpha = nonlinear::line_search_step(pass.alpha, pass.previous_norm, norm,
                                                  NewtonPass::min_alpha);
+        // The rejected iterate's contact statuses go with it.
+        contact_->reject_last_evaluation();
         if (pass.alpha <= NewtonPass::min_alpha && !pass.frozen)
           {
             // The semi-smooth iteration cycles between active sets: freeze the set of the
-            // damped iterate, converge with it, then check it (check_convergence).
+            // damped iterate (decided freely there), converge with it, then check it
+            // (check_convergence).
             pass.frozen = true;
+            pass.freezing = true;
             log_iterate(pcout_, increment.pass, it, "active set frozen");
           }
         increment.u_owned = increment.u_start;
@@ -294,10 +299,11 @@ namespace indentsim::problems
       }
     {
       const output::RunStatistics::Scope contact_timer(statistics_.contact);
-      const bool                         searched =
-          contact_->evaluate(solution_, increment.depth,
-                             pass.predictor ? ActiveSet::predictor
-                                            : (pass.frozen ? ActiveSet::frozen : ActiveSet::free));
+      const bool                         searched = contact_->evaluate(solution_, increment.depth,
+                                               pass.predictor ? ActiveSet::predictor
+                                                                       : (pass.frozen && !pass.freezing) ? ActiveSet::frozen
+                                                                                                         : ActiveSet::free);
+      pass.freezing = false;
       pass.search_failed =
           Utilities::MPI::max(static_cast<unsigned int>(!searched), communicator_) > 0;
     }

@@ -215,6 +215,7 @@ namespace indentsim::problems
       contact_->setup(solid_.dof_handler, constraints_hanging_, mesh::boundary::top,
                       mesh_info_.refined_half_x, communicator_);
 
+    mirror_planes_ = shared_mirror_planes();
     linear_solver_.setup(solid_.dof_handler,
                          LinearSolver::choose_kind(case_.solver.linear_solver, dim, n_dofs()),
                          material_->symmetric_tangent() && contact_->symmetric_tangent());

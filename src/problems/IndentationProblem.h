@@ -40,6 +40,7 @@
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -264,7 +265,8 @@ namespace indentsim::problems
     // The physics guards after an accepted step (IndentationGuards.cc, mesh/MeshAdequacy.h):
     // throws mesh::MeshOutgrownError (after noting it in run.log) when the contact nears the
     // edge of the refined region; warns once per face when the plastic zone nears a face of
-    // the specimen, and at the maximum when too few elements lie across the contact radius.
+    // the specimen, at the maximum when too few elements lie across the contact radius, and
+    // when the contact force leaves a mirror plane of the indenter, material and mesh.
     void check_guards(output::RunRecorder &recorder, const nonlinear::Segment &segment,
                       const StepRecord &record, bool at_max);
     void check_refined_region(output::RunRecorder &recorder, const nonlinear::Segment &segment,
@@ -272,6 +274,10 @@ namespace indentsim::problems
     void check_plastic_zone(output::RunRecorder &recorder);
     void check_damage_profile_end(output::RunRecorder &recorder);
     void check_contact_resolution(output::RunRecorder &recorder, const StepRecord &record);
+    // The planes x = 0 and y = 0 about which the indenter, the material and the model are all
+    // mirror-symmetric, and the warning when the contact force leaves such a plane.
+    std::array<bool, 2> shared_mirror_planes() const;
+    void check_mirror_symmetry(output::RunRecorder &recorder, const StepRecord &record);
     // A guard's warning: run.log, stderr (verbose runs) and warnings(); once per `topic`.
     void warn(output::RunRecorder &recorder, const std::string &topic, const std::string &text);
     void finish_run(RunContext &context);
@@ -335,6 +341,7 @@ namespace indentsim::problems
     std::vector<analysis::pileup::PileUpResult> pileup_results_;
     std::vector<std::string>                    warnings_;
     std::vector<std::string>                    warned_topics_;
+    std::array<bool, 2> mirror_planes_{};                     // x = 0, y = 0 (shared_mirror_planes)
     std::vector<std::pair<double, std::string>> vtu_records_; // (output index, pvtu file)
     std::string                                 output_directory_;
     std::optional<unsigned int>                 stop_after_step_;

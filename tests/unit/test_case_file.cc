@@ -594,6 +594,40 @@ TEST(CaseFile, IndenterRangesAreChecked)
   expect_rejected_case(c, {"indenter.rotation_deg = inf", "finite"});
 }
 
+// A sharp pyramid cannot be computed (docs/user-guide.md, "Pyramids need a rounded tip"): a case
+// read for a run or a check refuses tip_radius 0 for vickers and berkovich, with the line, the
+// value and what is allowed; read for its description (the indenter of an analysis) it is valid,
+// and a sharp cone or a rounded pyramid runs.
+TEST(CaseFile, RunsRefuseASharpPyramid)
+{
+  const fs::path dir = scratch_directory("sharp_pyramid");
+  const auto     for_run = [&](const std::string &indenter) {
+    const fs::path path = write_text(dir / "case.yaml", with("indenter:\n" + indenter));
+    try
+      {
+        read_case_for_run(path.string(), [](Case &) { return std::vector<std::string>(); });
+      }
+    catch (const CaseFileError &error)
+      {
+        return std::string(error.what());
+      }
+    return std::string();
+  };
+  for (const std::string shape : {"vickers", "berkovich"})
+    {
+      const std::string message = for_run("  shape: " + shape + "\n  tip_radius: 0\n");
+      for (const std::string part : {std::string("case.yaml:6: indenter.tip_radius = 0: "),
+                                     std::string("tip_radius > 0 um"), std::string("0.01 um")})
+        EXPECT_NE(message.find(part), std::string::npos) << shape << ": " << message;
+      EXPECT_NE(for_run("  shape: " + shape + "\n").find("(default)"), std::string::npos)
+          << "the default tip_radius 0 is named as the default";
+      EXPECT_EQ(error_of(with("indenter:\n  shape: " + shape + "\n  tip_radius: 0\n")), "")
+          << shape << ": read for its description";
+      EXPECT_EQ(for_run("  shape: " + shape + "\n  tip_radius: 0.01\n"), "") << shape;
+    }
+  EXPECT_EQ(for_run("  shape: cone\n  tip_radius: 0\n"), "") << "a sharp cone runs";
+}
+
 // profile_table: the file is relative to the case file's directory, stored as an absolute path
 // (so that the resolved case, written elsewhere, finds it), and a bad table is reported with
 // the case file's line of indenter.file, the table's file and line, and what is allowed.

@@ -242,3 +242,38 @@ TEST(RunGuards, ContactOutgrowingTheRefinedRegionStopsTheRun)
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), long(records.size()) + 1) << csv;
   EXPECT_NE(log.find("# stopped: the contact reached"), std::string::npos) << log;
 }
+
+// The paper's J2 block (12 x 12, full model) under a Berkovich pyramid whose edge along -x runs
+// over the nodes of the plane y = 0, a mirror plane of the pyramid, the material and the mesh.
+// With the edges rounded by 0.1 nm the node on the edge slides off onto one face at about
+// 2 um (docs/user-guide.md, "Indenters"): the lateral force F_y exceeds 0.1 % of F_z and the run
+// warns (mirror_symmetry). With 5 nm the node stays on the edge, F_y vanishes and nothing warns.
+TEST(RunGuards, ContactThatBreaksAMirrorSymmetryWarns)
+{
+  for (const double radius : {1e-4, 5e-3})
+    {
+      io::Case c;
+      c.material.model = "j2";
+      c.indenter.shape = "berkovich";
+      c.indenter.tip_radius = radius;
+      c.loading.max_depth = 2.25;
+      c.loading.steps = 24; // the 0.094 um steps of the example (6 um in 64 steps)
+      c.loading.unload = false;
+      c.output.plots = false;
+      const auto directory =
+          test_files::scratch_directory("guards", "mirror_" + std::to_string(radius));
+      problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
+      problem.setup();
+      problem.run(directory.string());
+      const auto  &warnings = problem.warnings();
+      const bool   warned = std::any_of(warnings.begin(), warnings.end(), [](const auto &w) {
+        return w.find("mirror-symmetric about the plane y = 0") != std::string::npos;
+      });
+      EXPECT_EQ(warned, radius < 1e-3) << "tip radius " << radius;
+      EXPECT_NEAR(problem.records().back().depth, 2.25, 1e-12);
+      const std::string log = test_files::read_text(directory / "run.log");
+      EXPECT_EQ(log.find("the contact force has the lateral component") != std::string::npos,
+                radius < 1e-3)
+          << log;
+    }
+}

@@ -256,6 +256,41 @@ TEST(Friction, ActiveNodesAreHeldUntilThePassEnds)
   EXPECT_TRUE(block.contact.summary().conditions_met(1e-6));
 }
 
+// An iterate the line search rejects takes its statuses with it: a trial state that pushed the
+// block 0.01 um into the plane neither holds its nodes for the rest of the pass nor hands them
+// to a frozen set, so that the damped iterate (here the plane 0.01 um above the block) is free of
+// them. Without the rejection the nodes stay held and carry the tension eps g (the test above).
+TEST(Friction, RejectedIterateNeitherHoldsNorFreezesItsNodes)
+{
+  using ActiveSet = contact::NodeToSurfaceContact::ActiveSet;
+  const Plane plane;
+  SpringBlock block(plane, 0.0, 100.0);
+  block.contact.start_pass();
+  ASSERT_TRUE(block.contact.evaluate(block.u, -0.01, ActiveSet::free)); // accepted: open
+  EXPECT_EQ(block.contact.summary().n_active, 0u);
+  ASSERT_TRUE(block.contact.evaluate(block.u, 0.01, ActiveSet::free)); // trial: 0.01 um in
+  EXPECT_EQ(block.contact.summary().n_active, 4u);
+  block.contact.reject_last_evaluation();
+  for (const ActiveSet mode : {ActiveSet::frozen, ActiveSet::free})
+    {
+      ASSERT_TRUE(block.contact.evaluate(block.u, -0.01, mode));
+      EXPECT_EQ(block.contact.summary().n_active, 0u);
+      for (const auto &node : block.contact.nodes())
+        {
+          EXPECT_FALSE(node.active);
+          EXPECT_EQ(node.pressure, 0.0);
+        }
+    }
+  // A trial that stays is kept: evaluated again without rejection, the nodes are held.
+  ASSERT_TRUE(block.contact.evaluate(block.u, 0.01, ActiveSet::free));
+  ASSERT_TRUE(block.contact.evaluate(block.u, -0.01, ActiveSet::free));
+  for (const auto &node : block.contact.nodes())
+    {
+      EXPECT_TRUE(node.active);
+      EXPECT_NEAR(node.pressure, -100.0 * 0.01, 1e-12);
+    }
+}
+
 namespace
 {
   // The largest difference between `tangent` and the central differences (step 1e-6 um) of the

@@ -221,7 +221,9 @@ TEST(PlasticZone, DepthFollowsJohnsonsExpandingCavity)
 // elements across the damage peak's 0.225 um width at half maximum) the curve lies between the
 // two homogeneous curves at every depth to 0.6 um (above the pristine one by more than the
 // discretisation's noise while the indent is shallower than the profile, and within 0.2 % of it
-// deeper), and the profile's share of the hardening falls as the indent goes deeper. (It need not
+// deeper), and the profile's share of the hardening falls as the indent goes deeper (to within
+// 0.005, the curves' discretisation noise: deeper than the profile, d - p is 1.5 % of p and
+// H - p 60 %, so a ripple of 0.1 % of p moves the share by 0.002). (It need not
 // lie below the uniformly hard 0.35 um layer: the softer surface piles up more and widens the
 // contact.)
 TEST(Layers, DamageProfileLiesBetweenItsBounds)
@@ -253,7 +255,7 @@ TEST(Layers, DamageProfileLiesBetweenItsBounds)
                 << std::endl;
       EXPECT_GT(d, h <= 0.4 ? 1.01 * p : 0.998 * p) << "h = " << h;
       EXPECT_LT(d, H) << "h = " << h;
-      EXPECT_LT(share, previous_share) << "h = " << h;
+      EXPECT_LT(share, previous_share + 0.005) << "h = " << h;
       previous_share = share;
     }
 }

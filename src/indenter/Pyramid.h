@@ -1,7 +1,9 @@
 // A regular n-sided pyramid with exactly flat faces, each at the angle theta to the axis
 // (Vickers: n = 4, theta = 68 deg; Berkovich: n = 3, theta = 65.27 deg), sharp or rounded by a
 // ball of radius R (MinkowskiRounding.h): the faces stay flat with the exact angle, the edges
-// become cylinders and the tip a sphere of radius R. Units: um.
+// become cylinders and the tip a sphere of radius R. The sharp pyramid serves the analysis (its
+// area function); a run needs R > 0 (CaseValidator: at a sharp edge the contact normal jumps).
+// Units: um.
 //
 // Orientation: face i (i = 0 .. n-1) has the outward normal
 //   n_i = (cos(theta) cos(phi_i), cos(theta) sin(phi_i), -sin(theta)),

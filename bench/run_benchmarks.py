@@ -104,8 +104,8 @@ CASES["j2_axi_auto"] = (
      "loading": {"max_depth": 6.0, "steps": 192, "spacing": "geometric", "unload": True}})
 # The 3D quarter model of the default example for a loading curve (docs/performance.md, "The 3D
 # quarter model for a loading curve"): uniform steps, loading only, at the default 3D design and
-# with 5 elements per radius; no plots (the figure is the computation's).
-for name, n, steps in (("j2_quarter_auto_u32", None, 32), ("j2_quarter_auto_n5_u28", 5, 28)):
+# with 4 elements per radius; no plots (the figure is the computation's).
+for name, n, steps in (("j2_quarter_auto_u32", None, 32), ("j2_quarter_auto_n4_u64", 4, 64)):
     CASES[name] = (
         f"J2 indentation (Table 1), 3D quarter model on the automatic mesh"
         f"{'' if n is None else f' with {n} elements per radius'}, {steps} uniform steps to 6 um, "

@@ -275,6 +275,7 @@ namespace indentsim::problems
            << ": make specimen.refined_region smaller around this contact, or indent deeper";
     warn(recorder, "contact resolution", text.str());
   }
+
   // The planes x = 0 and y = 0 that the indenter, the material and the full 3D model share:
   // the indenter's height is compared with its mirror image at 1 152 points of the refined
   // region's top face; the material must be isotropic (a crystal's orientation need not keep
@@ -300,8 +301,8 @@ namespace indentsim::problems
   }
 
   // Where the indenter, the material and the mesh are mirror-symmetric about a plane, so is the
-  // solution, and the contact force has no component normal to the plane (round-off and the
-  // Newton tolerance leave about 1e-9 of the vertical force). More than guard::mirror_force
+  // solution, and the contact force has no component normal to the plane (the symmetric branch
+  // of the guard's test leaves less than 1e-9 of the vertical force). More than guard::mirror_force
   // means that the solution has left the symmetric branch: typically a node on a sharp edge of
   // the indenter has slid off onto one face, where the face's inclined normal pushes it on.
   template <int dim>

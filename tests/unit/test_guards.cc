@@ -246,7 +246,7 @@ TEST(RunGuards, ContactOutgrowingTheRefinedRegionStopsTheRun)
 // The paper's J2 block (12 x 12, full model) under a Berkovich pyramid whose edge along -x runs
 // over the nodes of the plane y = 0, a mirror plane of the pyramid, the material and the mesh.
 // With the edges rounded by 0.1 nm the node on the edge slides off onto one face at about
-// 2 um (docs/user-guide.md, "Indenters"): the lateral force F_y exceeds 0.1 % of F_z and the run
+// 2 um (docs/user-guide.md, "Indenters"): the lateral force F_y exceeds 1 % of F_z and the run
 // warns (mirror_symmetry). With 5 nm the node stays on the edge, F_y vanishes and nothing warns.
 TEST(RunGuards, ContactThatBreaksAMirrorSymmetryWarns)
 {

@@ -299,11 +299,11 @@ namespace indentsim::problems
       }
     {
       const output::RunStatistics::Scope contact_timer(statistics_.contact);
-      const bool                         searched = contact_->evaluate(solution_, increment.depth,
-                                               pass.predictor ? ActiveSet::predictor
-                                                                       : (pass.frozen && !pass.freezing) ? ActiveSet::frozen
-                                                                                                         : ActiveSet::free);
+      const ActiveSet                    mode = pass.predictor ? ActiveSet::predictor
+                                                : (pass.frozen && !pass.freezing) ? ActiveSet::frozen
+                                                                                  : ActiveSet::free;
       pass.freezing = false;
+      const bool searched = contact_->evaluate(solution_, increment.depth, mode);
       pass.search_failed =
           Utilities::MPI::max(static_cast<unsigned int>(!searched), communicator_) > 0;
     }

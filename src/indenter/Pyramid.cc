@@ -97,6 +97,15 @@ namespace indentsim::indenter
     return is_mirror_plane(0.) && is_mirror_plane(90.);
   }
 
+  unsigned int Pyramid::faces_along_axes() const
+  {
+    unsigned int n = 0;
+    for (unsigned int i = 0; i < n_faces(); ++i)
+      if (std::abs(std::remainder(rotation + i * 360. / n_faces(), 90.)) <= 0.5)
+        ++n;
+    return n;
+  }
+
   // The face plane n_i . (x, y, z) = 0 has the height (n_ix x + n_iy y) / sin(theta).
   double Pyramid::sharp_profile(const double x, const double y) const
   {

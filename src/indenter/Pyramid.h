@@ -60,6 +60,11 @@ namespace indentsim::indenter
     // Berkovich never.
     bool mirror_symmetric_about_xz_and_yz() const override;
 
+    // The number of faces whose trace on the surface runs parallel to the x or the y axis
+    // (phi_i a multiple of 90 deg, to 0.5 deg): on the meshes' x-y grid lines such a face's
+    // contact edge reaches a whole row of surface nodes at once (IndentationGuards.cc).
+    unsigned int faces_along_axes() const;
+
     std::string name() const override { return shape_name; }
 
     unsigned int        n_faces() const { return static_cast<unsigned int>(face_normals.size()); }

@@ -278,6 +278,8 @@ namespace indentsim::problems
     // mirror-symmetric, and the warning when the contact force leaves such a plane.
     std::array<bool, 2> shared_mirror_planes() const;
     void check_mirror_symmetry(output::RunRecorder &recorder, const StepRecord &record);
+    // The warning for a pyramid whose faces all run along the mesh lines (stairs in the force).
+    void check_faces_along_mesh_lines(output::RunRecorder &recorder);
     // A guard's warning: run.log, stderr (verbose runs) and warnings(); once per `topic`.
     void warn(output::RunRecorder &recorder, const std::string &topic, const std::string &text);
     void finish_run(RunContext &context);

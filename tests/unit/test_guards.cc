@@ -213,7 +213,7 @@ TEST(RunGuards, ContactOutgrowingTheRefinedRegionStopsTheRun)
   c.specimen.contact_elements = 8; // 0.5 um elements; half-width 2 um
   c.loading.max_depth = 1.5;       // contact radius about 4.8 um at the end
   c.loading.steps = 6;
-  const auto                   directory = test_files::scratch_directory("guards", "outgrown");
+  const auto                      directory = test_files::scratch_directory("guards", "outgrown");
   problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
   problem.setup();
   std::string message;
@@ -265,8 +265,8 @@ TEST(RunGuards, ContactThatBreaksAMirrorSymmetryWarns)
       problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
       problem.setup();
       problem.run(directory.string());
-      const auto  &warnings = problem.warnings();
-      const bool   warned = std::any_of(warnings.begin(), warnings.end(), [](const auto &w) {
+      const auto &warnings = problem.warnings();
+      const bool  warned = std::any_of(warnings.begin(), warnings.end(), [](const auto &w) {
         return w.find("mirror-symmetric about the plane y = 0") != std::string::npos;
       });
       EXPECT_EQ(warned, radius < 1e-3) << "tip radius " << radius;
@@ -275,5 +275,42 @@ TEST(RunGuards, ContactThatBreaksAMirrorSymmetryWarns)
       EXPECT_EQ(log.find("the contact force has the lateral component") != std::string::npos,
                 radius < 1e-3)
           << log;
+    }
+}
+
+// A Vickers pyramid at 0 deg has all four faces along the mesh lines: the run warns that the
+// force climbs in stairs and names the turn that avoids them. At 45 deg (the quarter model's
+// other choice) no face runs along them and nothing warns. A 4 x 4 quarter model, two steps.
+TEST(RunGuards, PyramidWithEveryFaceAlongTheMeshLinesWarns)
+{
+  for (const double rotation : {0., 45.})
+    {
+      io::Case c;
+      c.material.model = "j2";
+      c.indenter.shape = "vickers";
+      c.indenter.tip_radius = 0.05;
+      c.indenter.rotation_deg = rotation;
+      c.specimen.symmetry = "quarter";
+      c.specimen.contact_elements = 4;
+      c.loading.max_depth = 0.5;
+      c.loading.steps = 2;
+      c.loading.unload = false;
+      c.output.plots = false;
+      const auto directory =
+          test_files::scratch_directory("guards", "faces_" + std::to_string(int(rotation)));
+      problems::IndentationProblem<3> problem(c, MPI_COMM_WORLD, false);
+      problem.setup();
+      problem.run(directory.string());
+      const auto &warnings = problem.warnings();
+      const auto  warning = std::find_if(warnings.begin(), warnings.end(), [](const auto &w) {
+        return w.find("runs parallel to the mesh lines") != std::string::npos;
+      });
+      EXPECT_EQ(warning != warnings.end(), rotation == 0.) << "rotation " << rotation;
+      if (warning != warnings.end())
+        {
+          EXPECT_NE(warning->find("indenter.rotation_deg = 0"), std::string::npos) << *warning;
+          EXPECT_NE(warning->find("rotation_deg: 22.5"), std::string::npos) << *warning;
+        }
+      EXPECT_NEAR(problem.records().back().depth, 0.5, 1e-12);
     }
 }

@@ -1067,6 +1067,39 @@ TEST(IndenterPyramid, RotationConvention)
   EXPECT_LT(berkovich.edge_direction(1)[0], 0.) << "edge 1 along -x";
 }
 
+// faces_along_axes() counts the faces whose trace on the surface runs along x or y, i.e. whose
+// normal has no horizontal component along one of the two axes (to 0.5 deg): counted here from
+// the face normals themselves.
+TEST(IndenterPyramid, FacesAlongTheAxesAreCounted)
+{
+  const auto count_from_normals = [](const Pyramid &pyramid) {
+    unsigned int n = 0;
+    for (unsigned int i = 0; i < pyramid.n_faces(); ++i)
+      {
+        const Tensor<1, 3> &normal = pyramid.face_normal(i);
+        const double        horizontal = std::hypot(normal[0], normal[1]);
+        if (std::min(std::abs(normal[0]), std::abs(normal[1])) <=
+            std::sin(radians(0.5)) * horizontal + 1e-12)
+          ++n;
+      }
+    return n;
+  };
+  const std::vector<std::pair<Pyramid, unsigned int>> cases = {
+      {Pyramid::vickers(0.05, 0.), 4},    {Pyramid::vickers(0.05, 90.), 4},
+      {Pyramid::vickers(0.05, -0.4), 4},  {Pyramid::vickers(0.05, 22.5), 0},
+      {Pyramid::vickers(0.05, 45.), 0},   {Pyramid::vickers(0.05, 1.), 0},
+      {Pyramid::berkovich(0.05, 0.), 1},  {Pyramid::berkovich(0.05, 30.), 1},
+      {Pyramid::berkovich(0.05, 15.), 0},
+  };
+  for (const auto &[pyramid, expected] : cases)
+    {
+      EXPECT_EQ(pyramid.faces_along_axes(), expected)
+          << pyramid.name() << " at " << pyramid.rotation_deg() << " deg";
+      EXPECT_EQ(count_from_normals(pyramid), expected)
+          << pyramid.name() << " at " << pyramid.rotation_deg() << " deg";
+    }
+}
+
 // mirror_symmetric_about_xz_and_yz() tells the truth: where it says yes, gap and normal are
 // mirrored exactly; where it says no, some point shows the asymmetry.
 TEST(IndenterLibrary, MirrorSymmetryClaimsHold)

@@ -1,5 +1,6 @@
 #include "nonlinear/LoadingProgramme.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace indentsim::nonlinear
@@ -104,6 +105,48 @@ namespace indentsim::nonlinear
     if (value < first * (1 - 1e-9))
       return first - value;
     return (ratio_ - 1) * value;
+  }
+
+  double LoadingProgramme::steps_to_target(const Segment &segment, const double from) const
+  {
+    if (segment.kind == SegmentKind::hold)
+      return segment.steps;
+    if (paced(segment))
+      return (segment.kind == SegmentKind::partial_unload ? partial_points_ : unload_points_) + 1;
+    const bool   loading = segment.kind != SegmentKind::unload;
+    const double way = loading ? segment.target - from : from - segment.target;
+    if (!(way > 0))
+      return 0;
+    if (!geometric_ || !loading)
+      return way / (maximum / segment.steps);
+    // Geometric: one increment to the first target, then a factor ratio per increment.
+    const double first = first_fraction_ * maximum;
+    if (from < first * (1 - 1e-9))
+      return 1 + std::max(0.0, std::log(segment.target / first) / std::log(ratio_));
+    return std::log(segment.target / from) / std::log(ratio_);
+  }
+
+  double LoadingProgramme::remaining_steps(const std::size_t index, const double value,
+                                           const bool index_done) const
+  {
+    double remaining = 0;
+    double from = value;
+    for (std::size_t k = index; k < segments.size(); ++k)
+      {
+        const bool current = k == index;
+        if (!current)
+          {
+            // A reload starts where its partial unload ended, just below its target: one step.
+            const Segment &previous = segments[k - 1];
+            from =
+                previous.kind == SegmentKind::partial_unload ? segments[k].target : previous.target;
+          }
+        if (current && index_done)
+          continue;
+        const double steps = steps_to_target(segments[k], from);
+        remaining += current ? steps : std::max(1.0, steps);
+      }
+    return remaining;
   }
 
   bool LoadingProgramme::paced(const Segment &segment) const

@@ -39,7 +39,7 @@ namespace indentsim::nonlinear
     bool                 force_control;
     double               maximum; // max_depth [um] or, under force control, max_force [mN]
     std::vector<Segment> segments;
-    // The steps the programme takes without cut-backs (for the ETA).
+    // The steps the programme takes without cut-backs (remaining_steps at its start).
     unsigned int expected_steps;
     // Depth-controlled unloading is paced by force (unload_points > 0), and so is a partial
     // unload: see IncrementControl (nonlinear/CutBackStepper.h).
@@ -60,10 +60,20 @@ namespace indentsim::nonlinear
     // (ratio - 1) value, with ratio = (1 / first_fraction)^(1 / (steps - 1)) so that `steps`
     // increments reach the maximum.
     double nominal_increment(const Segment &segment, double value) const;
+    // The steps the rest of the programme takes without cut-backs (for the ETA), from the
+    // control value `value` within segment `index` (`index_done`: that segment has just ended):
+    // a load, reload or uniform unloading counts the nominal increments left to its target
+    // (walked as nominal_increment walks them); a hold, a paced unloading and a partial unload
+    // count their nominal steps whole, their progress not being the control value's. At the
+    // programme's start this is expected_steps.
+    double remaining_steps(std::size_t index, double value, bool index_done) const;
     // " um" or " mN": the unit of the control value in messages.
     const char *unit() const { return force_control ? " mN" : " um"; }
 
   private:
+    // The nominal increments `segment` takes from `from` to its target (fractional; >= 0).
+    double steps_to_target(const Segment &segment, double from) const;
+
     unsigned int unload_points_;
     double       partial_fraction_;
     unsigned int partial_points_;

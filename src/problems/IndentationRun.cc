@@ -281,9 +281,10 @@ namespace indentsim::problems
     measure_plastic_zone(record);
     records_.back() = record;
 
-    // Progress: one line per step, with an ETA from the mean step time of this run.
+    // Progress: one line per step, with an ETA from the mean step time of this run and the
+    // nominal steps left from where the run stands (cut-backs do not count as progress).
     const double eta = record.wall_time / loop.step *
-                       std::max(0.0, double(programme.expected_steps) - double(loop.step));
+                       programme.remaining_steps(loop.segment, loop.value, segment_done);
     pcout_ << output::ProgressLine{record, case_.loading.cycles > 1,
                                    programme.force_control ? &loop.value : nullptr,
                                    contact_->friction_coefficient() > 0, eta}

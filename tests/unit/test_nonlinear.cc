@@ -232,6 +232,76 @@ TEST(NewtonSteps, InexactNewtonToleranceAndResidualPrediction)
   EXPECT_EQ(reductions.at(0, 0), 0.0);
 }
 
+namespace
+{
+  // The steps the stepper's nominal walk takes through a loading segment from `from` to its
+  // target (nominal_increment at each point, the last step cut to the target).
+  unsigned int walked_steps(const LoadingProgramme &programme, const Segment &segment,
+                            const double from)
+  {
+    unsigned int n = 0;
+    for (double value = from; value < segment.target * (1 - 1e-12); ++n)
+      value = std::min(segment.target, value + programme.nominal_increment(segment, value));
+    return n;
+  }
+} // namespace
+
+// The ETA's count of the steps left: at the start it is expected_steps (cycles with holds and
+// paced unloading, force control, partial unloads, geometric loading with the default paced
+// unloading); within a loading segment
+// it counts what the nominal walk takes from there to the target, also from a depth between
+// two nominal points (after a cut-back); a finished segment counts nothing.
+TEST(LoadingProgramme, RemainingStepsCountTheNominalWalkLeft)
+{
+  io::LoadingParameters cycles;
+  cycles.max_depth = 2.0;
+  cycles.steps = 10;
+  cycles.hold_steps = 3;
+  cycles.cycles = 2;
+  cycles.unload_steps = 5;
+  io::LoadingParameters force = cycles;
+  force.control = "force";
+  force.max_force = 500.0;
+  io::LoadingParameters partial;
+  partial.max_depth = 1.5;
+  partial.steps = 30;
+  partial.unload_points = 10;
+  partial.partial_unloads = {0.5, 0.2, 4};
+  io::LoadingParameters geometric; // the default example's programme
+  geometric.max_depth = 6.0;
+  geometric.steps = 192;
+  geometric.spacing = "geometric";
+  for (const io::LoadingParameters &loading : {cycles, force, partial, geometric})
+    {
+      const LoadingProgramme programme(loading);
+      // Within half a step: force control unloads 99 % of the way (4.95 of 5 steps a cycle).
+      EXPECT_NEAR(programme.remaining_steps(0, 0.0, false), double(programme.expected_steps),
+                  0.5);
+    }
+
+  for (const char *spacing : {"uniform", "geometric"})
+    {
+      geometric.spacing = spacing;
+      const LoadingProgramme programme(geometric);
+      const Segment         &load = programme.segments[0];
+      const double           unloading = programme.remaining_steps(0, 6.0, true);
+      EXPECT_NEAR(unloading, 21.0, 1e-9) << spacing << ": unloading paced in 20 force steps";
+      double value = 0.0;
+      for (unsigned int k = 0; k < 150; ++k)
+        value += programme.nominal_increment(load, value);
+      // At a nominal point, and halfway to the next one (a cut-back).
+      for (const double depth : {value, value + 0.5 * programme.nominal_increment(load, value)})
+        {
+          const double left = programme.remaining_steps(0, depth, false) - unloading;
+          EXPECT_EQ(static_cast<unsigned int>(std::ceil(left - 1e-9)),
+                    walked_steps(programme, load, depth))
+              << spacing << " at " << depth << " um";
+        }
+      EXPECT_NEAR(programme.remaining_steps(0, value, false), 192.0 - 150.0 + 21.0, 1e-6)
+          << spacing;
+    }
+}
+
 // Partial unloads: the first loading stops at every multiple of their spacing below the
 // maximum for a partial unload and a reload to the same depth; the full unload follows the
 // maximum as before. The force targets, the probe and the step count by hand.

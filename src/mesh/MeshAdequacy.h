@@ -38,9 +38,9 @@ namespace indentsim::mesh
     inline constexpr double min_elements_across_contact = 5;
     // A lateral contact force normal to a mirror plane of the indenter, the material and the
     // mesh, relative to the vertical force, beyond which the solution has broken the symmetry
-    // (a node slid off a Berkovich edge: 5-15 %; the Vickers pyramid with R = 0.05 um on the
-    // automatic mesh reaches 0.2 % about x = 0 for a reason not yet understood, so the guard
-    // flags only what moves the force by per cents).
+    // (a node slid off a Berkovich edge: 5-15 %; the Vickers pyramid with R = 0.05 um at 0 deg on
+    // the automatic mesh reaches 0.2 % about x = 0, cause unknown, so the guard flags only what
+    // moves the force by per cents).
     inline constexpr double mirror_force = 1e-2;
     // The plastic zone: equivalent plastic strain above 0.2 % (the offset yield strain).
     inline constexpr double plastic_strain_threshold = 2e-3;

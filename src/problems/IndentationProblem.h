@@ -265,8 +265,9 @@ namespace indentsim::problems
     // The physics guards after an accepted step (IndentationGuards.cc, mesh/MeshAdequacy.h):
     // throws mesh::MeshOutgrownError (after noting it in run.log) when the contact nears the
     // edge of the refined region; warns once per face when the plastic zone nears a face of
-    // the specimen, at the maximum when too few elements lie across the contact radius, and
-    // when the contact force leaves a mirror plane of the indenter, material and mesh.
+    // the specimen, at the maximum when too few elements lie across the contact radius, when
+    // the contact force leaves a mirror plane of the indenter, material and mesh, and when every
+    // face of a pyramid runs along the mesh lines.
     void check_guards(output::RunRecorder &recorder, const nonlinear::Segment &segment,
                       const StepRecord &record, bool at_max);
     void check_refined_region(output::RunRecorder &recorder, const nonlinear::Segment &segment,

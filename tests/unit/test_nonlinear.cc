@@ -16,16 +16,38 @@
 using namespace indentsim;
 using namespace indentsim::nonlinear;
 
+namespace
+{
+  // Two cycles of loading to 2 um in 10 steps, a hold of 3 and an unloading of 5.
+  io::LoadingParameters two_cycles()
+  {
+    io::LoadingParameters loading;
+    loading.max_depth = 2.0;
+    loading.steps = 10;
+    loading.hold_steps = 3;
+    loading.cycles = 2;
+    loading.unload_steps = 5;
+    return loading;
+  }
+
+  // Loading to 1.5 um in 30 steps with a partial unload (20 % of the force in 4 steps) every
+  // 0.5 um, then paced unloading in 10 force steps.
+  io::LoadingParameters partial_unloads()
+  {
+    io::LoadingParameters loading;
+    loading.max_depth = 1.5;
+    loading.steps = 30;
+    loading.unload_points = 10;
+    loading.partial_unloads = {0.5, 0.2, 4};
+    return loading;
+  }
+} // namespace
+
 // Two cycles of load, hold and unload appear in that order with their targets and step counts;
 // force control unloads to 1 % of the maximum force.
 TEST(LoadingProgramme, CyclesOfLoadHoldUnload)
 {
-  io::LoadingParameters loading;
-  loading.max_depth = 2.0;
-  loading.steps = 10;
-  loading.hold_steps = 3;
-  loading.cycles = 2;
-  loading.unload_steps = 5;
+  io::LoadingParameters  loading = two_cycles();
   const LoadingProgramme depth(loading);
   ASSERT_EQ(depth.segments.size(), 6u);
   EXPECT_FALSE(depth.force_control);
@@ -248,25 +270,15 @@ namespace
 
 // The ETA's count of the steps left: at the start it is expected_steps (cycles with holds and
 // paced unloading, force control, partial unloads, geometric loading with the default paced
-// unloading); within a loading segment
-// it counts what the nominal walk takes from there to the target, also from a depth between
-// two nominal points (after a cut-back); a finished segment counts nothing.
+// unloading); within a loading segment it counts what the nominal walk takes from there to the
+// target, also from a depth between two nominal points (after a cut-back); a finished segment
+// counts nothing.
 TEST(LoadingProgramme, RemainingStepsCountTheNominalWalkLeft)
 {
-  io::LoadingParameters cycles;
-  cycles.max_depth = 2.0;
-  cycles.steps = 10;
-  cycles.hold_steps = 3;
-  cycles.cycles = 2;
-  cycles.unload_steps = 5;
-  io::LoadingParameters force = cycles;
+  const io::LoadingParameters cycles = two_cycles(), partial = partial_unloads();
+  io::LoadingParameters       force = cycles;
   force.control = "force";
   force.max_force = 500.0;
-  io::LoadingParameters partial;
-  partial.max_depth = 1.5;
-  partial.steps = 30;
-  partial.unload_points = 10;
-  partial.partial_unloads = {0.5, 0.2, 4};
   io::LoadingParameters geometric; // the default example's programme
   geometric.max_depth = 6.0;
   geometric.steps = 192;
@@ -275,8 +287,7 @@ TEST(LoadingProgramme, RemainingStepsCountTheNominalWalkLeft)
     {
       const LoadingProgramme programme(loading);
       // Within half a step: force control unloads 99 % of the way (4.95 of 5 steps a cycle).
-      EXPECT_NEAR(programme.remaining_steps(0, 0.0, false), double(programme.expected_steps),
-                  0.5);
+      EXPECT_NEAR(programme.remaining_steps(0, 0.0, false), double(programme.expected_steps), 0.5);
     }
 
   for (const char *spacing : {"uniform", "geometric"})
@@ -307,11 +318,7 @@ TEST(LoadingProgramme, RemainingStepsCountTheNominalWalkLeft)
 // maximum as before. The force targets, the probe and the step count by hand.
 TEST(LoadingProgramme, PartialUnloadsAtEveryMultipleBelowTheMaximum)
 {
-  io::LoadingParameters loading;
-  loading.max_depth = 1.5;
-  loading.steps = 30;
-  loading.unload_points = 10;
-  loading.partial_unloads = {0.5, 0.2, 4};
+  io::LoadingParameters  loading = partial_unloads();
   const LoadingProgramme programme(loading);
   // load 0.5, partial, reload 0.5, load 1.0, partial, reload 1.0, load 1.5, unload.
   ASSERT_EQ(programme.segments.size(), 8u);

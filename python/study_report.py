@@ -421,7 +421,9 @@ class Report:
                  "Each case is the base case file with the study's overrides; its directory "
                  "`cases/<name>-<key>/` is named by the hash of its resolved case "
                  "(`resolved_case.yaml` there; `console.log` holds the run's output). "
-                 "Wall time as measured by the study (whole process, plots included).", "")
+                 "Wall time as measured by the study (whole process, plots included). "
+                 "Warnings: the topics of the run's warnings (their texts are in the case's "
+                 "`run_summary.json` and `run.log`).", "")
         rows = []
         for case in self.data.cases:
             mark = case.get("mark") or {}
@@ -434,10 +436,11 @@ class Report:
                                   " (earlier run)" if case["status"] == "finished" else ""),
                 summary.get("dofs", "–"), summary.get("mpi_ranks", "–"),
                 format_number(mark.get("wall_time_s"), 1),
+                ", ".join(f"`{w['topic']}`" for w in summary.get("warnings", [])) or "–",
                 f"[resolved_case.yaml]({resolved})" if os.path.exists(
                     os.path.join(self.data.directory, resolved)) else "–"])
         self.table(["case", "label", "groups", "key", "status", "DOFs", "MPI ranks",
-                    "wall time [s]", "resolved case"], rows)
+                    "wall time [s]", "warnings", "resolved case"], rows)
 
     def tensile_section(self):
         self.add("## 1. Tensile calibration (Table 1 against Table 2, Fig. 3)", "")

@@ -21,7 +21,7 @@
 namespace indentsim::output::checkpoint
 {
   inline constexpr char          magic[8] = {'I', 'N', 'D', 'C', 'K', 'P', 'T', '\0'};
-  inline constexpr std::uint32_t format_version = 2;
+  inline constexpr std::uint32_t format_version = 3;
   // The folder in the output directory (io::output_files::checkpoint_directory).
   std::string rank_file(const std::string &checkpoint_directory, unsigned int rank);
 

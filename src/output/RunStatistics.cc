@@ -1,5 +1,6 @@
 #include "output/RunStatistics.h"
 
+#include "io/JsonText.h"
 #include "io/Version.h"
 #include "output/OutputFile.h"
 
@@ -51,6 +52,11 @@ namespace indentsim::output
           << "  \"time_total_s\": " << s.total << ",\n"
           << "  \"peak_memory_per_rank_mib\": " << memory_max << ",\n"
           << "  \"peak_memory_total_mib\": " << memory_sum << ",\n"
+          << "  \"warnings\": [";
+      for (std::size_t i = 0; i < d.warnings.size(); ++i)
+        out << (i == 0 ? "\n" : ",\n") << "    {\"topic\": " << io::json_string(d.warnings[i].first)
+            << ", \"text\": " << io::json_string(d.warnings[i].second) << "}";
+      out << (d.warnings.empty() ? "" : "\n  ") << "],\n"
           << "  " << text(d.final_value_name) << ": " << d.final_value << "\n"
           << "}\n";
     }

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace indentsim::output
@@ -77,6 +78,9 @@ namespace indentsim::output
     unsigned int  mpi_ranks = 1, threads = 1;
     double        final_value = 0; // force at maximum depth [mN] or final true stress [GPa]
     std::string   final_value_name;
+    // The run's warnings (topic, text), in the order they were given: a result the program
+    // cannot fully vouch for says so in its summary, not only in run.log and on stderr.
+    std::vector<std::pair<std::string, std::string>> warnings;
   };
 
   // Collective: gathers the peak memory of all ranks (largest and sum) and writes the JSON file

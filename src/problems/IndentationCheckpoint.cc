@@ -255,6 +255,14 @@ namespace indentsim::problems
           out.value(snapshot.depth);
           out.vector(snapshot.surface);
         }
+      // The warnings given so far: a resumed run's summary lists them too, although a guard
+      // that looks only at the first step does not look again.
+      out.value<std::uint64_t>(warnings_.size());
+      for (std::size_t i = 0; i < warnings_.size(); ++i)
+        {
+          out.string(warned_topics_[i]);
+          out.string(warnings_[i]);
+        }
       out.close();
     });
     output::write_collectively(communicator_, [&]() { writer->commit(); });
@@ -277,6 +285,7 @@ namespace indentsim::problems
     std::vector<StepRecord>                     records;
     std::vector<std::pair<double, std::string>> vtu_records;
     RunStatistics                               statistics;
+    std::vector<std::string>                    warned_topics, warnings;
     try
       {
         require_checkpoint_file(path);
@@ -332,6 +341,13 @@ namespace indentsim::problems
             snapshot.depth = in.value<double>();
             snapshot.surface = in.vector<pileup::SurfaceQuad>();
           }
+        warnings.resize(in.value<std::uint64_t>());
+        warned_topics.resize(warnings.size());
+        for (std::size_t i = 0; i < warnings.size(); ++i)
+          {
+            warned_topics[i] = in.string();
+            warnings[i] = in.string();
+          }
         contact_->restore_state(contact_state);
       }
     catch (const std::exception &e)
@@ -357,6 +373,8 @@ namespace indentsim::problems
     history_.converged_changed();
     records_ = std::move(records);
     vtu_records_ = std::move(vtu_records);
+    warned_topics_ = std::move(warned_topics);
+    warnings_ = std::move(warnings);
     const double setup = statistics_.setup;
     statistics_ = statistics;
     statistics_.setup = setup;

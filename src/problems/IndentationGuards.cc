@@ -198,6 +198,8 @@ namespace indentsim::problems
     const std::array<double, 5>   face_distance = {
           {s.size[0] / 2, s.size[0] / 2, s.size[1] / 2, s.size[1] / 2, s.size[2]}};
     const char *faces[5] = {"x = +", "x = -", "y = +", "y = -", "z = -"};
+    const char *topics[5] = {"plastic_zone_x_max", "plastic_zone_x_min", "plastic_zone_y_max",
+                             "plastic_zone_y_min", "plastic_zone_bottom"};
     for (unsigned int f = 0; f < 5; ++f)
       {
         if ((mesh_info_.quarter && (f == 1 || f == 3)) ||
@@ -226,7 +228,8 @@ namespace indentsim::problems
                               short_number(s.size[f < 2 ? 0 : 1]) + " um) at least " +
                               short_number(std::ceil(4 * reach[f])) + " um")
              << " (twice the zone's reach from the indent)";
-        warn(recorder, std::string("plastic zone ") + faces[f], text.str());
+        warn(recorder, mesh_info_.axisymmetric && f == 0 ? "plastic_zone_lateral" : topics[f],
+             text.str());
       }
   }
 
@@ -257,7 +260,7 @@ namespace indentsim::problems
              << " um): the automatic mesh was designed for a contact radius of "
              << short_number(s.grading.contact_radius)
              << " um; set loading.max_depth to the depth actually reached";
-        warn(recorder, "contact resolution", text.str());
+        warn(recorder, "contact_resolution", text.str());
         return;
       }
     const unsigned int needed =
@@ -275,7 +278,7 @@ namespace indentsim::problems
     if (needed > io::max_contact_elements)
       text << "; that is beyond the largest allowed, " << io::max_contact_elements
            << ": make specimen.refined_region smaller around this contact, or indent deeper";
-    warn(recorder, "contact resolution", text.str());
+    warn(recorder, "contact_resolution", text.str());
   }
 
   // The planes x = 0 and y = 0 that the indenter, the material and the full 3D model share:

@@ -426,6 +426,8 @@ namespace indentsim::problems
     description.final_value = loop.value_at_max;
     description.final_value_name =
         context.programme.force_control ? "depth_at_max_force_um" : "force_at_max_depth_mN";
+    for (std::size_t i = 0; i < warnings_.size(); ++i)
+      description.warnings.emplace_back(warned_topics_[i], warnings_[i]);
     output::write_run_summary(output_directory_ + "/" + io::output_files::run_summary, description,
                               statistics_, communicator_);
     // A finished run needs no checkpoint (an earlier one, if any, is removed).

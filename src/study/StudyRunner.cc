@@ -193,6 +193,19 @@ namespace indentsim::study
         out << "depth at maximum force " << *depth << " um";
       else if (const auto stress = json_number(summary, "final_true_stress_GPa"))
         out << "final true stress " << *stress << " GPa";
+      // The run's warnings by topic (run_summary.json holds their texts).
+      const std::string        key = "{\"topic\": \"";
+      std::vector<std::string> topics;
+      for (std::size_t at = summary.find(key); at != std::string::npos;
+           at = summary.find(key, at + 1))
+        {
+          const std::size_t start = at + key.size();
+          topics.push_back(summary.substr(start, summary.find('"', start) - start));
+        }
+      for (std::size_t i = 0; i < topics.size(); ++i)
+        out << (i == 0 ? "; WARNING " : ", ") << topics[i];
+      if (!topics.empty())
+        out << " (see its run_summary.json)";
       return out.str();
     }
   } // namespace

@@ -25,8 +25,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 using namespace indentsim;
 
@@ -278,9 +280,27 @@ TEST(RunGuards, ContactThatBreaksAMirrorSymmetryWarns)
     }
 }
 
+namespace
+{
+  // The warning topics that run_summary.json lists, in order.
+  std::vector<std::string> summary_warning_topics(const std::filesystem::path &directory)
+  {
+    const std::string        text = test_files::read_text(directory / "run_summary.json");
+    const std::regex         topic("\\{\"topic\": \"([^\"]*)\", \"text\": \"");
+    std::vector<std::string> topics;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), topic);
+         it != std::sregex_iterator(); ++it)
+      topics.push_back((*it)[1]);
+    EXPECT_NE(text.find("\"warnings\": ["), std::string::npos) << text;
+    return topics;
+  }
+} // namespace
+
 // A Vickers pyramid at 0 deg has all four faces along the mesh lines: the run warns that the
 // force climbs in stairs and names the turn that avoids them. At 45 deg (the quarter model's
 // other choice) no face runs along them and nothing warns. A 4 x 4 quarter model, two steps.
+// run_summary.json lists the warning, also after a stop at step 1 and a resume (the guard looks
+// only at the first step).
 TEST(RunGuards, PyramidWithEveryFaceAlongTheMeshLinesWarns)
 {
   for (const double rotation : {0., 45.})
@@ -312,5 +332,24 @@ TEST(RunGuards, PyramidWithEveryFaceAlongTheMeshLinesWarns)
           EXPECT_NE(warning->find("rotation_deg: 22.5"), std::string::npos) << *warning;
         }
       EXPECT_NEAR(problem.records().back().depth, 0.5, 1e-12);
+      // The 4 x 4 mesh also warns that few elements span the contact.
+      const std::vector<std::string> expected =
+          rotation == 0. ? std::vector<std::string>{"faces_along_mesh_lines", "contact_resolution"}
+                         : std::vector<std::string>{"contact_resolution"};
+      EXPECT_EQ(summary_warning_topics(directory), expected) << "rotation " << rotation;
+
+      const auto resumed_directory =
+          test_files::scratch_directory("guards", "faces_resumed_" + std::to_string(int(rotation)));
+      {
+        problems::IndentationProblem<3> stopped(c, MPI_COMM_WORLD, false);
+        stopped.setup();
+        stopped.stop_after_step(1);
+        stopped.run(resumed_directory.string());
+      }
+      problems::IndentationProblem<3> resumed(c, MPI_COMM_WORLD, false);
+      resumed.setup();
+      resumed.run(resumed_directory.string(), true);
+      EXPECT_NEAR(resumed.records().back().depth, 0.5, 1e-12);
+      EXPECT_EQ(summary_warning_topics(resumed_directory), expected) << "rotation " << rotation;
     }
 }

@@ -337,14 +337,17 @@ TEST(StudyCommandLine, ParsesOptionsAndRejectsBadValues)
 namespace
 {
   // A stand-in for `indentsim run CASE.yaml --overwrite`: writes run_summary.json next to the
-  // case and logs the run; a case whose directory starts with "bad-" fails with exit code 3.
+  // case and logs the run; a case whose directory starts with "bad-" fails with exit code 3, one
+  // starting with "ok2-" lists a warning.
   const std::string fake_solver = "#!/bin/sh\n"
                                   "dir=$(dirname \"$2\")\n"
                                   "echo \"$(basename \"$dir\")\" >> \"$dir/../../runs.log\"\n"
                                   "case \"$(basename \"$dir\")\" in bad-*) echo 'failing on "
                                   "purpose'; exit 3;; esac\n"
-                                  "echo '{\"force_at_max_depth_mN\": 1.5}' > "
-                                  "\"$dir/run_summary.json\"\n";
+                                  "case \"$(basename \"$dir\")\" in ok2-*) w='[{\"topic\": "
+                                  "\"contact_resolution\", \"text\": \"t\"}]';; *) w='[]';; esac\n"
+                                  "printf '{\"force_at_max_depth_mN\": 1.5, \"warnings\": %s}\\n' "
+                                  "\"$w\" > \"$dir/run_summary.json\"\n";
   const std::string fake_report = "import sys\n"
                                   "open(sys.argv[1] + '/report.md', 'w').write('fake report\\n')\n";
 
@@ -406,6 +409,12 @@ TEST(StudyRunner, FailedCaseDoesNotStopTheOthersAndFinishedOnesAreSkipped)
   EXPECT_EQ(fixture.run(s, output), study::exit_case_failed) << output;
   EXPECT_NE(output.find("bad: FAILED (exit code 3)"), std::string::npos) << output;
   EXPECT_NE(output.find("failing on purpose"), std::string::npos) << output;
+  // The progress line names the warnings of a case's run_summary.json (only ok2 has one).
+  EXPECT_NE(output.find("force at maximum depth 1.5 mN; WARNING contact_resolution (see its "
+                        "run_summary.json)"),
+            std::string::npos)
+      << output;
+  EXPECT_EQ(count(output, "WARNING"), 1u) << output;
   EXPECT_EQ(study::case_state(s.cases[0]), study::CaseState::finished);
   EXPECT_EQ(study::case_state(s.cases[1]), study::CaseState::failed);
   EXPECT_EQ(study::case_state(s.cases[2]), study::CaseState::finished);

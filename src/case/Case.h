@@ -203,7 +203,7 @@ namespace indentsim::io
   struct SolverParameters
   {
     double residual_tolerance =
-        1e-7; // relative to the first residual of the increment (indentation: or the last indenter force, if larger)
+        1e-7; // indentation: relative to the run's largest indenter force; tensile: to the first residual
     double       absolute_tolerance = 1e-10; // [mN]
     unsigned int max_newton_iterations = 25;
     // Linear solver of the Newton iterations (linalg/LinearSolver.h): auto (the kind of lower

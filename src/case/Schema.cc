@@ -992,14 +992,19 @@ namespace indentsim::io
           D::at<&C::solver, &SP::residual_tolerance>("solver.residual_tolerance")
               .expect("a relative tolerance")
               .range(between(0, false, 1, false),
-                     "must satisfy 0 < tolerance < 1 (relative to the first residual)")
-              .comment("relative to the first residual of an increment")
+                     "must satisfy 0 < tolerance < 1 (relative to a force of the run)")
+              .comment("relative to the run's largest indenter force")
               .describe(
-                  "relative to the larger of the first residual of the increment and the "
-                  "indenter force of the last converged step (indentation). The default keeps "
+                  "indentation: relative to the largest indenter force of the run's converged "
+                  "steps and the bottom face's reaction at the increment's iterates after a "
+                  "Newton update (the model's forces, a quarter of the indent's with symmetry: "
+                  "quarter), so "
+                  "that the curve's force error is about this fraction of the largest force "
+                  "whatever the contact penalty; tensile: relative to the first residual of "
+                  "the increment. The default keeps "
                   "the Newton error below the contact tolerance's: against a reference run "
-                  "with 1e-10 and a contact tolerance of 1e-9 µm, `j2_24` deviates by 8.72e-7 "
-                  "of the largest force at 1e-8, 8.70e-7 at 1e-7 and 8.66e-7 at 1e-6 "
+                  "with 1e-10 and a contact tolerance of 1e-9 µm, `j2_24` deviates by 8.7e-7 "
+                  "of the largest force at 1e-8 and 1e-7 and 8.6e-7 at 1e-6 "
                   "(`crystal_24`: 2.54e-6 at both 1e-8 and 1e-7). For curves that agree "
                   "across rank counts to 1e-8, set it to 1e-8 together with "
                   "`contact.penetration_tolerance` 1e-8"),

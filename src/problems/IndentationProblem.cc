@@ -497,7 +497,7 @@ namespace indentsim::problems
     depth_converged_ = depth_trial_;
     force_previous_ = force_converged_;
     force_converged_ = force_trial_;
-    converged_force_scale_ = trial_force_scale_;
+    converged_force_scale_ = std::max(converged_force_scale_, trial_force_scale_);
     has_previous_ = true;
     contact_->accept_increment();
   }

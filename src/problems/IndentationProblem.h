@@ -323,7 +323,8 @@ namespace indentsim::problems
     double                             depth_converged_ = 0, depth_previous_ = 0, depth_trial_ = 0;
     // Indenter force (whole indent) of the last two converged increments [mN].
     double force_converged_ = 0, force_previous_ = 0, force_trial_ = 0;
-    // |indenter force| of the model [mN] at the last converged and at the trial state.
+    // |indenter force| of the model [mN]: the largest of the converged states so far (the scale
+    // of Newton's relative tolerance), and that of the trial state.
     double converged_force_scale_ = 0, trial_force_scale_ = 0;
     // The absolute residual tolerance of Newton's method: solver.absolute_tolerance, or the
     // round-off level of the residual if larger (residual_round_off) [mN].

@@ -302,3 +302,62 @@ TEST(Axisymmetric, AugmentationConvergesWhereAContactEdgeNodeAlternates)
             << " um: " << records.back().augmentations << " augmentations, "
             << records.back().newton_iterations << " Newton iterations" << std::endl;
 }
+
+// Newton's relative tolerance is measured against forces the body carries (the run's largest
+// indenter force, the bottom face's reaction), not against the increment's first residual or
+// an iterate's contact force, which grow with the contact penalty times the iterate's
+// penetration. With a loose tolerance (1e-4) and a penalty of 1e6 GPa/um (about 1000 times the
+// automatic one here), every accepted J2 increment must still be in equilibrium: the indenter
+// force equals the bottom face's reaction to 2e-4 of the largest force (a tolerance relative to
+// the first residual lets them differ by 38 %). The neo-Hookean solid, whose solution does not depend on
+// the path (the stiff run may cut increments back), gives the same force with either penalty at
+// every depth both runs reached.
+TEST(Axisymmetric, ConvergedCurveDoesNotDependOnThePenalty)
+{
+  const auto largest_force = [](const auto &records) {
+    double largest = 0;
+    for (const auto &r : records)
+      largest = std::max(largest, std::abs(r.force));
+    return largest;
+  };
+  io::Case j2 = test_cases::small_j2_case("axisymmetric");
+  j2.loading.max_depth = 2.0;
+  j2.loading.steps = 16;
+  j2.solver.residual_tolerance = 1e-4;
+  j2.contact.penalty = 1e6;
+  problems::IndentationProblem<2> stiff_j2(j2, MPI_COMM_WORLD, false);
+  run(stiff_j2);
+  EXPECT_NEAR(stiff_j2.records().back().depth, 2.0, 1e-12);
+  const double j2_largest = largest_force(stiff_j2.records());
+  double       imbalance = 0;
+  for (const auto &r : stiff_j2.records())
+    imbalance = std::max(imbalance, std::abs(r.force - r.bottom_reaction));
+  std::cout << "[ penalty ] J2, penalty 1e6: largest |indenter force - bottom reaction| "
+            << imbalance / j2_largest << " of the largest force " << j2_largest << " mN"
+            << std::endl;
+  EXPECT_LT(imbalance, 2e-4 * j2_largest);
+
+  io::Case elastic = j2;
+  elastic.material.model = "neo_hookean";
+  elastic.contact.penalty = 0; // automatic
+  io::Case stiff = elastic;
+  stiff.contact.penalty = 1e6;
+  problems::IndentationProblem<2> automatic_run(elastic, MPI_COMM_WORLD, false);
+  run(automatic_run);
+  problems::IndentationProblem<2> stiff_run(stiff, MPI_COMM_WORLD, false);
+  run(stiff_run);
+  const double largest = largest_force(automatic_run.records());
+  double       deviation = 0;
+  unsigned int compared = 0;
+  for (const auto &a : automatic_run.records())
+    for (const auto &b : stiff_run.records())
+      if (a.depth > 0 && std::abs(a.depth - b.depth) < 1e-12)
+        {
+          deviation = std::max(deviation, std::abs(a.force - b.force));
+          ++compared;
+        }
+  std::cout << "[ penalty ] neo-Hookean: " << compared << " depths compared, largest difference "
+            << deviation / largest << " of the largest force " << largest << " mN" << std::endl;
+  EXPECT_EQ(compared, 16u);
+  EXPECT_LT(deviation, 2e-4 * largest);
+}

@@ -141,6 +141,8 @@ namespace indentsim::problems
     // The warnings of the physics guards in the last run() (IndentationGuards.cc), in order;
     // each also went to run.log and, when verbose, to stderr.
     const std::vector<std::string> &warnings() const { return warnings_; }
+    // Their topics (run_summary.json's "topic"), in the same order.
+    const std::vector<std::string> &warning_topics() const { return warned_topics_; }
 
     unsigned int          n_cells() const;
     unsigned int          n_dofs() const;

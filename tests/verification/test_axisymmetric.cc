@@ -309,9 +309,9 @@ TEST(Axisymmetric, AugmentationConvergesWhereAContactEdgeNodeAlternates)
 // penetration. With a loose tolerance (1e-4) and a penalty of 1e6 GPa/um (about 1000 times the
 // automatic one here), every accepted J2 increment must still be in equilibrium: the indenter
 // force equals the bottom face's reaction to 2e-4 of the largest force (a tolerance relative to
-// the first residual lets them differ by 38 %). The neo-Hookean solid, whose solution does not depend on
-// the path (the stiff run may cut increments back), gives the same force with either penalty at
-// every depth both runs reached.
+// the first residual lets them differ by 38 %). The neo-Hookean solid, whose solution does not
+// depend on the path (the stiff run may cut increments back), gives the same force with either
+// penalty at every depth both runs reached.
 TEST(Axisymmetric, ConvergedCurveDoesNotDependOnThePenalty)
 {
   const auto largest_force = [](const auto &records) {

@@ -5,7 +5,8 @@
 # run.log so far kept; check and run refuse (exit code 1, nothing written) a refined region that
 # cannot hold the predicted contact, a case whose memory estimate exceeds the available memory,
 # and a count key beyond its bound, each naming the key and what is allowed; a run warns once,
-# on stderr and in run.log, when the plastic zone nears the bottom face, when a damage profile is
+# on stderr and in run.log (and once more by topic at the end, and in run_summary.json), when the
+# plastic zone nears the bottom face, when a damage profile is
 # cut off above 1 % of its peak and when fewer than 5
 # contact elements lie across the contact radius at the maximum depth.
 # Usage: run_guards.sh INDENTSIM_EXECUTABLE SCRATCH_DIRECTORY
@@ -52,6 +53,9 @@ has thin "indentsim: warning: the plastic zone"
 has thin "from the fixed bottom face z = -3"
 has thin "specimen.size[2] (now 3 um) at least"
 [[ $(grep -c "fixed bottom face" "$out/thin.txt") -eq 1 ]] || fail "the bottom warning is not once"
+has thin "warnings in this run (plastic_zone_bottom, contact_resolution); the texts are in run.log"
+grep -qF '{"topic": "plastic_zone_bottom", "text": "the plastic zone' "$out/thin/run_summary.json" \
+  || fail "run_summary.json lacks the bottom warning"
 [[ $(grep -c "# warning: the plastic zone.*fixed bottom face" "$out/thin/run.log") -eq 1 ]] \
   || fail "run.log lacks the bottom warning (once)"
 
@@ -60,6 +64,7 @@ expect 0 coarse "$indentsim" run "$here/coarse_contact.yaml" --output "$out/coar
 has coarse "contact elements across the contact radius at the maximum"
 has coarse "specimen.contact_elements: 32 (now 8"
 grep -qF "# warning: " "$out/coarse/run.log" || fail "run.log lacks the resolution warning"
+has coarse "warning in this run (contact_resolution)"
 
 # 6. A damage profile cut off above 1 % of its peak's dose: one warning, on stderr and in run.log.
 sed 's/^  model: j2$/  model: j2\n  damage_profile: {depth: [0, 0.5], dpa: [1, 0.5], law: {form: saturation, saturation_increment: 0.2, saturation_dose: 0.5}}/' \

@@ -1014,7 +1014,7 @@ namespace indentsim::io
               .range(above(0), "must be > 0 mN")
               .comment("[mN]")
               .describe("absolute residual tolerance; indentation raises it to the residual's "
-                        "round-off level, 1e-14 μ A (μ the shear modulus, A the model's bottom "
+                        "round-off level, 1e-13 μ A (μ the shear modulus, A the model's bottom "
                         "face), where that is larger"),
           D::at<&C::solver, &SP::max_newton_iterations>("solver.max_newton_iterations")
               .range(between(1, true, max_iterations, true),

@@ -143,8 +143,10 @@ TEST(Layers, HardLayerLiesBetweenPristineAndUniformlyHardened)
                 << std::endl;
       largest_thick_difference =
           std::max(largest_thick_difference, std::abs(force_at(thick, h) / H - 1));
-      // Within 0.5 %, the contact edge's ripple on these meshes (the layered one has four
-      // elements across the layer): at 1 um the layer's own share of the force is below it.
+      // To 0.5 %: deep in the indent the layer's share of the force (-0.5 % at 1 um) is below
+      // the contact edge's ripple on these coarse meshes (about 1.5 %, layered_case), which
+      // moves with the material too (on the thin layer's own mesh the pristine curve lies
+      // 0.7-0.9 % above the layered one at 0.7-1 um).
       EXPECT_GT(t, p * (1 - 0.005)) << "h = " << h;
       EXPECT_LT(t, H * (1 + 0.005)) << "h = " << h;
     }

@@ -237,7 +237,8 @@ def minimiser_section(r):
             f"{fmt(r.get('initial_cost'))}, final {fmt(r.get('cost'))}",
             f"- Forward runs: {fmt(r.get('forward_runs'))} computed, "
             f"{fmt(r.get('forward_runs_reused'))} reused, "
-            f"{fmt(r.get('forward_runs_failed'))} failed",
+            f"{fmt(r.get('forward_runs_failed'))} failed, "
+            f"{fmt(r.get('forward_runs_warned'))} warned",
             f"- Wall time: {fmt_unit(r.get('wall_time_s'), 's')}", ""]
 
 

@@ -180,8 +180,39 @@ namespace indentsim::calibration
           << ",\n  \"forward_runs\": " << runs.runs_computed()
           << ",\n  \"forward_runs_reused\": " << runs.runs_reused()
           << ",\n  \"forward_runs_failed\": " << runs.runs_failed()
+          << ",\n  \"forward_runs_warned\": " << runs.runs_warned()
           << ",\n  \"wall_time_s\": " << json_number(wall_time) << "\n}\n";
       output::write_file(c.output_directory + "/calibration.json", out.str());
+    }
+
+    // A forward run that warned (its mesh does not resolve the contact, its plastic zone reaches
+    // a face: user guide, "Guards") gives a curve the run itself cannot vouch for, and a fit to
+    // that curve inherits the doubt. The runs at the fitted values are named one by one; the
+    // others, which only steered the minimiser, are counted by topic.
+    void add_forward_run_warnings(const ForwardRuns &runs, const Point &fitted,
+                                  std::vector<std::string> &warnings)
+    {
+      for (const std::string &directory : runs.directories(fitted))
+        {
+          const std::vector<std::string> topics = study::warning_topics(directory);
+          std::string                    list;
+          for (const std::string &topic : topics)
+            list += (list.empty() ? "" : ", ") + topic;
+          if (!topics.empty())
+            warnings.push_back("the forward run at the fitted values, " + directory +
+                               ", warned: " + list +
+                               " (its run_summary.json says why); the fit is no more accurate "
+                               "than that run");
+        }
+      if (runs.runs_warned() == 0)
+        return;
+      std::string counts;
+      for (const auto &[topic, count] : runs.warned_topics())
+        counts += (counts.empty() ? "" : ", ") + topic + " " + std::to_string(count);
+      warnings.push_back(std::to_string(runs.runs_warned()) + " of the " +
+                         std::to_string(runs.runs_computed()) +
+                         " forward runs computed warned (runs per topic: " + counts +
+                         "); forward_runs.log names each");
     }
   } // namespace
 
@@ -263,6 +294,8 @@ namespace indentsim::calibration
           " forward run(s) failed: a failed trial point counts as a rejected step, a "
           "difference through a failed run is taken on the other side; forward_runs.log "
           "names each with its last lines");
+
+    add_forward_run_warnings(runs, fit.x, warnings);
 
     const auto   at_start = model.simulated(start), at_fit = model.simulated(fit.x);
     const double wall_time =

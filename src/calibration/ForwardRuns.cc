@@ -116,6 +116,15 @@ namespace indentsim::calibration
     return batch.study.cases.at(batch.index[0].at(k)).resolved;
   }
 
+  std::vector<std::string> ForwardRuns::directories(const Point &point) const
+  {
+    const ForwardBatch       batch = forward_study(calibration_, {point});
+    std::vector<std::string> of_point;
+    for (const std::size_t i : batch.index[0])
+      of_point.push_back(batch.study.cases.at(i).directory);
+    return of_point;
+  }
+
   ForwardRuns::ForwardRuns(const Calibration &calibration, const study::StudyRunSettings &settings,
                            std::ostream &log, std::ostream &warnings)
     : calibration_(calibration)
@@ -181,7 +190,13 @@ namespace indentsim::calibration
         if (before[c] == study::CaseState::finished)
           ++reused_;
         else if (finished)
-          ++computed_;
+          {
+            ++computed_;
+            const std::vector<std::string> topics = study::warning_topics(batch.cases[c].directory);
+            warned_ += topics.empty() ? 0 : 1;
+            for (const std::string &topic : topics)
+              ++warned_topics_[topic];
+          }
         else
           {
             ++failed_;

@@ -11,6 +11,7 @@
 #include "study/StudyFile.h"
 #include "study/StudyRunner.h"
 
+#include <map>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -52,11 +53,19 @@ namespace indentsim::calibration
     unsigned int runs_computed() const { return computed_; } // processes that ran and finished
     unsigned int runs_reused() const { return reused_; }     // found finished (cached)
     unsigned int runs_failed() const { return failed_; }
+    // Of the runs computed, those whose run_summary.json lists warnings, and the number of runs
+    // that warned on each topic (study::warning_topics).
+    unsigned int                               runs_warned() const { return warned_; }
+    const std::map<std::string, unsigned int> &warned_topics() const { return warned_topics_; }
+
+    // The run directory of each forward case at `point`, where run() puts (or found) it.
+    std::vector<std::string> directories(const Point &point) const;
 
   private:
-    const Calibration      &calibration_;
-    study::StudyRunSettings settings_;
-    std::ostream           &log_, &warnings_;
-    unsigned int            computed_ = 0, reused_ = 0, failed_ = 0;
+    const Calibration                  &calibration_;
+    study::StudyRunSettings             settings_;
+    std::ostream                       &log_, &warnings_;
+    unsigned int                        computed_ = 0, reused_ = 0, failed_ = 0, warned_ = 0;
+    std::map<std::string, unsigned int> warned_topics_;
   };
 } // namespace indentsim::calibration

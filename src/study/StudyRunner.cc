@@ -194,14 +194,7 @@ namespace indentsim::study
       else if (const auto stress = json_number(summary, "final_true_stress_GPa"))
         out << "final true stress " << *stress << " GPa";
       // The run's warnings by topic (run_summary.json holds their texts).
-      const std::string        key = "{\"topic\": \"";
-      std::vector<std::string> topics;
-      for (std::size_t at = summary.find(key); at != std::string::npos;
-           at = summary.find(key, at + 1))
-        {
-          const std::size_t start = at + key.size();
-          topics.push_back(summary.substr(start, summary.find('"', start) - start));
-        }
+      const std::vector<std::string> topics = warning_topics(study_case.directory);
       for (std::size_t i = 0; i < topics.size(); ++i)
         out << (i == 0 ? "; WARNING " : ", ") << topics[i];
       if (!topics.empty())
@@ -256,6 +249,20 @@ namespace indentsim::study
     for (const auto &l : lines)
       text += "    | " + l + "\n";
     return text;
+  }
+
+  std::vector<std::string> warning_topics(const std::string &run_directory)
+  {
+    const std::string summary = read_text(fs::path(run_directory) / io::output_files::run_summary);
+    const std::string key = "{\"topic\": \"";
+    std::vector<std::string> topics;
+    for (std::size_t at = summary.find(key); at != std::string::npos;
+         at = summary.find(key, at + 1))
+      {
+        const std::size_t start = at + key.size();
+        topics.push_back(summary.substr(start, summary.find('"', start) - start));
+      }
+    return topics;
   }
 
   int case_exit_code(const StudyCase &study_case)

@@ -80,6 +80,9 @@ namespace indentsim::study
   // The last `count` lines of a text file, each indented as "    | line\n" (a failed case's
   // console output in a report); empty if the file cannot be read.
   std::string last_lines(const std::string &path, std::size_t count);
+  // The topics of the warnings a finished run recorded (its run_summary.json, "warnings"), in
+  // their order; empty if it has none or no summary.
+  std::vector<std::string> warning_topics(const std::string &run_directory);
 
   // Exit codes of a process that never ran (the shell's: not executable, not found).
   inline constexpr int exit_cannot_execute = 126;

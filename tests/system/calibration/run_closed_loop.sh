@@ -5,7 +5,7 @@
 #   1. the fit is stopped with SIGINT while its forward runs go through a stand-in launcher
 #      (exit code 130; the launcher saw the cases and {ranks});
 #   2. the same command continues (finished forward runs reused) and recovers both parameters
-#      within 0.5 %;
+#      within 0.5 %, and reports no forward-run warning (this mesh resolves the contact);
 #   3. a third run computes nothing (every forward run cached) and gives the same values;
 #   4. with 1 % noise (standard deviation 1 % of the largest force; cost tolerance 1e-4) in five
 #      seeded draws, both true values lie inside their reported 95 % intervals in at least 4 of
@@ -80,6 +80,9 @@ grep -q "^ranks=1 .* run $out/exact/forward/cases/c0-.*/case.yaml" "$out/launche
 cat "$out/second.txt"
 json="$out/exact/calibration.json"
 recovered "$json" 0.005
+# This mesh resolves the contact: no forward run warns, and the fit says nothing of them.
+[[ $(value "$json" "c['forward_runs_warned']") -eq 0 ]] || fail "forward runs warned: $(cat "$json")"
+! grep -q "forward run at the fitted values" "$out/second.txt" || fail "a warning of no run"
 [[ $(value "$json" "c['forward_runs_reused']") -gt 0 ]] || fail "nothing of the stopped run reused"
 grep -q "Identifiable: NO" "$out/exact/report.md" || fail "report.md does not say NOT identifiable"
 for file in iterations.csv fit_data0.csv fit_data1.csv fit_data0.png iterations.png; do

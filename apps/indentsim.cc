@@ -138,13 +138,13 @@ namespace
                   << (compared ? "comparison_with_experiment.json, experimental_curve.csv, " : "")
                   << "resolved_case.yaml, run.log\n";
         // The warnings again, by topic, where the run ends: a long run's scroll hides them.
-        const std::vector<std::string> &topics = problem.warning_topics();
-        if (!topics.empty())
+        const std::vector<output::RunWarning> &warnings = problem.warnings();
+        if (!warnings.empty())
           {
-            std::cerr << "indentsim: " << topics.size()
-                      << (topics.size() == 1 ? " warning" : " warnings") << " in this run (";
-            for (std::size_t i = 0; i < topics.size(); ++i)
-              std::cerr << (i == 0 ? "" : ", ") << topics[i];
+            std::cerr << "indentsim: " << warnings.size()
+                      << (warnings.size() == 1 ? " warning" : " warnings") << " in this run (";
+            for (std::size_t i = 0; i < warnings.size(); ++i)
+              std::cerr << (i == 0 ? "" : ", ") << warnings[i].topic;
             std::cerr << "); the texts are in run.log and run_summary.json" << std::endl;
           }
       }

@@ -35,8 +35,8 @@ namespace indentsim::contact
     double smallest = std::numeric_limits<double>::max(), largest = 0;
     for (const ContactNode &node : nodes_)
       {
-        smallest = std::min(smallest, node.penalty);
-        largest = std::max(largest, node.penalty);
+        smallest = std::min(smallest, node.penalty_initial);
+        largest = std::max(largest, node.penalty_initial);
       }
     return {Utilities::MPI::min(smallest, communicator_),
             Utilities::MPI::max(largest, communicator_)};
@@ -161,8 +161,9 @@ namespace indentsim::contact
       {
         node.area = area(node.dofs[z]);
         const double mean_edge = edge_sum(node.dofs[z]) / faces(node.dofs[z]);
-        node.penalty =
+        node.penalty_initial =
             local_penalty_stiffness_ > 0 ? local_penalty_stiffness_ / mean_edge : penalty_;
+        node.penalty = node.penalty_initial;
         nodes_.push_back(node);
       }
   }
@@ -479,7 +480,7 @@ namespace indentsim::contact
     return Utilities::MPI::sum(n_changes_, communicator_);
   }
 
-  double NodeToSurfaceContact::augment(const bool damp_oscillations)
+  double NodeToSurfaceContact::augment(const bool damp_oscillations, const double stiffen_above)
   {
     double largest_change = 0;
     for (ContactNode &node : nodes_)
@@ -488,6 +489,19 @@ namespace indentsim::contact
             std::max({largest_change, std::abs(node.pressure - node.lambda) * node.area,
                       (node.traction - node.traction_multiplier).norm() * node.area});
         const bool oscillating = damp_oscillations && node.gap * node.gap_at_augmentation < 0;
+        // Uzawa reduces a node's gap by the factor K / (K + eps_i A_i) per pass, K the stiffness
+        // the node meets: a node far stiffer than its penalty (the apex node of a nearly sharp
+        // tip under a pressure of tens of GPa, where the compressed material's tangent grows)
+        // crawls toward the tolerance by a few per cent per pass. Where a pass has not reduced
+        // the gap fourfold, eps_i is raised fourfold for the rest of the increment (at most
+        // max_penalty_raise times): the multipliers, and so the converged answer, stay those of
+        // the conditions.
+        const bool held_to_surface = node.active || node.gap < 0; // its gap must vanish
+        if (held_to_surface && std::abs(node.gap) > stiffen_above &&
+            node.gap * node.gap_at_augmentation > 0 &&
+            std::abs(node.gap) > 0.25 * std::abs(node.gap_at_augmentation) &&
+            node.penalty < max_penalty_raise * node.penalty_initial)
+          node.penalty *= 4;
         // The Uzawa update projected onto lambda >= 0: a node held in tension gets none.
         const double pressure = std::max(node.pressure, 0.0);
         node.lambda = oscillating ? 0.5 * (node.lambda + pressure) : pressure;
@@ -522,6 +536,7 @@ namespace indentsim::contact
         node.traction_multiplier_converged = node.traction_multiplier;
         node.x_converged = node.x;
         node.gap_at_augmentation = 0;
+        node.penalty = node.penalty_initial;
       }
     depth_converged_ = depth_;
     offset_converged_ = offset_;
@@ -542,6 +557,7 @@ namespace indentsim::contact
         node.lambda = node.lambda_converged;
         node.traction_multiplier = node.traction_multiplier_converged;
         node.gap_at_augmentation = 0;
+        node.penalty = node.penalty_initial;
       }
   }
 

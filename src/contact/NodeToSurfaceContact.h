@@ -42,6 +42,7 @@
 #include <deal.II/lac/petsc_vector.h>
 
 #include <array>
+#include <limits>
 #include <map>
 #include <utility>
 #include <vector>
@@ -67,8 +68,9 @@ namespace indentsim::contact
     Point<3>                                       X; // reference position [um]
     bool   on_axis = false; // held on the indenter's axis (NodeToSurfaceContact::axis_projection)
     double area = 0;        // tributary reference area [um^2] (axisymmetric: of the whole ring)
-    double penalty = 0;     // augmentation parameter eps_i [GPa/um]
-    double lambda = 0;      // normal multiplier (nominal pressure) [GPa]
+    double penalty = 0;     // augmentation parameter eps_i [GPa/um] (raised by augment())
+    double penalty_initial = 0;                 // eps_i at the start of every increment [GPa/um]
+    double lambda = 0;                          // normal multiplier (nominal pressure) [GPa]
     double lambda_converged = 0;                // normal multiplier of the last converged increment
     double lambda_previous = 0;                 // ... and of the one before
     Tensor<1, 3> traction_multiplier;           // tangential multiplier t_i [GPa]
@@ -222,7 +224,11 @@ namespace indentsim::contact
     // (penetrating, then standing off under its multiplier, or the reverse) takes the mean
     // lambda <- (lambda + p)/2: a node at the edge of the contact can otherwise alternate between
     // the two states forever (the fixed point, and so the converged answer, is the same).
-    double augment(bool damp_oscillations = false);
+    // A node whose gap beyond `stiffen_above` [um] the last pass did not reduce fourfold gets a
+    // fourfold penalty until the increment ends (at most max_penalty_raise times its own).
+    double                  augment(bool   damp_oscillations = false,
+                                    double stiffen_above = std::numeric_limits<double>::infinity());
+    static constexpr double max_penalty_raise = 1024;
 
     // The residual change the next augment() would make: the l2 norm over the nodes of the
     // nodal force change A_i |(p_i - lambda_i) n_i + t_i - t^lambda_i| (global) [mN].

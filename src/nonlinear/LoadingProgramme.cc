@@ -65,7 +65,6 @@ namespace indentsim::nonlinear
   LoadingProgramme::LoadingProgramme(const io::LoadingParameters &loading)
     : force_control(is_force_control(loading))
     , maximum(force_control ? loading.max_force : loading.max_depth)
-    , expected_steps(nonlinear::expected_steps(loading))
     , unload_points_(loading.unload_points)
     , partial_fraction_(loading.partial_unloads.fraction)
     , partial_points_(loading.partial_unloads.points)

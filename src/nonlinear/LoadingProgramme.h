@@ -39,8 +39,6 @@ namespace indentsim::nonlinear
     bool                 force_control;
     double               maximum; // max_depth [um] or, under force control, max_force [mN]
     std::vector<Segment> segments;
-    // The steps the programme takes without cut-backs (remaining_steps at its start).
-    unsigned int expected_steps;
     // Depth-controlled unloading is paced by force (unload_points > 0), and so is a partial
     // unload: see IncrementControl (nonlinear/CutBackStepper.h).
     bool paced(const Segment &segment) const;
@@ -65,7 +63,7 @@ namespace indentsim::nonlinear
     // a load, reload or uniform unloading counts the nominal increments left to its target
     // (walked as nominal_increment walks them); a hold, a paced unloading and a partial unload
     // count their nominal steps whole, their progress not being the control value's. At the
-    // programme's start this is expected_steps.
+    // programme's start this is expected_steps(loading).
     double remaining_steps(std::size_t index, double value, bool index_done) const;
     // " um" or " mN": the unit of the control value in messages.
     const char *unit() const { return force_control ? " mN" : " um"; }

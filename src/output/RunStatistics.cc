@@ -54,8 +54,8 @@ namespace indentsim::output
           << "  \"peak_memory_total_mib\": " << memory_sum << ",\n"
           << "  \"warnings\": [";
       for (std::size_t i = 0; i < d.warnings.size(); ++i)
-        out << (i == 0 ? "\n" : ",\n") << "    {\"topic\": " << io::json_string(d.warnings[i].first)
-            << ", \"text\": " << io::json_string(d.warnings[i].second) << "}";
+        out << (i == 0 ? "\n" : ",\n") << "    {\"topic\": " << io::json_string(d.warnings[i].topic)
+            << ", \"text\": " << io::json_string(d.warnings[i].text) << "}";
       out << (d.warnings.empty() ? "" : "\n  ") << "],\n"
           << "  " << text(d.final_value_name) << ": " << d.final_value << "\n"
           << "}\n";

@@ -68,6 +68,13 @@ namespace indentsim::output
   // Peak resident memory of this process [MiB] (getrusage).
   double peak_memory_mib();
 
+  // A guard's warning: `topic` an identifier (run_summary.json's "topic", e.g.
+  // contact_resolution), `text` what it says, with the numbers and the remedy.
+  struct RunWarning
+  {
+    std::string topic, text;
+  };
+
   // What run_summary.json records besides the statistics.
   struct RunDescription
   {
@@ -78,9 +85,9 @@ namespace indentsim::output
     unsigned int  mpi_ranks = 1, threads = 1;
     double        final_value = 0; // force at maximum depth [mN] or final true stress [GPa]
     std::string   final_value_name;
-    // The run's warnings (topic, text), in the order they were given: a result the program
-    // cannot fully vouch for says so in its summary, not only in run.log and on stderr.
-    std::vector<std::pair<std::string, std::string>> warnings;
+    // The run's warnings, in the order they were given: a result the program cannot fully
+    // vouch for says so in its summary, not only in run.log and on stderr.
+    std::vector<RunWarning> warnings;
   };
 
   // Collective: gathers the peak memory of all ranks (largest and sum) and writes the JSON file

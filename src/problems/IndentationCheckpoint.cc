@@ -258,10 +258,10 @@ namespace indentsim::problems
       // The warnings given so far: a resumed run's summary lists them too, although a guard
       // that looks only at the first step does not look again.
       out.value<std::uint64_t>(warnings_.size());
-      for (std::size_t i = 0; i < warnings_.size(); ++i)
+      for (const output::RunWarning &warning : warnings_)
         {
-          out.string(warned_topics_[i]);
-          out.string(warnings_[i]);
+          out.string(warning.topic);
+          out.string(warning.text);
         }
       out.close();
     });
@@ -285,7 +285,7 @@ namespace indentsim::problems
     std::vector<StepRecord>                     records;
     std::vector<std::pair<double, std::string>> vtu_records;
     RunStatistics                               statistics;
-    std::vector<std::string>                    warned_topics, warnings;
+    std::vector<output::RunWarning>             warnings;
     try
       {
         require_checkpoint_file(path);
@@ -342,11 +342,10 @@ namespace indentsim::problems
             snapshot.surface = in.vector<pileup::SurfaceQuad>();
           }
         warnings.resize(in.value<std::uint64_t>());
-        warned_topics.resize(warnings.size());
-        for (std::size_t i = 0; i < warnings.size(); ++i)
+        for (output::RunWarning &warning : warnings)
           {
-            warned_topics[i] = in.string();
-            warnings[i] = in.string();
+            warning.topic = in.string();
+            warning.text = in.string();
           }
         contact_->restore_state(contact_state);
       }
@@ -373,7 +372,6 @@ namespace indentsim::problems
     history_.converged_changed();
     records_ = std::move(records);
     vtu_records_ = std::move(vtu_records);
-    warned_topics_ = std::move(warned_topics);
     warnings_ = std::move(warnings);
     const double setup = statistics_.setup;
     statistics_ = statistics;

@@ -45,10 +45,10 @@ namespace indentsim::problems
   void IndentationProblem<dim>::warn(output::RunRecorder &recorder, const std::string &topic,
                                      const std::string &text)
   {
-    if (std::find(warned_topics_.begin(), warned_topics_.end(), topic) != warned_topics_.end())
+    if (std::any_of(warnings_.begin(), warnings_.end(),
+                    [&](const output::RunWarning &w) { return w.topic == topic; }))
       return;
-    warned_topics_.push_back(topic);
-    warnings_.push_back(text);
+    warnings_.push_back({topic, text});
     if (Utilities::MPI::this_mpi_process(communicator_) != 0)
       return;
     recorder.log_note("warning: " + text);

@@ -151,7 +151,7 @@ namespace indentsim::problems
           }
         // From the fourth pass on, nodes that alternate between penetrating and standing off are
         // damped (NodeToSurfaceContact::augment); earlier passes are the plain Uzawa update.
-        const double multiplier_change = contact_->augment(increment.pass >= 3);
+        const double multiplier_change = contact_->augment(increment.pass >= 3, tolerance);
         pcout_ << "      pass " << increment.pass << "  augmented: penetration " << std::scientific
                << std::setprecision(2) << summary.max_penetration << " um, active gap "
                << summary.max_active_gap << " um, largest multiplier change " << multiplier_change

@@ -138,11 +138,9 @@ namespace indentsim::problems
     {
       return pileup_results_;
     }
-    // The warnings of the physics guards in the last run() (IndentationGuards.cc), in order;
-    // each also went to run.log and, when verbose, to stderr.
-    const std::vector<std::string> &warnings() const { return warnings_; }
-    // Their topics (run_summary.json's "topic"), in the same order.
-    const std::vector<std::string> &warning_topics() const { return warned_topics_; }
+    // The warnings of the physics guards in the last run() (IndentationGuards.cc), in order,
+    // one per topic; each also went to run.log and, when verbose, to stderr.
+    const std::vector<output::RunWarning> &warnings() const { return warnings_; }
 
     unsigned int          n_cells() const;
     unsigned int          n_dofs() const;
@@ -345,8 +343,7 @@ namespace indentsim::problems
     output::RunStatistics                       statistics_;
     std::vector<StepRecord>                     records_;
     std::vector<analysis::pileup::PileUpResult> pileup_results_;
-    std::vector<std::string>                    warnings_;
-    std::vector<std::string>                    warned_topics_;
+    std::vector<output::RunWarning>             warnings_;
     std::array<bool, 2> mirror_planes_{};                     // x = 0, y = 0 (shared_mirror_planes)
     std::vector<std::pair<double, std::string>> vtu_records_; // (output index, pvtu file)
     std::string                                 output_directory_;

@@ -108,7 +108,6 @@ namespace indentsim::problems
     const unsigned int n_constrained = n_constrained_dofs();
     pileup_results_.clear();
     warnings_.clear();
-    warned_topics_.clear();
     if (resume)
       read_checkpoint(context.loop, context.snapshots);
     // Resumed: the curve so far, from the saved records, so that the files are consistent with
@@ -426,8 +425,7 @@ namespace indentsim::problems
     description.final_value = loop.value_at_max;
     description.final_value_name =
         context.programme.force_control ? "depth_at_max_force_um" : "force_at_max_depth_mN";
-    for (std::size_t i = 0; i < warnings_.size(); ++i)
-      description.warnings.emplace_back(warned_topics_[i], warnings_[i]);
+    description.warnings = warnings_;
     output::write_run_summary(output_directory_ + "/" + io::output_files::run_summary, description,
                               statistics_, communicator_);
     // A finished run needs no checkpoint (an earlier one, if any, is removed).

@@ -269,7 +269,7 @@ TEST(RunGuards, ContactThatBreaksAMirrorSymmetryWarns)
       problem.run(directory.string());
       const auto &warnings = problem.warnings();
       const bool  warned = std::any_of(warnings.begin(), warnings.end(), [](const auto &w) {
-        return w.find("mirror-symmetric about the plane y = 0") != std::string::npos;
+        return w.text.find("mirror-symmetric about the plane y = 0") != std::string::npos;
       });
       EXPECT_EQ(warned, radius < 1e-3) << "tip radius " << radius;
       EXPECT_NEAR(problem.records().back().depth, 2.25, 1e-12);
@@ -323,13 +323,14 @@ TEST(RunGuards, PyramidWithEveryFaceAlongTheMeshLinesWarns)
       problem.run(directory.string());
       const auto &warnings = problem.warnings();
       const auto  warning = std::find_if(warnings.begin(), warnings.end(), [](const auto &w) {
-        return w.find("runs parallel to the mesh lines") != std::string::npos;
+        return w.text.find("runs parallel to the mesh lines") != std::string::npos;
       });
       EXPECT_EQ(warning != warnings.end(), rotation == 0.) << "rotation " << rotation;
       if (warning != warnings.end())
         {
-          EXPECT_NE(warning->find("indenter.rotation_deg = 0"), std::string::npos) << *warning;
-          EXPECT_NE(warning->find("rotation_deg: 22.5"), std::string::npos) << *warning;
+          EXPECT_NE(warning->text.find("indenter.rotation_deg = 0"), std::string::npos)
+              << warning->text;
+          EXPECT_NE(warning->text.find("rotation_deg: 22.5"), std::string::npos) << warning->text;
         }
       EXPECT_NEAR(problem.records().back().depth, 0.5, 1e-12);
       // The 4 x 4 mesh also warns that few elements span the contact.

@@ -65,7 +65,7 @@ TEST(LoadingProgramme, CyclesOfLoadHoldUnload)
   EXPECT_TRUE(depth.paced(depth.segments[2]));
   EXPECT_FALSE(depth.paced(depth.segments[0]));
   // Paced unloading takes unload_points + 1 steps: 2 (10 + 3 + 21).
-  EXPECT_EQ(depth.expected_steps, 68u);
+  EXPECT_EQ(expected_steps(loading), 68u);
   EXPECT_STREQ(to_string(SegmentKind::hold), "hold");
 
   loading.control = "force";
@@ -75,7 +75,7 @@ TEST(LoadingProgramme, CyclesOfLoadHoldUnload)
   EXPECT_EQ(force.maximum, 500.0);
   EXPECT_EQ(force.segments[2].target, 5.0);
   EXPECT_FALSE(force.paced(force.segments[2]));
-  EXPECT_EQ(force.expected_steps, 2u * (10 + 3 + 5));
+  EXPECT_EQ(expected_steps(loading), 2u * (10 + 3 + 5));
   EXPECT_STREQ(force.unit(), " mN");
 }
 
@@ -268,7 +268,7 @@ namespace
   }
 } // namespace
 
-// The ETA's count of the steps left: at the start it is expected_steps (cycles with holds and
+// The ETA's count of the steps left: at the start it is expected_steps(loading) (cycles with holds and
 // paced unloading, force control, partial unloads, geometric loading with the default paced
 // unloading); within a loading segment it counts what the nominal walk takes from there to the
 // target, also from a depth between two nominal points (after a cut-back); a finished segment
@@ -287,7 +287,7 @@ TEST(LoadingProgramme, RemainingStepsCountTheNominalWalkLeft)
     {
       const LoadingProgramme programme(loading);
       // Within half a step: force control unloads 99 % of the way (4.95 of 5 steps a cycle).
-      EXPECT_NEAR(programme.remaining_steps(0, 0.0, false), double(programme.expected_steps), 0.5);
+      EXPECT_NEAR(programme.remaining_steps(0, 0.0, false), double(expected_steps(loading)), 0.5);
     }
 
   for (const char *spacing : {"uniform", "geometric"})
@@ -344,7 +344,7 @@ TEST(LoadingProgramme, PartialUnloadsAtEveryMultipleBelowTheMaximum)
   EXPECT_FALSE(programme.partial_unload_done(40.13, 50.0));
   EXPECT_DOUBLE_EQ(programme.partial_unload_probe(1.0), 0.002);
   // 30 + 11 (paced unloading) + 2 (4 + 2).
-  EXPECT_EQ(programme.expected_steps, 53u);
+  EXPECT_EQ(expected_steps(loading), 53u);
 
   // A spacing that divides the maximum puts no partial unload at the maximum itself.
   loading.max_depth = 1.0;

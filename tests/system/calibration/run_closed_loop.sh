@@ -91,7 +91,9 @@ done
 
 "$indentsim" calibrate "$out/exact.yaml" > "$out/third.txt" 2>&1 || fail "the rerun failed"
 [[ $(value "$json" "c['forward_runs']") -eq 0 ]] || fail "the rerun computed forward runs again"
-grep -q "material.yield_stress = 0.3 GPa" "$out/third.txt" || fail "the rerun changed the fit"
+fitted=$(grep "material.yield_stress =" "$out/second.txt")
+[[ -n $fitted && "$(grep "material.yield_stress =" "$out/third.txt")" == "$fitted" ]] \
+  || fail "the rerun changed the fit: $(grep "material.yield_stress =" "$out/third.txt")"
 
 covered=0
 for seed in 1 2 3 4 5; do

@@ -6,6 +6,7 @@
 #include "calibration/ForwardRuns.h"
 #include "calibration/IndentationFeatures.h"
 #include "calibration/LeastSquaresFit.h"
+#include "case/CaseFile.h"
 #include "io/JsonText.h"
 #include "io/Version.h"
 #include "output/OutputFile.h"
@@ -195,23 +196,20 @@ namespace indentsim::calibration
       for (const std::string &directory : runs.directories(fitted))
         {
           const std::vector<std::string> topics = study::warning_topics(directory);
-          std::string                    list;
-          for (const std::string &topic : topics)
-            list += (list.empty() ? "" : ", ") + topic;
           if (!topics.empty())
             warnings.push_back("the forward run at the fitted values, " + directory +
-                               ", warned: " + list +
+                               ", warned: " + io::join(topics) +
                                " (its run_summary.json says why); the fit is no more accurate "
                                "than that run");
         }
       if (runs.runs_warned() == 0)
         return;
-      std::string counts;
+      std::vector<std::string> counts;
       for (const auto &[topic, count] : runs.warned_topics())
-        counts += (counts.empty() ? "" : ", ") + topic + " " + std::to_string(count);
+        counts.push_back(topic + " " + std::to_string(count));
       warnings.push_back(std::to_string(runs.runs_warned()) + " of the " +
                          std::to_string(runs.runs_computed()) +
-                         " forward runs computed warned (runs per topic: " + counts +
+                         " forward runs computed warned (runs per topic: " + io::join(counts) +
                          "); forward_runs.log names each");
     }
   } // namespace

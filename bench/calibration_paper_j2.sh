@@ -2,7 +2,7 @@
 # Benchmark of `indentsim calibrate` (docs/performance.md, "Calibration"): the yield stress and
 # the hardening modulus of the paper's J2 case (Table 1: 0.305 GPa and 0.5 GPa) from its own
 # load-penetration curve, loading and unloading, on the automatic axisymmetric mesh of the
-# default example (examples/paper_j2_auto_axisymmetric.yaml, 4 274 DOFs, 214 steps a run), from
+# default example (examples/paper_j2_auto_axisymmetric.yaml, 4 274 DOFs, 212 steps a run), from
 # a start at 0.25 GPa and 1.0 GPa, two forward runs side by side.
 # Usage (from the repository root, after building): bash bench/calibration_paper_j2.sh [OUT]
 # Prints the calibration's summary; calibration.json holds the wall time and the forward runs.

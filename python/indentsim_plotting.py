@@ -1,4 +1,5 @@
-"""Shared start-up of the plot scripts: a matplotlib that writes files only.
+"""Shared parts of the plot scripts: a matplotlib that writes files only, and the writing of a
+figure with a clear message when the file cannot be written.
 
 scripts/install_dependencies.sh installs Debian's python3-matplotlib and python3-numpy for
 /usr/bin/python3; another python3 first on PATH (pyenv, conda, venv) may lack them. Then the
@@ -22,3 +23,16 @@ def ensure_matplotlib(script_name):
         sys.exit(f"{script_name}: matplotlib is not installed for this Python "
                  f"({sys.executable}); run scripts/install_dependencies.sh")
     matplotlib.use("Agg")  # files only, never a display
+
+
+def save_figure(figure, output, script_name, **savefig_options):
+    """Lays the figure out and writes it to `output`; prints "wrote OUTPUT" and returns 0, or
+    names the file and the reason on stderr and returns 1 (the scripts' exit status)."""
+    figure.tight_layout()
+    try:
+        figure.savefig(output, **savefig_options)
+    except OSError as error:
+        print(f"{script_name}: cannot write {output}: {error}", file=sys.stderr)
+        return 1
+    print(f"wrote {output}")
+    return 0

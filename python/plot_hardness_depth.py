@@ -16,7 +16,7 @@ import argparse
 import json
 import sys
 
-from indentsim_plotting import ensure_matplotlib  # noqa: E402
+from indentsim_plotting import ensure_matplotlib, save_figure  # noqa: E402
 
 ensure_matplotlib("plot_hardness_depth.py")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -93,9 +93,8 @@ def main():
     right.set_title(title, fontsize=10)
     for axes in (left, middle, right):
         axes.grid(alpha=0.3)
-    figure.tight_layout()
-    figure.savefig(args.output, dpi=120)
+    return save_figure(figure, args.output, "plot_hardness_depth.py", dpi=120)
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -23,7 +23,7 @@ import math
 import os
 import sys
 
-from indentsim_plotting import ensure_matplotlib  # noqa: E402
+from indentsim_plotting import ensure_matplotlib, save_figure  # noqa: E402
 
 ensure_matplotlib("plot_load_penetration.py")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -127,14 +127,7 @@ def main(argv=None):
     axes.set_ylim(bottom=0.0)
     axes.grid(True, alpha=0.3)
     axes.legend(fontsize="small")
-    figure.tight_layout()
-    try:
-        figure.savefig(args.output)
-    except OSError as error:
-        print(f"plot_load_penetration.py: cannot write {args.output}: {error}", file=sys.stderr)
-        return 1
-    print(f"wrote {args.output}")
-    return 0
+    return save_figure(figure, args.output, "plot_load_penetration.py")
 
 
 if __name__ == "__main__":

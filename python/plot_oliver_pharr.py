@@ -15,7 +15,7 @@ import argparse
 import json
 import sys
 
-from indentsim_plotting import ensure_matplotlib  # noqa: E402
+from indentsim_plotting import ensure_matplotlib, save_figure  # noqa: E402
 
 ensure_matplotlib("plot_oliver_pharr.py")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -68,9 +68,8 @@ def main():
     axes.set_title(title, fontsize=10)
     axes.grid(alpha=0.3)
     axes.legend(fontsize=8, loc="upper left")
-    figure.tight_layout()
-    figure.savefig(args.output, dpi=120)
+    return save_figure(figure, args.output, "plot_oliver_pharr.py", dpi=120)
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -17,7 +17,7 @@ import csv
 import os
 import sys
 
-from indentsim_plotting import ensure_matplotlib  # noqa: E402
+from indentsim_plotting import ensure_matplotlib, save_figure  # noqa: E402
 
 ensure_matplotlib("plot_stress_strain.py")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -79,14 +79,7 @@ def main(argv=None):
     axes.set_ylim(bottom=0.0)
     axes.grid(True, alpha=0.3)
     axes.legend(fontsize="small")
-    figure.tight_layout()
-    try:
-        figure.savefig(args.output)
-    except OSError as error:
-        print(f"plot_stress_strain.py: cannot write {args.output}: {error}", file=sys.stderr)
-        return 1
-    print(f"wrote {args.output}")
-    return 0
+    return save_figure(figure, args.output, "plot_stress_strain.py")
 
 
 if __name__ == "__main__":

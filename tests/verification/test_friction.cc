@@ -2,10 +2,12 @@
 // closed forms: a block whose top-face nodes are held by linear springs is pressed by a rigid
 // plane and the plane is then slid sideways and back. Each node sticks while the spring force
 // k |u_t| stays below mu N and slips with the tangential force mu N beyond; the path back shows
-// the stick-slip hysteresis. The contact tangent with friction is checked against differences of
-// the residual. Units: um, mN, GPa.
+// the stick-slip hysteresis. The contact tangent, with friction and on the curved surfaces of the
+// rounded cone, the sphere and the rounded pyramid, is checked against differences of the
+// residual. Units: um, mN, GPa.
 #include "contact/NodeToSurfaceContact.h"
 #include "indenter/Cone.h"
+#include "indenter/Pyramid.h"
 #include "indenter/RoundedCone.h"
 #include "indenter/Sphere.h"
 
@@ -402,6 +404,46 @@ TEST(Friction, TangentMatchesDifferencesOfTheResidual)
       const double max_error = difference_from_central_differences(block, depth, tangent);
       EXPECT_LT(max_error, 1e-6 * max_entry) << "largest entry " << max_entry;
     }
+}
+
+// Requirement: the contact tangent is the derivative of the contact residual also on a pyramid
+// with rounded tip and edges (Pyramid: the sharp pyramid's projection moved by R), with and
+// without friction, where a node's foot lies on a face or on a rounded edge. Oracle: central
+// differences of the residual at frozen statuses. The Berkovich apex (R = 0.05 um) stands over
+// the block's centre, 0.01 um deeper than the surface over the node (0, 0); turned by 0, 15 and
+// 60 deg the node lies under a face, turned by 44 to 46 deg under (and beside) the edge at 225
+// deg, whose rounding carries its foot (a normal steeper than the faces').
+TEST(PyramidContact, TangentMatchesDifferencesOfTheResidual)
+{
+  const double face_normal_z = std::sin(indenter::Pyramid::berkovich_face_angle_deg * M_PI / 180);
+  for (const double rotation : {0.0, 15.0, 44.0, 45.0, 45.5, 46.0, 60.0})
+    for (const double mu : {0.0, 2.0})
+      {
+        SCOPED_TRACE("rotation " + std::to_string(rotation) + " deg, mu = " + std::to_string(mu));
+        const indenter::Pyramid berkovich = indenter::Pyramid::berkovich(0.05, rotation);
+        SpringBlock             block(berkovich, mu, 50.0);
+        block.contact.set_lateral_offset(Tensor<1, 3>({0.5, 0.5, 0.}));
+        block.residual_values.assign(block.dof_handler.n_dofs(), 0.);
+        for (unsigned int i = 0; i < block.dof_handler.n_dofs(); ++i)
+          if (block.is_top[i])
+            block.shift(i, 1e-4 * std::sin(1.0 + i));
+        const double depth = berkovich.profile(-0.5, -0.5) + 0.01;
+        using ActiveSet = contact::NodeToSurfaceContact::ActiveSet;
+        FullMatrix<double> tangent;
+        block.assemble(ActiveSet::free, depth, &tangent);
+        const contact::ContactNode &corner = block.contact.nodes()[0];
+        ASSERT_LT(corner.X.norm(), 1e-12);
+        ASSERT_TRUE(corner.active);
+        const bool under_edge = std::abs(rotation - 45) < 2;
+        EXPECT_EQ(std::abs(corner.normal[2]) > face_normal_z + 1e-3, under_edge)
+            << "normal " << corner.normal;
+        double max_entry = 0;
+        for (unsigned int i = 0; i < tangent.m(); ++i)
+          for (unsigned int j = 0; j < tangent.n(); ++j)
+            max_entry = std::max(max_entry, std::abs(tangent(i, j)));
+        EXPECT_LT(difference_from_central_differences(block, depth, tangent), 1e-6 * max_entry)
+            << "largest entry " << max_entry;
+      }
 }
 
 // Requirement: the frictionless contact tangent is the exact derivative of the contact forces,

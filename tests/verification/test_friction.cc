@@ -412,7 +412,7 @@ TEST(Friction, TangentMatchesDifferencesOfTheResidual)
 // differences of the residual at frozen statuses. The Berkovich apex (R = 0.05 um) stands over
 // the block's centre, 0.01 um deeper than the surface over the node (0, 0); turned by 0, 15 and
 // 60 deg the node lies under a face, turned by 44 to 46 deg under (and beside) the edge at 225
-// deg, whose rounding carries its foot (a normal steeper than the faces').
+// deg, whose rounding carries its foot (a normal nearer the vertical than the faces').
 TEST(PyramidContact, TangentMatchesDifferencesOfTheResidual)
 {
   const double face_normal_z = std::sin(indenter::Pyramid::berkovich_face_angle_deg * M_PI / 180);
